@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package holotrace needs to build, test and benchmark.
+# Nothing is downloaded outside Debian's archive. Safe to re-run.
+set -euo pipefail
+if [[ $(id -u) -ne 0 ]]; then
+  echo "install-deps.sh: run as root (it calls apt-get)" >&2; exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+PKGS=(
+  build-essential cmake ninja-build pkg-config git
+  # Vulkan loader, lavapipe (CPU Vulkan for CI), validation layers, SPIR-V compiler
+  mesa-vulkan-drivers libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools spirv-tools
+  # math, images, glTF, JSON
+  libglm-dev libopenimageio-dev openimageio-tools libtinygltf-dev nlohmann-json3-dev
+  # tests, benchmarks, comparator ray tracer
+  libgtest-dev libgmock-dev libbenchmark-dev libembree-dev libtbb-dev
+  # test mesh: the Stanford bunny (69,666 triangles), /usr/share/glmark2/models/bunny.obj
+  glmark2-data
+)
+if [[ "${HOLOTRACE_WITH_SERVICE:-0}" == 1 ]]; then
+  PKGS+=(libusb-1.0-0-dev libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler)
+fi
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+echo "install-deps.sh: all ${#PKGS[@]} packages present"
