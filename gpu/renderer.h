@@ -1,6 +1,7 @@
 // renderer.h - the public GPU API: upload a scene once, then render display frames or trace ray batches.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -20,6 +21,7 @@ struct RenderSettings {
   std::uint32_t maxDepth = 4;     // specular bounces (mirror/glass) after the primary hit
   bool forceAllFeatures = false;  // disable scene specialisation (benchmark of the skipping)
   std::uint32_t seed = 0;         // decorrelates sample patterns; same seed -> bit-identical frame
+  std::function<void(double fractionDone)> progress;  // called after each batch of paths (optional)
 };
 
 struct StageTiming {
@@ -34,6 +36,7 @@ struct RenderResult {
   double totalMs = 0.0;               // host wall time of the frame
   std::uint64_t raysTraced = 0;       // closest-hit + any-hit rays
   std::uint32_t maxTraversalSteps = 0;
+  std::uint32_t nonFiniteSamples = 0; // targets whose value was NaN/Inf and was written as 0 (should be 0)
 };
 
 struct TraceStats {

@@ -1,0 +1,48 @@
+// compute_pipeline.cpp
+#include "gpu/compute_pipeline.h"
+
+#include "gpu/wavefront_types.h"
+
+namespace ht::gpu {
+
+PipelineLayout::PipelineLayout(VulkanContext::Impl& vk) : vk_(vk) {
+  VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu_shared::PassConstants)};
+  VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  ci.pushConstantRangeCount = 1;
+  ci.pPushConstantRanges = &range;
+  HT_VK(vkCreatePipelineLayout(vk.device, &ci, nullptr, &layout_));
+}
+
+PipelineLayout::~PipelineLayout() { vkDestroyPipelineLayout(vk_.device, layout_, nullptr); }
+
+ComputePipeline::ComputePipeline(VulkanContext::Impl& vk, const PipelineLayout& layout, ShaderId shader,
+                                 const std::vector<std::uint32_t>& specialization)
+    : vk_(vk) {
+  std::span<const std::uint32_t> code = embeddedSpirv(shader);
+  VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  mci.codeSize = code.size_bytes();
+  mci.pCode = code.data();
+  VkShaderModule module = VK_NULL_HANDLE;
+  HT_VK(vkCreateShaderModule(vk.device, &mci, nullptr, &module));
+
+  std::vector<VkSpecializationMapEntry> entries;
+  for (std::uint32_t i = 0; i < specialization.size(); ++i) {
+    entries.push_back({i, static_cast<std::uint32_t>(i * sizeof(std::uint32_t)), sizeof(std::uint32_t)});
+  }
+  VkSpecializationInfo spec{static_cast<std::uint32_t>(entries.size()), entries.data(),
+                            specialization.size() * sizeof(std::uint32_t), specialization.data()};
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  ci.stage.module = module;
+  ci.stage.pName = "main";
+  ci.stage.pSpecializationInfo = entries.empty() ? nullptr : &spec;
+  ci.layout = layout.handle();
+  VkResult r = vkCreateComputePipelines(vk.device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
+  vkDestroyShaderModule(vk.device, module, nullptr);
+  if (r != VK_SUCCESS) throw GpuError(std::string("cannot create the ") + shaderName(shader) + " pipeline: " + vkResultName(r));
+}
+
+ComputePipeline::~ComputePipeline() { vkDestroyPipeline(vk_.device, pipeline_, nullptr); }
+
+}  // namespace ht::gpu

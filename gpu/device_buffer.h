@@ -1,0 +1,59 @@
+// device_buffer.h - a Vulkan buffer with its own memory, addressed from shaders by device address.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <cstddef>
+#include <cstdint>
+
+#include "gpu/vulkan_impl.h"
+
+namespace ht::gpu {
+
+enum class MemoryPlace { Device, HostReadback };
+
+class DeviceBuffer {
+ public:
+  DeviceBuffer() = default;
+  DeviceBuffer(VulkanContext::Impl& vk, VkDeviceSize size, MemoryPlace place);
+  ~DeviceBuffer();
+  DeviceBuffer(DeviceBuffer&& other) noexcept;
+  DeviceBuffer& operator=(DeviceBuffer&& other) noexcept;
+  DeviceBuffer(const DeviceBuffer&) = delete;
+  DeviceBuffer& operator=(const DeviceBuffer&) = delete;
+
+  VkBuffer handle() const { return buffer_; }
+  VkDeviceAddress address() const { return address_; }
+  VkDeviceSize size() const { return size_; }
+  void* mapped() const { return mapped_; }  // null when the memory is not host visible
+
+  // Host -> buffer and buffer -> host copies; go through a staging buffer when the memory is not mappable.
+  void upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
+  void download(void* data, VkDeviceSize bytes, VkDeviceSize offset = 0) const;
+
+ private:
+  void release();
+  VulkanContext::Impl* vk_ = nullptr;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkDeviceAddress address_ = 0;
+  VkDeviceSize size_ = 0;
+  void* mapped_ = nullptr;
+};
+
+// Records and runs a one-off command buffer synchronously (uploads, small jobs).
+class OneShotCommands {
+ public:
+  explicit OneShotCommands(VulkanContext::Impl& vk);
+  ~OneShotCommands();
+  OneShotCommands(const OneShotCommands&) = delete;
+  OneShotCommands& operator=(const OneShotCommands&) = delete;
+  VkCommandBuffer cmd() const { return cmd_; }
+  void submitAndWait();
+
+ private:
+  VulkanContext::Impl& vk_;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+};
+
+}  // namespace ht::gpu

@@ -1,0 +1,371 @@
+// renderer.cpp - the wavefront frame loop (bvh.md §7): batches of paths go through raygen, then per bounce
+// trace_closest -> shade -> [trace_any -> gather_direct], then resolve; the frame ends with interleave.
+// Batches are submitted one by one (bounded memory, progress reports); within a batch the GPU drives its own
+// queues through indirect dispatches.
+#include "gpu/renderer.h"
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <chrono>
+#include <cstring>
+#include <map>
+
+#include "gpu/compute_pipeline.h"
+#include "gpu/device_buffer.h"
+#include "gpu/gpu_scene.h"
+#include "gpu/pass_recorder.h"
+#include "gpu/vulkan_context.h"
+#include "gpu/wavefront_types.h"
+
+namespace ht::gpu {
+
+using gpu_shared::FrameBlock;
+using gpu_shared::GpuCounters;
+using gpu_shared::HT_WORKGROUP_SIZE;
+using gpu_shared::PassConstants;
+
+static_assert(sizeof(gpu_shared::HtRay) == 32 && sizeof(gpu_shared::HtHit) == 16);
+static_assert(sizeof(gpu_shared::GpuBvhNode) == 64);
+static_assert(sizeof(GpuCounters) == 80 && offsetof(GpuCounters, dispatch) == 32);
+static_assert(sizeof(PassConstants) == 40);
+static_assert(offsetof(FrameBlock, dims) == 192 && sizeof(FrameBlock) % 16 == 0);
+
+namespace {
+
+constexpr std::uint64_t kWorkMemoryBudget = 512ull << 20;  // per-batch path state
+constexpr std::uint32_t kMaxPathsPerBatch = 1u << 20;
+constexpr std::uint32_t kQueryCapacity = 4096;
+constexpr std::uint32_t kMaxSpp = 4096;
+constexpr std::uint32_t kMaxDepth = 32;
+
+std::uint32_t groupsFor(std::uint64_t n) { return static_cast<std::uint32_t>((n + HT_WORKGROUP_SIZE - 1) / HT_WORKGROUP_SIZE); }
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+// Path state for one batch of `capacity` paths; reallocated only when a frame needs more.
+struct WorkBuffers {
+  std::uint32_t capacity = 0;
+  std::uint32_t lightSlots = 0;  // shadow slots per path
+  DeviceBuffer rays[2], queuePath[2], hits, radiance, throughput, shadowRays, shadowContrib, shadowQueue;
+
+  void ensure(VulkanContext::Impl& vk, std::uint32_t paths, std::uint32_t lights) {
+    std::uint32_t slots = std::max(lights, 1u);
+    if (paths <= capacity && slots <= lightSlots) return;
+    capacity = std::max(paths, capacity);
+    lightSlots = std::max(slots, lightSlots);
+    VkDeviceSize n = capacity, s = static_cast<VkDeviceSize>(capacity) * lightSlots;
+    for (int q = 0; q < 2; ++q) {
+      rays[q] = DeviceBuffer(vk, n * sizeof(gpu_shared::HtRay), MemoryPlace::Device);
+      queuePath[q] = DeviceBuffer(vk, n * 4, MemoryPlace::Device);
+    }
+    hits = DeviceBuffer(vk, n * sizeof(gpu_shared::HtHit), MemoryPlace::Device);
+    radiance = DeviceBuffer(vk, n * 16, MemoryPlace::Device);
+    throughput = DeviceBuffer(vk, n * 16, MemoryPlace::Device);
+    shadowRays = DeviceBuffer(vk, s * sizeof(gpu_shared::HtRay), MemoryPlace::Device);
+    shadowContrib = DeviceBuffer(vk, s * 16, MemoryPlace::Device);
+    shadowQueue = DeviceBuffer(vk, s * 4, MemoryPlace::Device);
+  }
+  static std::uint64_t bytesPerPath(std::uint32_t lights) {
+    return 2 * (sizeof(gpu_shared::HtRay) + 4) + sizeof(gpu_shared::HtHit) + 32 +
+           std::max(lights, 1u) * (sizeof(gpu_shared::HtRay) + 16 + 4);
+  }
+};
+
+struct Renderer::Impl {
+  VulkanContext::Impl& vk;
+  GpuScene scene;
+  PipelineLayout layout;
+  std::map<std::vector<std::uint32_t>, std::unique_ptr<ComputePipeline>> pipelines;
+  DeviceBuffer frame;     // FrameBlock, host visible
+  DeviceBuffer counters;  // GpuCounters, host visible
+  WorkBuffers work;
+  VkQueryPool queryPool = VK_NULL_HANDLE;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+  gpu_shared::LenticularParams lenticular{};
+  gpu_shared::PinholeParams pinhole{};
+
+  Impl(VulkanContext::Impl& v, const Scene& s, const bvh::BuildOptions& o)
+      : vk(v), scene(v, s, o), layout(v), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
+        counters(v, sizeof(GpuCounters), MemoryPlace::HostReadback) {
+    VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    qi.queryCount = kQueryCapacity;
+    HT_VK(vkCreateQueryPool(vk.device, &qi, nullptr, &queryPool));
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = vk.commandPool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    HT_VK(vkAllocateCommandBuffers(vk.device, &ai, &cmd));
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    HT_VK(vkCreateFence(vk.device, &fci, nullptr, &fence));
+  }
+
+  ~Impl() {
+    vkDeviceWaitIdle(vk.device);
+    vkDestroyFence(vk.device, fence, nullptr);
+    vkFreeCommandBuffers(vk.device, vk.commandPool, 1, &cmd);
+    vkDestroyQueryPool(vk.device, queryPool, nullptr);
+  }
+
+  const ComputePipeline& pipeline(ShaderId id, std::vector<std::uint32_t> spec = {}) {
+    std::vector<std::uint32_t> key = spec;
+    key.insert(key.begin(), static_cast<std::uint32_t>(id));
+    auto& slot = pipelines[key];
+    if (!slot) slot = std::make_unique<ComputePipeline>(vk, layout, id, spec);
+    return *slot;
+  }
+
+  FrameBlock& frameBlock() { return *static_cast<FrameBlock*>(frame.mapped()); }
+  GpuCounters& counterBlock() { return *static_cast<GpuCounters*>(counters.mapped()); }
+
+  void fillSceneAddresses(FrameBlock& f) {
+    f.nodes = scene.nodes.address();
+    f.bvhTriangles = scene.bvhTriangles.address();
+    f.vertices = scene.vertices.address();
+    f.normals = scene.hasNormals ? scene.normals.address() : 0;
+    f.texcoords = scene.hasTexcoords ? scene.texcoords.address() : 0;
+    f.triangles = scene.triangles.address();
+    f.materials = scene.materials.address();
+    f.lights = scene.lights.address();
+    f.textures = scene.textures.address();
+    f.texels = scene.texels.address();
+    for (int q = 0; q < 2; ++q) {
+      f.rays[q] = work.rays[q].address();
+      f.queuePath[q] = work.queuePath[q].address();
+    }
+    f.hits = work.hits.address();
+    f.radiance = work.radiance.address();
+    f.throughput = work.throughput.address();
+    f.shadowRays = work.shadowRays.address();
+    f.shadowContrib = work.shadowContrib.address();
+    f.shadowQueue = work.shadowQueue.address();
+    f.counters = counters.address();
+  }
+
+  PassConstants passConstants(std::uint32_t first, std::uint32_t count, std::uint32_t depth, std::uint32_t queue) const {
+    return PassConstants{frame.address(), scene.nodes.address(), scene.bvhTriangles.address(), first, count, depth, queue};
+  }
+
+  void beginCommands() {
+    HT_VK(vkResetCommandBuffer(cmd, 0));
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    HT_VK(vkBeginCommandBuffer(cmd, &bi));
+  }
+
+  void submitAndWait() {
+    HT_VK(vkEndCommandBuffer(cmd));
+    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &cmd;
+    HT_VK(vkResetFences(vk.device, 1, &fence));
+    HT_VK(vkQueueSubmit(vk.queue, 1, &si, fence));
+    HT_VK(vkWaitForFences(vk.device, 1, &fence, VK_TRUE, UINT64_MAX));
+  }
+
+  void checkCounters(const char* what) {
+    const GpuCounters& c = counterBlock();
+    if (c.overflowCount > 0) {
+      throw GpuError(std::string(what) + ": " + std::to_string(c.overflowCount) +
+                     " ray(s) exceeded the BVH traversal step limit of " + std::to_string(frameBlock().scene.z) +
+                     " steps, so hits could be missing (lavapipe stops shader loops after 65,535 iterations). "
+                     "The scene's BVH is pathological (huge overlapping triangles?); results were discarded.");
+    }
+  }
+
+  RenderResult renderFrame(std::uint32_t model, std::uint32_t width, std::uint32_t height, const RenderSettings& settings);
+  std::vector<gpu_shared::HtHit> traceBatch(std::span<const gpu_shared::HtRay> rays, bool occlusion, TraceStats* stats);
+};
+
+RenderResult Renderer::Impl::renderFrame(std::uint32_t model, std::uint32_t width, std::uint32_t height,
+                                         const RenderSettings& settings) {
+  auto t0 = std::chrono::steady_clock::now();
+  if (settings.spp < 1 || settings.spp > kMaxSpp) throw GpuError("spp " + std::to_string(settings.spp) + " out of range [1, 4096]");
+  if (settings.maxDepth > kMaxDepth) throw GpuError("depth " + std::to_string(settings.maxDepth) + " out of range [0, 32]");
+  if (width == 0 || height == 0 || width > 32768 || height > 32768) {
+    throw GpuError("image size " + std::to_string(width) + "x" + std::to_string(height) + " out of range [1, 32768]");
+  }
+  const std::uint64_t targets = static_cast<std::uint64_t>(width) * height * (model == gpu_shared::HT_MODEL_LENTICULAR ? 3 : 1);
+  const std::uint64_t totalPaths = targets * settings.spp;
+  if (totalPaths >= (1ull << 32)) {
+    throw GpuError("panel of " + std::to_string(targets) + " subpixels x spp " + std::to_string(settings.spp) +
+                   " exceeds 2^32 rays per frame: lower --spp to at most " + std::to_string(((1ull << 32) - 1) / targets));
+  }
+  const SceneFeatures& feat = scene.features();
+  const bool all = settings.forceAllFeatures;
+  const bool lights = scene.lightCount() > 0 && (feat.lights || all);
+  const bool mirror = feat.mirrors || all, glass = feat.glass || all, textures = (feat.textures && scene.textureCount() > 0) || all;
+  const std::uint32_t depthPasses = (mirror || glass) ? settings.maxDepth + 1 : 1;
+
+  // Batch size: whole targets, bounded by the path-state memory budget.
+  std::uint64_t perBatch = std::min<std::uint64_t>(kMaxPathsPerBatch, kWorkMemoryBudget / WorkBuffers::bytesPerPath(scene.lightCount()));
+  perBatch = std::max<std::uint64_t>(settings.spp, perBatch / settings.spp * settings.spp);
+  perBatch = std::min(perBatch, totalPaths);
+  work.ensure(vk, static_cast<std::uint32_t>(perBatch), scene.lightCount());
+
+  DeviceBuffer subpixels(vk, static_cast<VkDeviceSize>(width) * height * 3 * sizeof(float), MemoryPlace::Device);
+  DeviceBuffer image(vk, static_cast<VkDeviceSize>(width) * height * 16, MemoryPlace::HostReadback);
+
+  FrameBlock& f = frameBlock();
+  std::memset(&f, 0, sizeof(f));
+  fillSceneAddresses(f);
+  f.subpixels = subpixels.address();
+  f.image = image.address();
+  f.dims = glm::uvec4(width, height, settings.spp, static_cast<std::uint32_t>(targets));
+  f.scene = glm::uvec4(scene.lightCount(), scene.textureCount(), gpu_shared::HT_TRAVERSAL_STEP_LIMIT, settings.maxDepth);
+  f.frame = glm::uvec4(settings.seed, 0u, 0u, 0u);
+  f.background = glm::vec4(scene.background(), 0.0f);
+  f.ambient = glm::vec4(scene.ambient(), 0.0f);
+  if (model == gpu_shared::HT_MODEL_LENTICULAR) f.lenticular = lenticular;
+  else f.pinhole = pinhole;
+  std::memset(counters.mapped(), 0, sizeof(GpuCounters));
+
+  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, {model});
+  const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest);
+  const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, {1u});
+  const ComputePipeline& shade = pipeline(ShaderId::Shade, {lights, mirror, glass, textures});
+  const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
+  const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
+  const ComputePipeline& gather = pipeline(ShaderId::GatherDirect);
+  const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {model});
+  const ComputePipeline& interleave = pipeline(ShaderId::Interleave);
+
+  std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};
+  const VkBuffer args = counters.handle();
+  bool first = true;
+  for (std::uint64_t begin = 0; begin < totalPaths; begin += perBatch) {
+    const auto count = static_cast<std::uint32_t>(std::min<std::uint64_t>(perBatch, totalPaths - begin));
+    const auto batchFirst = static_cast<std::uint32_t>(begin);
+    beginCommands();
+    if (first) {  // live flags of the shadow slots start cleared; gather_direct clears them after use
+      vkCmdFillBuffer(cmd, work.shadowContrib.handle(), 0, VK_WHOLE_SIZE, 0);
+      VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
+      first = false;
+    }
+    PassRecorder rec(cmd, layout.handle(), queryPool, kQueryCapacity);
+    rec.dispatch(raygen, passConstants(batchFirst, count, 0, 0), groupsFor(count), Stage::Raygen);
+    for (std::uint32_t depth = 0; depth < depthPasses; ++depth) {
+      const std::uint32_t q = depth % 2;
+      PassConstants pc = passConstants(batchFirst, count, depth, q);
+      const VkDeviceSize queueArgs = offsetof(GpuCounters, dispatch) + q * sizeof(glm::uvec4);
+      if (depth == 0) {
+        rec.dispatch(traceClosest, pc, groupsFor(count), Stage::Trace);
+        rec.dispatch(shade, pc, groupsFor(count), Stage::Shade);
+      } else {
+        rec.dispatchIndirect(traceClosest, pc, args, queueArgs, Stage::Trace);
+        rec.dispatchIndirect(shade, pc, args, queueArgs, Stage::Shade);
+      }
+      rec.dispatch(afterShade, pc, 1, Stage::Queues);
+      if (lights) {
+        rec.dispatchIndirect(traceAny, pc, args, offsetof(GpuCounters, dispatch) + 2 * sizeof(glm::uvec4), Stage::Shadow);
+        if (depth == 0) rec.dispatch(gather, pc, groupsFor(count), Stage::Shadow);
+        else rec.dispatchIndirect(gather, pc, args, queueArgs, Stage::Shadow);
+      }
+      rec.dispatch(endDepth, pc, 1, Stage::Queues);
+    }
+    rec.dispatch(resolve, passConstants(batchFirst, count, 0, 0), groupsFor(count / settings.spp), Stage::Resolve);
+    submitAndWait();
+    rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+    checkCounters("render");
+    if (settings.progress) settings.progress(static_cast<double>(begin + count) / static_cast<double>(totalPaths));
+  }
+  beginCommands();
+  PassRecorder rec(cmd, layout.handle(), queryPool, kQueryCapacity);
+  rec.dispatch(interleave, passConstants(0, 0, 0, 0), groupsFor(static_cast<std::uint64_t>(width) * height), Stage::Interleave);
+  submitAndWait();
+  rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+
+  RenderResult result;
+  result.width = width;
+  result.height = height;
+  auto tRead = std::chrono::steady_clock::now();
+  result.rgba.resize(static_cast<size_t>(width) * height * 4);
+  image.download(result.rgba.data(), result.rgba.size() * sizeof(float));
+  double readbackMs = msSince(tRead);
+  for (size_t s = 0; s < stageMs.size(); ++s) {
+    auto stage = static_cast<Stage>(s);
+    if (stage == Stage::Shadow && !lights) continue;
+    result.stages.push_back({stageName(stage), stageMs[s]});
+  }
+  result.stages.push_back({"readback", readbackMs});
+  const GpuCounters& c = counterBlock();
+  result.raysTraced = c.raysTraced;
+  result.maxTraversalSteps = c.maxSteps;
+  result.nonFiniteSamples = c.nanCount;
+  result.totalMs = msSince(t0);
+  return result;
+}
+
+std::vector<gpu_shared::HtHit> Renderer::Impl::traceBatch(std::span<const gpu_shared::HtRay> rays, bool occlusion,
+                                                         TraceStats* stats) {
+  std::vector<gpu_shared::HtHit> hits(rays.size());
+  const auto chunk = static_cast<std::uint32_t>(std::min<std::uint64_t>(kMaxPathsPerBatch * 4ull, std::max<size_t>(rays.size(), 1)));
+  work.ensure(vk, chunk, 1);
+  const ComputePipeline& trace = occlusion ? pipeline(ShaderId::TraceAny, {0u}) : pipeline(ShaderId::TraceClosest);
+  FrameBlock& f = frameBlock();
+  std::memset(&f, 0, sizeof(f));
+  fillSceneAddresses(f);
+  f.scene = glm::uvec4(0u, 0u, gpu_shared::HT_TRAVERSAL_STEP_LIMIT, 0u);
+  std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};
+  std::uint32_t maxSteps = 0;
+  for (size_t begin = 0; begin < rays.size(); begin += chunk) {
+    const auto count = static_cast<std::uint32_t>(std::min<size_t>(chunk, rays.size() - begin));
+    work.rays[0].upload(rays.data() + begin, count * sizeof(gpu_shared::HtRay));
+    std::memset(counters.mapped(), 0, sizeof(GpuCounters));
+    counterBlock().queueCount[0] = count;
+    beginCommands();
+    PassRecorder rec(cmd, layout.handle(), queryPool, kQueryCapacity);
+    rec.dispatch(trace, passConstants(0, count, 0, 0), groupsFor(count), Stage::Trace);
+    submitAndWait();
+    rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+    checkCounters(occlusion ? "traceOccluded" : "traceClosest");
+    maxSteps = std::max(maxSteps, counterBlock().maxSteps);
+    work.hits.download(hits.data() + begin, count * sizeof(gpu_shared::HtHit));
+  }
+  if (stats) {
+    stats->gpuMs = stageMs[static_cast<size_t>(Stage::Trace)];
+    stats->maxSteps = maxSteps;
+  }
+  return hits;
+}
+
+Renderer::Renderer(VulkanContext& context, const Scene& scene, const bvh::BuildOptions& buildOptions)
+    : impl_(std::make_unique<Impl>(context.impl(), scene, buildOptions)) {}
+
+Renderer::~Renderer() = default;
+
+const bvh::BuildReport& Renderer::bvhReport() const { return impl_->scene.bvhReport(); }
+const SceneFeatures& Renderer::features() const { return impl_->scene.features(); }
+
+RenderResult Renderer::renderLenticular(const gpu_shared::LenticularParams& params, const RenderSettings& settings) {
+  impl_->lenticular = params;
+  const auto w = static_cast<std::uint32_t>(params.panel.x), h = static_cast<std::uint32_t>(params.panel.y);
+  return impl_->renderFrame(gpu_shared::HT_MODEL_LENTICULAR, w, h, settings);
+}
+
+RenderResult Renderer::renderPinhole(const gpu_shared::PinholeParams& params, const RenderSettings& settings) {
+  impl_->pinhole = params;
+  const auto w = static_cast<std::uint32_t>(params.lens.z), h = static_cast<std::uint32_t>(params.lens.w);
+  return impl_->renderFrame(gpu_shared::HT_MODEL_PINHOLE, w, h, settings);
+}
+
+std::vector<gpu_shared::HtHit> Renderer::traceClosest(std::span<const gpu_shared::HtRay> rays, TraceStats* stats) {
+  return impl_->traceBatch(rays, false, stats);
+}
+
+std::vector<std::uint32_t> Renderer::traceOccluded(std::span<const gpu_shared::HtRay> rays, TraceStats* stats) {
+  std::vector<gpu_shared::HtHit> hits = impl_->traceBatch(rays, true, stats);
+  std::vector<std::uint32_t> occluded(hits.size());
+  for (size_t i = 0; i < hits.size(); ++i) occluded[i] = hits[i].triId != gpu_shared::HT_MISS ? 1u : 0u;
+  return occluded;
+}
+
+}  // namespace ht::gpu

@@ -1,0 +1,18 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// interleave: packs the resolved subpixels into the panel's RGB pixel layout, flipping rows so that row 0 of
+// the output image is the top of the panel (targets count y from the bottom, optics.md §0). The view phase of
+// each subpixel, incl. BGR panels (flipSubp) and Gen3 cells, was already applied when its rays were generated.
+#include "gpu/shaders/common.glsl"
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  uint width = FRAME.dims.x;
+  uint height = FRAME.dims.y;
+  if (i >= width * height) return;
+  uint row = i / width;
+  uint x = i % width;
+  uint pixel = (height - 1u - row) * width + x;
+  FloatRef sub = FloatRef(FRAME.subpixels);
+  Vec4Ref(FRAME.image).v[i] = vec4(sub.v[3u * pixel], sub.v[3u * pixel + 1u], sub.v[3u * pixel + 2u], 1.0f);
+}

@@ -1,0 +1,30 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// resolve: box-filters the spp samples of each target of the batch into the subpixel buffer.
+// Lenticular targets keep their own channel only (a subpixel shows one primary); pinhole targets keep RGB.
+#include "gpu/shaders/common.glsl"
+
+layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  uint spp = FRAME.dims.z;
+  if (i >= pc.batchCount / spp) return;
+  uint target = pc.batchFirst / spp + i;
+  vec3 sum = vec3(0.0f);
+  for (uint s = 0u; s < spp; ++s) sum += Vec4Ref(FRAME.radiance).v[i * spp + s].xyz;
+  vec3 value = sum / float(spp);
+  bool finite = !(any(isnan(value)) || any(isinf(value)));
+  if (!finite) {
+    atomicAdd(COUNTERS.nanCount, 1u);
+    value = vec3(0.0f);
+  }
+  if (MODEL == HT_MODEL_LENTICULAR) {
+    uint c = target % 3u;
+    FloatRef(FRAME.subpixels).v[target] = c == 0u ? value.x : (c == 1u ? value.y : value.z);
+  } else {
+    FloatRef(FRAME.subpixels).v[3u * target + 0u] = value.x;
+    FloatRef(FRAME.subpixels).v[3u * target + 1u] = value.y;
+    FloatRef(FRAME.subpixels).v[3u * target + 2u] = value.z;
+  }
+}

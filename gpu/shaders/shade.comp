@@ -1,0 +1,213 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// shade: Whitted shading of the closest hits of the current queue (one invocation per queue entry).
+//   miss     -> background radiance
+//   any hit  -> emission
+//   diffuse  -> ambient term + one shadow ray per punctual light (traced by trace_any, summed by gather_direct)
+//   mirror   -> continue along the reflection (throughput *= base colour)
+//   glass    -> continue along the reflection or the refraction, chosen with the exact dielectric Fresnel
+//               probability (so each path stays one ray and the estimator is unbiased over samples)
+// Specialisation constants compile out what the scene lacks; the host also skips the passes they would feed.
+#include "gpu/shaders/common.glsl"
+#extension GL_KHR_shader_subgroup_ballot : require
+#include "bvh/offset_ray.h"
+
+layout(constant_id = 0) const bool HAS_LIGHTS = true;
+layout(constant_id = 1) const bool HAS_MIRROR = true;
+layout(constant_id = 2) const bool HAS_GLASS = true;
+layout(constant_id = 3) const bool HAS_TEXTURES = true;
+
+const float HT_INV_PI = 0.31830988618379067154f;
+const float HT_RAY_FAR = 3.0e38f;
+
+// Appends `want` lanes to a queue with one atomic per subgroup; returns the lane's slot (undefined if !want).
+uint append_slot(bool want, uint counterSelect) {
+  uvec4 ballot = subgroupBallot(want);
+  uint total = subgroupBallotBitCount(ballot);
+  uint base = 0u;
+  if (subgroupElect() && total > 0u) {
+    base = counterSelect == 2u ? atomicAdd(COUNTERS.shadowCount, total)
+                               : atomicAdd(COUNTERS.queueCount[counterSelect], total);
+  }
+  base = subgroupBroadcastFirst(base);
+  return base + subgroupBallotExclusiveBitCount(ballot);
+}
+
+// Bilinear lookup with repeat wrapping; texels are linear RGBA, row 0 = glTF v = 0.
+vec3 sample_texture(uint index, vec2 uv) {
+  GpuTexture tex = TextureRef(FRAME.textures).v[index];
+  vec2 size = vec2(float(tex.info.y), float(tex.info.z));
+  vec2 p = fract(uv) * size - 0.5f;
+  vec2 f = fract(p);
+  ivec2 p0 = ivec2(floor(p));
+  vec3 c = vec3(0.0f);
+  for (int k = 0; k < 4; ++k) {
+    ivec2 q = p0 + ivec2(k & 1, k >> 1);
+    uint x = uint((q.x % int(tex.info.y) + int(tex.info.y)) % int(tex.info.y));
+    uint y = uint((q.y % int(tex.info.z) + int(tex.info.z)) % int(tex.info.z));
+    float w = ((k & 1) == 1 ? f.x : 1.0f - f.x) * ((k >> 1) == 1 ? f.y : 1.0f - f.y);
+    c += w * Vec4Ref(FRAME.texels).v[tex.info.x + y * tex.info.y + x].xyz;
+  }
+  return c;
+}
+
+struct SurfacePoint {
+  vec3 p;        // position from barycentrics (more accurate than o + t*d far from the origin)
+  vec3 nFace;    // geometric normal facing the incoming ray
+  vec3 nShade;   // interpolated shading normal on the same side as nFace
+  bool front;    // the ray hit the side the triangle's winding faces
+  vec2 uv;
+  uint material;
+};
+
+SurfacePoint surface_point(HtHit hit, vec3 dir) {
+  uvec4 tri = UVec4Ref(FRAME.triangles).v[hit.triId];
+  Vec4Ref verts = Vec4Ref(FRAME.vertices);
+  vec3 p0 = verts.v[tri.x].xyz, p1 = verts.v[tri.y].xyz, p2 = verts.v[tri.z].xyz;
+  float w0 = 1.0f - hit.u - hit.v;
+  SurfacePoint s;
+  s.p = w0 * p0 + hit.u * p1 + hit.v * p2;
+  vec3 ng = normalize(cross(p1 - p0, p2 - p0));
+  s.front = dot(dir, ng) < 0.0f;
+  s.nFace = s.front ? ng : -ng;
+  s.nShade = s.nFace;
+  if (FRAME.normals != 0ul) {
+    Vec4Ref ns = Vec4Ref(FRAME.normals);
+    vec3 n = w0 * ns.v[tri.x].xyz + hit.u * ns.v[tri.y].xyz + hit.v * ns.v[tri.z].xyz;
+    float len = length(n);
+    if (len > 0.0f) {
+      n /= len;
+      s.nShade = dot(n, s.nFace) < 0.0f ? -n : n;
+    }
+  }
+  s.uv = vec2(0.0f);
+  if (HAS_TEXTURES && FRAME.texcoords != 0ul) {
+    Vec2Ref ts = Vec2Ref(FRAME.texcoords);
+    s.uv = w0 * ts.v[tri.x] + hit.u * ts.v[tri.y] + hit.v * ts.v[tri.z];
+  }
+  s.material = tri.w;
+  return s;
+}
+
+// Incident radiance scale and direction of light l at p (KHR_lights_punctual recommended falloffs).
+vec3 light_incidence(GpuLight light, vec3 p, out vec3 wi, out float dist) {
+  uint type = uint(light.position.w);
+  if (type == HT_LIGHT_DIRECTIONAL) {
+    wi = -light.direction.xyz;
+    dist = HT_RAY_FAR;
+    return light.radiance.xyz;
+  }
+  vec3 d = light.position.xyz - p;
+  float d2 = dot(d, d);
+  dist = sqrt(d2);
+  wi = d / dist;
+  vec3 e = light.radiance.xyz / max(d2, 1e-20f);
+  float range = light.direction.w;
+  if (range > 0.0f) {
+    float r = dist / range;
+    e *= clamp(1.0f - r * r * r * r, 0.0f, 1.0f);
+  }
+  if (type == HT_LIGHT_SPOT) {
+    float cd = dot(light.direction.xyz, -wi);
+    float t = clamp((cd - light.cone.x) / max(light.cone.y - light.cone.x, 1e-6f), 0.0f, 1.0f);
+    e *= t * t;
+  }
+  return e;
+}
+
+void emit_shadow_rays(uint path, SurfacePoint s, vec3 weight) {
+  uint lightCount = FRAME.scene.x;
+  vec3 origin = ht_offset_ray(s.p, s.nFace);
+  for (uint l = 0u; l < lightCount; ++l) {
+    vec3 wi;
+    float dist;
+    vec3 e = light_incidence(LightRef(FRAME.lights).v[l], s.p, wi, dist);
+    float cosTheta = dot(s.nShade, wi);
+    vec3 contrib = weight * e * max(cosTheta, 0.0f);
+    bool want = cosTheta > 0.0f && dot(s.nFace, wi) > 0.0f && max(contrib.x, max(contrib.y, contrib.z)) > 0.0f;
+    uint q = append_slot(want, 2u);
+    if (want) {
+      uint slot = path * lightCount + l;
+      RayRef(FRAME.shadowRays).v[slot] = HtRay(origin, 0.0f, wi, dist);
+      Vec4Ref(FRAME.shadowContrib).v[slot] = vec4(contrib, 1.0f);
+      UintRef(FRAME.shadowQueue).v[q] = slot;
+    }
+  }
+}
+
+// Exact unpolarised Fresnel reflectance of a dielectric interface (pbrt-v4 FrDielectric).
+float fresnel_dielectric(float cosI, float cosT, float eta) {
+  float rParl = (cosI - eta * cosT) / (cosI + eta * cosT);
+  float rPerp = (eta * cosI - cosT) / (eta * cosI + cosT);
+  return 0.5f * (rParl * rParl + rPerp * rPerp);
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= COUNTERS.queueCount[pc.queue]) return;
+  uint path = UintRef(FRAME.queuePath[pc.queue]).v[i];
+  HtRay ray = RayRef(FRAME.rays[pc.queue]).v[i];
+  HtHit hit = HitRef(FRAME.hits).v[i];
+  vec3 throughput = Vec4Ref(FRAME.throughput).v[path].xyz;
+  vec3 radiance = vec3(0.0f);
+  bool hitSurface = hit.triId != HT_MISS;
+  bool wantShadows = false;
+  bool continues = false;
+  vec3 dir = normalize(ray.dir);
+  HtRay next;
+  SurfacePoint s;
+  vec3 albedo = vec3(0.0f);
+  if (!hitSurface) {
+    radiance = throughput * FRAME.background.xyz;
+  } else {
+    s = surface_point(hit, dir);
+    GpuMaterial m = MaterialRef(FRAME.materials).v[s.material];
+    albedo = m.baseColor.xyz;
+    if (HAS_TEXTURES && m.baseColor.w >= 0.0f) albedo *= sample_texture(uint(m.baseColor.w), s.uv);
+    radiance = throughput * m.emissive.xyz;
+    uint kind = uint(m.emissive.w);
+    bool last = pc.depth >= FRAME.scene.w;
+    if (HAS_MIRROR && kind == HT_MATERIAL_MIRROR) {
+      continues = !last;
+      vec3 r = reflect(dir, s.nShade);
+      if (dot(r, s.nFace) <= 0.0f) r = reflect(dir, s.nFace);
+      next = HtRay(ht_offset_ray(s.p, s.nFace), 0.0f, r, HT_RAY_FAR);
+      throughput *= albedo;
+    } else if (HAS_GLASS && kind == HT_MATERIAL_GLASS) {
+      continues = !last;
+      float eta = s.front ? 1.0f / m.params.w : m.params.w;  // n_incident / n_transmitted
+      float cosI = -dot(dir, s.nShade);
+      float sin2T = eta * eta * max(0.0f, 1.0f - cosI * cosI);
+      bool reflectRay = sin2T >= 1.0f;  // total internal reflection
+      float cosT = sqrt(max(0.0f, 1.0f - sin2T));
+      if (!reflectRay) {
+        uint h = ht_hash((pc.batchFirst + path) ^ ht_hash(pc.depth * 0x632BE5ABu ^ FRAME.frame.x));
+        reflectRay = ht_uint_to_unit(h) < fresnel_dielectric(cosI, cosT, eta);
+      }
+      if (reflectRay) {
+        next = HtRay(ht_offset_ray(s.p, s.nFace), 0.0f, reflect(dir, s.nShade), HT_RAY_FAR);
+      } else {
+        vec3 t = eta * dir + (eta * cosI - cosT) * s.nShade;
+        next = HtRay(ht_offset_ray(s.p, -s.nFace), 0.0f, normalize(t), HT_RAY_FAR);
+      }
+      throughput *= albedo;
+    } else {
+      radiance += throughput * albedo * FRAME.ambient.xyz;
+      wantShadows = HAS_LIGHTS;
+    }
+    continues = continues && max(throughput.x, max(throughput.y, throughput.z)) > 1e-4f;
+  }
+  Vec4Ref(FRAME.radiance).v[path] += vec4(radiance, 0.0f);
+
+  // Subgroup operations act on the lanes active at the call, so each divergent group appends for itself.
+  if (HAS_LIGHTS && wantShadows) emit_shadow_rays(path, s, throughput * albedo * HT_INV_PI);
+  if (HAS_MIRROR || HAS_GLASS) {
+    uint out_queue = 1u - pc.queue;
+    uint q = append_slot(continues, out_queue);
+    if (continues) {
+      RayRef(FRAME.rays[out_queue]).v[q] = next;
+      UintRef(FRAME.queuePath[out_queue]).v[q] = path;
+      Vec4Ref(FRAME.throughput).v[path] = vec4(throughput, 0.0f);
+    }
+  }
+}

@@ -1,0 +1,32 @@
+// vulkan_impl.h - internals of VulkanContext shared by the gpu/ sources (not a public header).
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <atomic>
+#include <string>
+
+#include "common/error.h"
+#include "gpu/vulkan_context.h"
+
+namespace ht::gpu {
+
+// Throws GpuError naming the failed call and the VkResult.
+void checkVk(VkResult result, const char* call);
+#define HT_VK(call) ::ht::gpu::checkVk((call), #call)
+const char* vkResultName(VkResult result);
+
+struct VulkanContext::Impl {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+  VkCommandPool commandPool = VK_NULL_HANDLE;
+  VkPhysicalDeviceMemoryProperties memoryProperties{};
+  DeviceInfo info;
+  std::atomic<uint32_t> validationMessages{0};
+  std::string lastValidationMessage;
+};
+
+}  // namespace ht::gpu

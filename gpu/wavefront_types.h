@@ -1,0 +1,114 @@
+// wavefront_types.h - data shared by the host (C++) and every wavefront pass (GLSL): the per-frame block of
+// buffer device addresses and parameters, scene records (materials, lights, texture directory) and the
+// layout of the queues. All buffers are reached through VK_KHR_buffer_device_address, so no buffer is bound
+// through a descriptor and lavapipe's 128 MiB maxStorageBufferRange (toolchain.md §4, P10) does not apply.
+//
+// Pass order per batch of paths (bvh.md §7, "proposed holotrace passes"):
+//   raygen -> [trace_closest -> shade -> (prepare -> trace_any -> gather_direct)? -> prepare]* -> resolve
+// and once per frame: interleave. Queues are compacted with atomic counters; a `prepare` invocation turns a
+// counter into vkCmdDispatchIndirect arguments, so an empty queue dispatches zero workgroups.
+#ifndef HT_WAVEFRONT_TYPES_H
+#define HT_WAVEFRONT_TYPES_H
+#include "common/glsl_cpp.h"
+#include "camera_models/camera_params.h"
+
+HT_SHARED_BEGIN
+
+#ifndef HT_GLSL
+using uint64_t = std::uint64_t;
+#endif
+
+HT_CONST uint HT_WORKGROUP_SIZE = 64u;
+HT_CONST uint HT_MAX_LIGHTS = 16u;
+
+// Material kinds (scene.h MaterialKind) and light types (scene.h Light::Type).
+HT_CONST uint HT_MATERIAL_DIFFUSE = 0u;
+HT_CONST uint HT_MATERIAL_MIRROR = 1u;
+HT_CONST uint HT_MATERIAL_GLASS = 2u;
+HT_CONST uint HT_LIGHT_POINT = 0u;
+HT_CONST uint HT_LIGHT_SPOT = 1u;
+HT_CONST uint HT_LIGHT_DIRECTIONAL = 2u;
+
+// Camera model selected by the raygen specialisation constant.
+HT_CONST uint HT_MODEL_LENTICULAR = 0u;
+HT_CONST uint HT_MODEL_PINHOLE = 1u;
+
+struct GpuMaterial {
+  vec4 baseColor;  // rgb linear; w = texture index (as float, -1 = none)
+  vec4 emissive;   // rgb radiance; w = kind (HT_MATERIAL_*) as float
+  vec4 params;     // metallic, roughness, transmission, ior
+};
+
+struct GpuLight {
+  vec4 position;   // xyz world position; w = type (HT_LIGHT_*) as float
+  vec4 direction;  // xyz unit direction the light travels; w = range (0 = infinite)
+  vec4 radiance;   // rgb = color * intensity (cd or lux); w unused
+  vec4 cone;       // x = cos(outer), y = cos(inner) (spot); zw unused
+};
+
+struct GpuTexture {
+  uvec4 info;      // x = first texel index, y = width, z = height, w unused
+};
+
+// Counters written by the passes; the host reads the whole block back after a frame.
+struct GpuCounters {
+  uint queueCount[2];      // entries in ray queue 0 / 1 (ping-pong)
+  uint shadowCount;        // entries in the shadow queue
+  uint overflowCount;      // rays that hit the traversal step limit (must stay 0)
+  uint maxSteps;           // largest traversal step count seen
+  uint raysTraced;         // closest + any rays traced in this frame
+  uint nanCount;           // non-finite radiance values clamped to 0 (must stay 0)
+  uint pad;
+  uvec4 dispatch[3];       // indirect dispatch args: [0] queue 0, [1] queue 1, [2] shadow queue (xyz, w unused)
+};
+
+// One block per frame, in a host-visible buffer; its address is the first push constant.
+struct FrameBlock {
+  // scene (immutable after upload)
+  uint64_t nodes;          // GpuBvhNode[]
+  uint64_t bvhTriangles;   // vec4[3 * slots], leaf order
+  uint64_t vertices;       // vec4[] world positions
+  uint64_t normals;        // vec4[] unit vertex normals (w = 0) or 0 when the scene has none
+  uint64_t texcoords;      // vec2[] or 0
+  uint64_t triangles;      // uvec4[] (i0, i1, i2, material) indexed by original triangle id
+  uint64_t materials;      // GpuMaterial[]
+  uint64_t lights;         // GpuLight[]
+  uint64_t textures;       // GpuTexture[]
+  uint64_t texels;         // vec4[] linear RGBA
+  // wavefront state (per batch capacity N paths)
+  uint64_t rays[2];        // HtRay[N] ping-pong ray queues
+  uint64_t queuePath[2];   // uint[N] path index (local to the batch) of each queue entry
+  uint64_t hits;           // HtHit[N] closest hits of the current queue
+  uint64_t radiance;       // vec4[N] accumulated radiance per path
+  uint64_t throughput;     // vec4[N] path throughput
+  uint64_t shadowRays;     // HtRay[N * lightCount], slot = path * lightCount + light
+  uint64_t shadowContrib;  // vec4[N * lightCount] unoccluded contribution; w = 1 when the slot is live
+  uint64_t shadowQueue;    // uint[N * lightCount] compacted list of live slots
+  uint64_t counters;       // GpuCounters
+  uint64_t subpixels;      // float[targets * 3] resolved values (lenticular: one channel used per target)
+  uint64_t image;          // vec4[W * H] output, row 0 = top
+  uint64_t pad0;
+  // frame parameters
+  uvec4 dims;              // x = image width, y = image height, z = spp, w = number of targets
+  uvec4 scene;             // x = light count, y = texture count, z = step limit, w = max depth
+  uvec4 frame;             // x = seed; yzw unused (per-dispatch values travel in PassConstants)
+  vec4 background;         // rgb radiance of escaped rays
+  vec4 ambient;            // rgb ambient irradiance on diffuse surfaces
+  LenticularParams lenticular;
+  PinholeParams pinhole;
+};
+
+// Push constants of every pass (40 B of the 128 B guaranteed). The BVH addresses sit here, not in the
+// FrameBlock, so the traversal loop reads them without an extra dependent load per node fetch.
+struct PassConstants {
+  uint64_t frame;          // address of the FrameBlock
+  uint64_t nodes;          // == FrameBlock.nodes
+  uint64_t bvhTriangles;   // == FrameBlock.bvhTriangles
+  uint batchFirst;         // first path index of this batch (a multiple of spp)
+  uint batchCount;         // paths in this batch
+  uint depth;              // bounce number of the current queue (0 = primary rays)
+  uint queue;              // input ray queue (0/1); output queue = 1 - queue
+};
+
+HT_SHARED_END
+#endif
