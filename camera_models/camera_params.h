@@ -14,7 +14,9 @@ struct LenticularParams {
   vec4 panel;         // x screenW (px), y screenH (px), z invView (0/1), w flipSubp (0/1)
   vec4 camera;        // x focal distance D, y target height (focal rectangle height), z aspect W/H, w viewCone (rad, full cone)
   ivec4 flags;        // x CellPatternMode (0-4), y subpixel cell count (0-4), z flipImageX (0/1), w flipImageY (0/1)
-  vec4 cellOffset[12];// cell k, channel c -> cellOffset[k*3+c].xy = (offX/screenW, offY/screenH); .zw unused
+  vec4 cellOffset[12];// cell k, channel c -> cellOffset[k*3+c].xy = (offX/screenW, offY/screenH);
+                      // cellOffset[0].zw / [1].zw = per-pixel phase rates in x / y split hi + lo (exact fract,
+                      // lenticular_model.h); other .zw unused
   mat4 localToWorld;  // display-local frame (x right, y up, +z toward viewer, origin = focal-plane centre) -> world
 };
 

@@ -1,0 +1,217 @@
+// display_config.cpp - parsing and validation of holotrace display configs (docs/configs.md).
+#include "camera_models/display_config.h"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+
+#include "camera_models/embedded_display_configs.h"
+#include "camera_models/json_fields.h"
+#include "common/error.h"
+
+namespace ht {
+
+using detail::JsonLocation;
+using nlohmann::json;
+
+std::string_view displayModelName(DisplayModel model) {
+  return model == DisplayModel::Pinhole ? "pinhole" : "lenticular";
+}
+
+namespace {
+
+constexpr long long kMaxSpp = 4096;
+constexpr long long kMaxImageSize = 32768;
+
+std::string joinKeys(std::initializer_list<std::string_view> keys) {
+  std::string text;
+  for (std::string_view key : keys) text += (text.empty() ? "" : ", ") + std::string(key);
+  return text;
+}
+
+// Our format is strict: every key must be known, so a typo ("fovy", "depthines") is reported, not ignored.
+void rejectUnknownKeys(const JsonLocation& at, const json& object, std::initializer_list<std::string_view> allowed) {
+  for (const auto& [key, value] : object.items()) {
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
+      detail::throwFieldError(at, key, &value, "unknown key; expected one of: " + joinKeys(allowed));
+  }
+}
+
+const json& requireObject(const JsonLocation& at, const json& parent, std::string_view key) {
+  const json* field = detail::findField(parent, key);
+  if (field == nullptr || !field->is_object()) detail::throwFieldError(at, key, field, "expected a JSON object");
+  return *field;
+}
+
+bool isAuto(const json& value) { return value.is_string() && value.get<std::string>() == "auto"; }
+
+// [x, y, z] of finite numbers, or "auto" (nullopt) when allowed.
+std::optional<glm::dvec3> readPoint(const JsonLocation& at, const json& object, std::string_view key,
+                                    bool allowAuto) {
+  const json* field = detail::findField(object, key);
+  if (field == nullptr || (allowAuto && isAuto(*field))) return std::nullopt;
+  std::string expected = std::string("expected [x, y, z] of finite numbers") + (allowAuto ? " or \"auto\"" : "");
+  if (!field->is_array() || field->size() != 3) detail::throwFieldError(at, key, field, expected);
+  glm::dvec3 point;
+  for (int i = 0; i < 3; ++i) {
+    const json& component = (*field)[static_cast<std::size_t>(i)];
+    if (!component.is_number() || !std::isfinite(component.get<double>()))
+      detail::throwFieldError(at, key, field, expected);
+    point[i] = component.get<double>();
+  }
+  return point;
+}
+
+double readAngle(const JsonLocation& at, const json& object, std::string_view key, double fallback) {
+  const std::string expected = "expected a field of view in degrees in (0, 180)";
+  double value = detail::optionalNumber(at, object, key, false, expected).value_or(fallback);
+  if (!(value > 0.0 && value < 180.0)) detail::throwFieldError(at, key, detail::findField(object, key), expected);
+  return value;
+}
+
+CameraPlacement readCamera(const JsonLocation& at, const json& camera) {
+  rejectUnknownKeys(at, camera, {"target", "size", "fovyDeg", "depthiness"});
+  CameraPlacement placement;
+  placement.target = readPoint(at, camera, "target", true);
+  const json* size = detail::findField(camera, "size");
+  if (size != nullptr && !isAuto(*size)) {
+    const std::string expected = "expected a focal-rectangle height > 0 (world units) or \"auto\"";
+    double value = detail::requireNumber(at, camera, "size", false, expected);
+    if (!(value > 0.0)) detail::throwFieldError(at, "size", size, expected);
+    placement.size = value;
+  }
+  placement.fovyDeg = readAngle(at, camera, "fovyDeg", placement.fovyDeg);
+  const std::string depthExpected = "expected a finite number > 0 (multiplies viewCone)";
+  placement.depthiness =
+      detail::optionalNumber(at, camera, "depthiness", false, depthExpected).value_or(placement.depthiness);
+  if (!(placement.depthiness > 0.0))
+    detail::throwFieldError(at, "depthiness", detail::findField(camera, "depthiness"), depthExpected);
+  return placement;
+}
+
+PinholeSettings readPinhole(const JsonLocation& at, const json& pinhole) {
+  rejectUnknownKeys(at, pinhole, {"width", "height", "fovyDeg", "eye", "lookAt", "up"});
+  PinholeSettings settings;
+  if (auto w = detail::optionalInteger(at, pinhole, "width", false, 1, kMaxImageSize))
+    settings.width = static_cast<std::uint32_t>(*w);
+  if (auto h = detail::optionalInteger(at, pinhole, "height", false, 1, kMaxImageSize))
+    settings.height = static_cast<std::uint32_t>(*h);
+  if (detail::findField(pinhole, "fovyDeg") != nullptr) settings.fovyDeg = readAngle(at, pinhole, "fovyDeg", 45.0);
+  settings.eye = readPoint(at, pinhole, "eye", true);
+  settings.lookAt = readPoint(at, pinhole, "lookAt", true);
+  if (auto up = readPoint(at, pinhole, "up", false)) {
+    if (glm::length(*up) == 0.0) detail::throwFieldError(at, "up", detail::findField(pinhole, "up"),
+                                                         "expected a non-zero [x, y, z] up vector");
+    settings.up = *up;
+  }
+  return settings;
+}
+
+DisplayModel readModel(const JsonLocation& at, const json& root) {
+  const json* field = detail::findField(root, "model");
+  if (field == nullptr) return DisplayModel::Lenticular;
+  if (field->is_string() && field->get<std::string>() == "lenticular") return DisplayModel::Lenticular;
+  if (field->is_string() && field->get<std::string>() == "pinhole") return DisplayModel::Pinhole;
+  detail::throwFieldError(at, "model", field, "expected \"lenticular\" or \"pinhole\"");
+}
+
+// "calibration": an embedded visual.json object, or a path to one relative to the config file.
+LookingGlassCalibration readCalibration(const JsonLocation& at, const json& field,
+                                        const std::filesystem::path& baseDir) {
+  if (field.is_object()) return parseLookingGlassCalibration(field, at.file, at.field("calibration"));
+  if (!field.is_string())
+    detail::throwFieldError(at, "calibration", &field, "expected a visual.json object or a path to a visual.json");
+  std::filesystem::path path = field.get<std::string>();
+  if (path.is_relative()) path = baseDir / path;
+  std::string text = detail::readTextFile(path.string(), at.file, at.field("calibration"),
+                                          "expected a readable visual.json, path relative to the config file "
+                                          "(resolved to " + path.string() + ")");
+  return parseLookingGlassCalibrationText(text, path.string());
+}
+
+// Checks that need several fields: the cone with depthiness must stay below 180 degrees (tan(theta) finite).
+void validateCombination(const JsonLocation& at, const json& root, const DisplayConfig& config) {
+  if (config.model == DisplayModel::Lenticular && !config.calibration)
+    detail::throwFieldError(at, "calibration", nullptr,
+                            "expected a visual.json object or a path to a visual.json (required for model "
+                            "\"lenticular\")");
+  if (config.calibration && config.calibration->viewCone * config.camera.depthiness >= 180.0) {
+    const json* camera = detail::findField(root, "camera");
+    detail::throwFieldError(at.child("camera"), "depthiness",
+                            camera ? detail::findField(*camera, "depthiness") : nullptr,
+                            "expected viewCone * depthiness < 180 degrees (viewCone is " +
+                                detail::formatNumber(config.calibration->viewCone) + ")");
+  }
+}
+
+DisplayConfig fromVisualJson(const json& root, const std::string& sourceName) {
+  DisplayConfig config;
+  config.calibration = parseLookingGlassCalibration(root, sourceName);
+  config.name = config.calibration->serial.empty() ? std::filesystem::path(sourceName).stem().string()
+                                                   : config.calibration->serial;
+  config.description = "raw visual.json " + sourceName;
+  config.sourcePath = sourceName;
+  return config;
+}
+
+DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, const std::filesystem::path& baseDir) {
+  const JsonLocation at{sourceName, ""};
+  rejectUnknownKeys(at, root, {"name", "description", "model", "calibration", "camera", "spp", "pinhole"});
+  DisplayConfig config;
+  config.sourcePath = sourceName;
+  config.name = detail::optionalString(at, root, "name").value_or(std::filesystem::path(sourceName).stem().string());
+  config.description = detail::optionalString(at, root, "description").value_or("");
+  config.model = readModel(at, root);
+  if (const json* calibration = detail::findField(root, "calibration"))
+    config.calibration = readCalibration(at, *calibration, baseDir);
+  if (detail::findField(root, "camera") != nullptr)
+    config.camera = readCamera(at.child("camera"), requireObject(at, root, "camera"));
+  if (auto spp = detail::optionalInteger(at, root, "spp", false, 1, kMaxSpp))
+    config.spp = static_cast<std::uint32_t>(*spp);
+  if (detail::findField(root, "pinhole") != nullptr)
+    config.pinhole = readPinhole(at.child("pinhole"), requireObject(at, root, "pinhole"));
+  validateCombination(at, root, config);
+  return config;
+}
+
+}  // namespace
+
+DisplayConfig parseDisplayConfig(std::string_view text, const std::string& sourceName,
+                                 const std::filesystem::path& baseDir) {
+  json root = detail::parseJsonText(text, sourceName);
+  if (!root.is_object())
+    throw ConfigError(sourceName, "(root)", detail::valueText(&root),
+                      "expected a JSON object (a holotrace display config or a visual.json)");
+  if (looksLikeVisualJson(root)) return fromVisualJson(root, sourceName);
+  return fromOurFormat(root, sourceName, baseDir);
+}
+
+DisplayConfig loadDisplayConfig(const std::filesystem::path& file) {
+  std::string text = detail::readTextFile(file.string(), file.string(), "(file)",
+                                          "expected an existing, readable display config or visual.json");
+  return parseDisplayConfig(text, file.string(), file.parent_path());
+}
+
+std::vector<std::string> builtinDisplayNames() {
+  std::vector<std::string> names;
+  for (const detail::EmbeddedDisplayConfig& entry : detail::embeddedDisplayConfigs()) names.emplace_back(entry.name);
+  return names;
+}
+
+DisplayConfig builtinDisplay(std::string_view name) {
+  for (const detail::EmbeddedDisplayConfig& entry : detail::embeddedDisplayConfigs()) {
+    if (entry.name == name) return parseDisplayConfig(entry.json, "builtin:" + std::string(name), {});
+  }
+  std::string known;
+  for (const std::string& n : builtinDisplayNames()) known += (known.empty() ? "" : ", ") + n;
+  throw ConfigError("builtin:" + std::string(name), "(display)", "\"" + std::string(name) + "\"",
+                    "expected one of the built-in displays: " + known);
+}
+
+DisplayConfig resolveDisplay(const std::string& spec) {
+  constexpr std::string_view kBuiltinPrefix = "builtin:";
+  if (spec.rfind(kBuiltinPrefix, 0) == 0) return builtinDisplay(std::string_view(spec).substr(kBuiltinPrefix.size()));
+  return loadDisplayConfig(spec);
+}
+
+}  // namespace ht

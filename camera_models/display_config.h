@@ -1,0 +1,67 @@
+// display_config.h - holotrace's one display-config format (docs/configs.md): which camera model, the display
+// calibration, where the display sits in the scene, and default sampling.
+//
+// loadDisplayConfig() also accepts a raw Looking Glass visual.json unchanged (detected by a top-level "pitch" or
+// "slope"), which is then a lenticular display with default camera placement. Unknown keys in OUR format are errors
+// (a typo must not pass silently); unknown keys inside a visual.json are kept.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "camera_models/looking_glass_calibration.h"
+
+namespace ht {
+
+enum class DisplayModel { Lenticular, Pinhole };
+std::string_view displayModelName(DisplayModel model);  // "lenticular" | "pinhole"
+
+// Where the display's focal rectangle sits in the scene (looking-glass-webxr camera, optics.md §4.3).
+// The display-local frame has its origin at `target` and world-aligned axes (+z toward the viewer).
+struct CameraPlacement {
+  std::optional<glm::dvec3> target;  // world position of the focal-rectangle centre; nullopt = "auto" (bounds centre)
+  std::optional<double> size;        // focal-rectangle height (webxr targetDiam), world units; nullopt = "auto"
+  double fovyDeg = 14.0;             // vertical fov of the quilt cameras (looking-glass-webxr default), (0, 180)
+  double depthiness = 1.0;           // multiplies viewCone (webxr uses 1.25 by default; we default to 1.0)
+};
+
+// Pinhole camera (model "pinhole", optics.md §9 M0); also the preview camera of a lenticular display.
+struct PinholeSettings {
+  std::optional<std::uint32_t> width, height;  // image size in pixels; nullopt = panel size or 1280x720
+  std::optional<double> fovyDeg;               // vertical fov in degrees; nullopt = camera.fovyDeg (lenticular) or 45
+  std::optional<glm::dvec3> eye;               // nullopt = "auto"
+  std::optional<glm::dvec3> lookAt;            // nullopt = "auto" (target / bounds centre)
+  glm::dvec3 up{0.0, 1.0, 0.0};
+};
+
+struct DisplayConfig {
+  std::string name;
+  std::string description;
+  std::string sourcePath;             // file path, or "builtin:NAME"
+  DisplayModel model = DisplayModel::Lenticular;
+  std::optional<LookingGlassCalibration> calibration;  // required for (and only for) the lenticular model
+  CameraPlacement camera;
+  std::uint32_t spp = 4;              // default samples per subpixel / pixel, [1, 4096]
+  PinholeSettings pinhole;
+};
+
+// Reads our format or a raw visual.json from disk. Throws ConfigError.
+DisplayConfig loadDisplayConfig(const std::filesystem::path& file);
+
+// Parses JSON text; `sourceName` names the source in errors, relative calibration paths resolve against `baseDir`.
+DisplayConfig parseDisplayConfig(std::string_view json, const std::string& sourceName,
+                                 const std::filesystem::path& baseDir);
+
+// The configs shipped in configs/*.json, embedded at build time (no files needed at run time).
+DisplayConfig builtinDisplay(std::string_view name);
+std::vector<std::string> builtinDisplayNames();
+
+// "builtin:NAME" or a file path.
+DisplayConfig resolveDisplay(const std::string& spec);
+
+}  // namespace ht
