@@ -1,0 +1,31 @@
+// cpu_traversal.h - host execution of the shared traversal code (bvh_traversal.h) over a GpuBvh: the CPU
+// reference of the GPU kernel (same source, same arithmetic: C++ is built with -ffp-contract=off).
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "bvh/bvh_traversal.h"
+#include "bvh/gpu_layout.h"
+
+namespace ht::bvh {
+
+using gpu_shared::HtHit;
+using gpu_shared::HtRay;
+using gpu_shared::HtTraceResult;
+
+// Closest hit. A GpuBvh without nodes (default-constructed) returns a miss.
+HtTraceResult traceClosest(const GpuBvh& bvh, const HtRay& ray,
+                           uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
+// Any hit (occlusion): hit.triId != HT_MISS when something lies in [tmin, tmax].
+HtTraceResult traceAny(const GpuBvh& bvh, const HtRay& ray, uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
+
+// Batch versions: result i belongs to ray i; rays are split over `threads` std::threads (0 = all cores).
+std::vector<HtTraceResult> traceClosestBatch(const GpuBvh& bvh, std::span<const HtRay> rays,
+                                             uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT,
+                                             uint32_t threads = 0);
+std::vector<HtTraceResult> traceAnyBatch(const GpuBvh& bvh, std::span<const HtRay> rays,
+                                         uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT,
+                                         uint32_t threads = 0);
+
+}  // namespace ht::bvh
