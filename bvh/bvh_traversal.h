@@ -114,6 +114,7 @@ HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, 
   uint steps = 0u;
   bool overflow = false;
   bool done = false;
+  bool finished = false;
   while (!done) {
     steps++;
     if (steps > stepLimit) { overflow = true; break; }
@@ -149,7 +150,8 @@ HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, 
         cur = stack[sp];
       }
     }
-    if (overflow || cur == HT_REF_NONE) break;
+    if (overflow) break;
+    if (cur == HT_REF_NONE) { finished = true; break; }
 
     // Leaf: test its triangles inline.
     uint slot = (cur & HT_REF_INDEX_MASK) * HT_TRI_STRIDE;
@@ -173,11 +175,15 @@ HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, 
         if (anyHit) { done = true; break; }
       }
     }
-    if (overflow || done) break;
-    if (sp == 0u) break;
+    if (overflow) break;
+    if (done || sp == 0u) { finished = true; break; }
     sp--;
     cur = stack[sp];
   }
+  // Legitimate exits: the stack ran empty or an any-hit was found; the step limit sets overflow. Anything
+  // else means the driver ended the loop behind our back -- lavapipe stops every loop of an invocation after
+  // 65,535 iterations in total and counts more iterations than `steps` does -- so report it as overflow too.
+  if (!finished) overflow = true;
   // The triangle id is read once, for the final hit, rather than for every triangle tested.
   if (res.hit.triId != HT_MISS) res.hit.triId = floatBitsToUint(HT_LOAD_TRI(res.hit.triId).w);
   res.steps = steps;
