@@ -72,6 +72,15 @@ HT_SHARED_END
 #endif
 #endif
 
+// Optional finer accessors; a shader reading through float-typed texel fetches overrides them so that the
+// integer fields (child links, triangle id bits, which are float denormals) never pass through a float path.
+#ifndef HT_LOAD_NODE_LINK
+#define HT_LOAD_NODE_LINK(i) HT_LOAD_NODE(i).link
+#endif
+#ifndef HT_LOAD_TRI_ID
+#define HT_LOAD_TRI_ID(slot) floatBitsToUint(HT_LOAD_TRI(slot).w)
+#endif
+
 HT_SHARED_BEGIN
 
 // A ray is traced only if origin and direction are finite, the direction is not zero and tmin <= tmax
@@ -132,7 +141,7 @@ HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, 
       ht_slab_boxes(slabRay, HT_LOAD_NODE(cur).c0xy, HT_LOAD_NODE(cur).c1xy, HT_LOAD_NODE(cur).c01z, tmax, hit0,
                     hit1, tEnter0, tEnter1);
       uvec4 link = uvec4(0u);
-      if (hit0 || hit1) link = HT_LOAD_NODE(cur).link;
+      if (hit0 || hit1) link = HT_LOAD_NODE_LINK(cur);
       uint ref0 = ht_child_ref(link.x, link.z);
       uint ref1 = ht_child_ref(link.y, link.w);
       if (hit0 && hit1) {
@@ -185,7 +194,7 @@ HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, 
   // 65,535 iterations in total and counts more iterations than `steps` does -- so report it as overflow too.
   if (!finished) overflow = true;
   // The triangle id is read once, for the final hit, rather than for every triangle tested.
-  if (res.hit.triId != HT_MISS) res.hit.triId = floatBitsToUint(HT_LOAD_TRI(res.hit.triId).w);
+  if (res.hit.triId != HT_MISS) res.hit.triId = HT_LOAD_TRI_ID(res.hit.triId);
   res.steps = steps;
   res.overflow = overflow;
   return res;

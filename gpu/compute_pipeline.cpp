@@ -6,14 +6,27 @@
 namespace ht::gpu {
 
 PipelineLayout::PipelineLayout(VulkanContext::Impl& vk) : vk_(vk) {
+  VkDescriptorSetLayoutBinding bindings[kBvhTexelBindings];
+  for (std::uint32_t b = 0; b < kBvhTexelBindings; ++b) {
+    bindings[b] = {b, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  }
+  VkDescriptorSetLayoutCreateInfo si{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  si.bindingCount = kBvhTexelBindings;
+  si.pBindings = bindings;
+  HT_VK(vkCreateDescriptorSetLayout(vk.device, &si, nullptr, &setLayout_));
   VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu_shared::PassConstants)};
   VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  ci.setLayoutCount = 1;
+  ci.pSetLayouts = &setLayout_;
   ci.pushConstantRangeCount = 1;
   ci.pPushConstantRanges = &range;
   HT_VK(vkCreatePipelineLayout(vk.device, &ci, nullptr, &layout_));
 }
 
-PipelineLayout::~PipelineLayout() { vkDestroyPipelineLayout(vk_.device, layout_, nullptr); }
+PipelineLayout::~PipelineLayout() {
+  vkDestroyPipelineLayout(vk_.device, layout_, nullptr);
+  vkDestroyDescriptorSetLayout(vk_.device, setLayout_, nullptr);
+}
 
 ComputePipeline::ComputePipeline(VulkanContext::Impl& vk, const PipelineLayout& layout, ShaderId shader,
                                  const std::vector<std::uint32_t>& specialization)

@@ -1,5 +1,6 @@
 // compute_pipeline.h - compute pipelines built from the SPIR-V embedded at build time, with specialisation
-// constants, all sharing one layout: no descriptor sets, only the PassConstants push-constant block.
+// constants, all sharing one layout: the PassConstants push-constant block plus one descriptor set holding the
+// BVH's texel-buffer views (gpu/shaders/bvh_access.glsl); every other buffer is reached by device address.
 #pragma once
 #include <vulkan/vulkan.h>
 
@@ -18,14 +19,17 @@ const char* shaderName(ShaderId id);
 
 class PipelineLayout {
  public:
+  static constexpr std::uint32_t kBvhTexelBindings = 4;  // node float/uint views, triangle float/uint views
   explicit PipelineLayout(VulkanContext::Impl& vk);
   ~PipelineLayout();
   PipelineLayout(const PipelineLayout&) = delete;
   PipelineLayout& operator=(const PipelineLayout&) = delete;
   VkPipelineLayout handle() const { return layout_; }
+  VkDescriptorSetLayout setLayout() const { return setLayout_; }
 
  private:
   VulkanContext::Impl& vk_;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
 };
 

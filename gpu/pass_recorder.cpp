@@ -19,9 +19,11 @@ const char* stageName(Stage stage) {
   return "?";
 }
 
-PassRecorder::PassRecorder(VkCommandBuffer cmd, VkPipelineLayout layout, VkQueryPool pool, std::uint32_t queryCapacity)
+PassRecorder::PassRecorder(VkCommandBuffer cmd, VkPipelineLayout layout, VkDescriptorSet bvhSet, VkQueryPool pool,
+                           std::uint32_t queryCapacity)
     : cmd_(cmd), layout_(layout), pool_(pool), capacity_(queryCapacity) {
   vkCmdResetQueryPool(cmd_, pool_, 0, capacity_);
+  vkCmdBindDescriptorSets(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &bvhSet, 0, nullptr);
 }
 
 void PassRecorder::begin(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, Stage stage) {

@@ -17,7 +17,9 @@ const char* stageName(Stage stage);
 
 class PassRecorder {
  public:
-  PassRecorder(VkCommandBuffer cmd, VkPipelineLayout layout, VkQueryPool pool, std::uint32_t queryCapacity);
+  // Binds `bvhSet` (set 0: the BVH texel views) for every pass recorded.
+  PassRecorder(VkCommandBuffer cmd, VkPipelineLayout layout, VkDescriptorSet bvhSet, VkQueryPool pool,
+               std::uint32_t queryCapacity);
 
   void dispatch(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, std::uint32_t groups, Stage stage);
   void dispatchIndirect(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, VkBuffer args,

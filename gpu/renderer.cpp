@@ -11,6 +11,7 @@
 #include <cstring>
 #include <map>
 
+#include "gpu/bvh_texel_views.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/device_buffer.h"
 #include "gpu/gpu_scene.h"
@@ -80,6 +81,7 @@ struct Renderer::Impl {
   VulkanContext::Impl& vk;
   GpuScene scene;
   PipelineLayout layout;
+  BvhTexelViews bvhViews;
   std::map<std::vector<std::uint32_t>, std::unique_ptr<ComputePipeline>> pipelines;
   DeviceBuffer frame;     // FrameBlock, host visible
   DeviceBuffer counters;  // GpuCounters, host visible
@@ -91,7 +93,7 @@ struct Renderer::Impl {
   gpu_shared::PinholeParams pinhole{};
 
   Impl(VulkanContext::Impl& v, const Scene& s, const bvh::BuildOptions& o)
-      : vk(v), scene(v, s, o), layout(v), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
+      : vk(v), scene(v, s, o), layout(v), bvhViews(v, layout.setLayout(), scene.nodes, scene.bvhTriangles), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
         counters(v, sizeof(GpuCounters), MemoryPlace::HostReadback) {
     VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -119,6 +121,13 @@ struct Renderer::Impl {
     auto& slot = pipelines[key];
     if (!slot) slot = std::make_unique<ComputePipeline>(vk, layout, id, spec);
     return *slot;
+  }
+
+  // Specialisation of the trace kernels: their own constants, then constant_id 10 = TEXEL_FETCH.
+  std::vector<std::uint32_t> traceSpec(std::vector<std::uint32_t> own) const {
+    own.resize(10, 0u);
+    own.push_back(bvhViews.covers() ? 1u : 0u);
+    return own;
   }
 
   FrameBlock& frameBlock() { return *static_cast<FrameBlock*>(frame.mapped()); }
@@ -227,8 +236,8 @@ RenderResult Renderer::Impl::renderFrame(std::uint32_t model, std::uint32_t widt
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));
 
   const ComputePipeline& raygen = pipeline(ShaderId::Raygen, {model});
-  const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest);
-  const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, {1u});
+  const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest, traceSpec({}));
+  const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
   const ComputePipeline& shade = pipeline(ShaderId::Shade, {lights, mirror, glass, textures});
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
@@ -250,7 +259,7 @@ RenderResult Renderer::Impl::renderFrame(std::uint32_t model, std::uint32_t widt
       vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
       first = false;
     }
-    PassRecorder rec(cmd, layout.handle(), queryPool, kQueryCapacity);
+    PassRecorder rec(cmd, layout.handle(), bvhViews.set(), queryPool, kQueryCapacity);
     rec.dispatch(raygen, passConstants(batchFirst, count, 0, 0), groupsFor(count), Stage::Raygen);
     for (std::uint32_t depth = 0; depth < depthPasses; ++depth) {
       const std::uint32_t q = depth % 2;
@@ -278,7 +287,7 @@ RenderResult Renderer::Impl::renderFrame(std::uint32_t model, std::uint32_t widt
     if (settings.progress) settings.progress(static_cast<double>(begin + count) / static_cast<double>(totalPaths));
   }
   beginCommands();
-  PassRecorder rec(cmd, layout.handle(), queryPool, kQueryCapacity);
+  PassRecorder rec(cmd, layout.handle(), bvhViews.set(), queryPool, kQueryCapacity);
   rec.dispatch(interleave, passConstants(0, 0, 0, 0), groupsFor(static_cast<std::uint64_t>(width) * height), Stage::Interleave);
   submitAndWait();
   rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
@@ -309,7 +318,8 @@ std::vector<gpu_shared::HtHit> Renderer::Impl::traceBatch(std::span<const gpu_sh
   std::vector<gpu_shared::HtHit> hits(rays.size());
   const auto chunk = static_cast<std::uint32_t>(std::min<std::uint64_t>(kMaxPathsPerBatch * 4ull, std::max<size_t>(rays.size(), 1)));
   work.ensure(vk, chunk, 1);
-  const ComputePipeline& trace = occlusion ? pipeline(ShaderId::TraceAny, {0u}) : pipeline(ShaderId::TraceClosest);
+  const ComputePipeline& trace =
+      occlusion ? pipeline(ShaderId::TraceAny, traceSpec({0u})) : pipeline(ShaderId::TraceClosest, traceSpec({}));
   FrameBlock& f = frameBlock();
   std::memset(&f, 0, sizeof(f));
   fillSceneAddresses(f);
@@ -322,7 +332,7 @@ std::vector<gpu_shared::HtHit> Renderer::Impl::traceBatch(std::span<const gpu_sh
     std::memset(counters.mapped(), 0, sizeof(GpuCounters));
     counterBlock().queueCount[0] = count;
     beginCommands();
-    PassRecorder rec(cmd, layout.handle(), queryPool, kQueryCapacity);
+    PassRecorder rec(cmd, layout.handle(), bvhViews.set(), queryPool, kQueryCapacity);
     rec.dispatch(trace, passConstants(0, count, 0, 0), groupsFor(count), Stage::Trace);
     submitAndWait();
     rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);

@@ -137,6 +137,7 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
   info.maxStorageBufferRange = p.limits.maxStorageBufferRange;
   info.maxMemoryAllocationSize = m3.maxMemoryAllocationSize;
   info.maxComputeWorkGroupInvocations = p.limits.maxComputeWorkGroupInvocations;
+  info.maxTexelBufferElements = p.limits.maxTexelBufferElements;
   info.subgroupSize = subgroup.subgroupSize;
   info.timestampPeriodNs = p.limits.timestampPeriod;
   info.shaderFloat64 = features.features.shaderFloat64 == VK_TRUE;

@@ -18,6 +18,7 @@ struct DeviceInfo {
   std::uint64_t maxStorageBufferRange = 0;
   std::uint64_t maxMemoryAllocationSize = 0;
   std::uint32_t maxComputeWorkGroupInvocations = 0;
+  std::uint32_t maxTexelBufferElements = 0;
   std::uint32_t subgroupSize = 0;
   float timestampPeriodNs = 0.0f;
   bool shaderFloat64 = false;

@@ -28,10 +28,6 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer CountersRef
 
 layout(push_constant, std430) uniform PushBlock { PassConstants pc; };
 
-// Accessors the shared traversal (bvh/bvh_traversal.h) reads nodes and triangles through.
-#define HT_LOAD_NODE(i) NodeRef(pc.nodes).n[i]
-#define HT_LOAD_TRI(i) Vec4Ref(pc.bvhTriangles).v[i]
-
 #define FRAME FrameRef(pc.frame).f
 #define COUNTERS CountersRef(FrameRef(pc.frame).f.counters).c
 

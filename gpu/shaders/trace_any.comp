@@ -5,6 +5,7 @@
 //   SHADOW_QUEUE = 0: plain batch (Renderer::traceOccluded): ray i of queue 0, result in hits[i].triId.
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#include "gpu/shaders/bvh_access.glsl"
 #include "bvh/bvh_traversal.h"
 
 layout(constant_id = 0) const uint SHADOW_QUEUE = 1u;

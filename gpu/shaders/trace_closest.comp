@@ -5,6 +5,7 @@
 // counted in overflowCount, which the host turns into an error.
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#include "gpu/shaders/bvh_access.glsl"
 #include "bvh/bvh_traversal.h"
 
 void main() {
