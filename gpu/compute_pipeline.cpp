@@ -1,17 +1,18 @@
 // compute_pipeline.cpp
 #include "gpu/compute_pipeline.h"
 
+#include "gpu/frame_descriptors.h"
 #include "gpu/wavefront_types.h"
 
 namespace ht::gpu {
 
 PipelineLayout::PipelineLayout(VulkanContext::Impl& vk) : vk_(vk) {
-  VkDescriptorSetLayoutBinding bindings[kBvhTexelBindings];
-  for (std::uint32_t b = 0; b < kBvhTexelBindings; ++b) {
-    bindings[b] = {b, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  VkDescriptorSetLayoutBinding bindings[gpu_shared::HT_BINDING_COUNT];
+  for (std::uint32_t b = 0; b < gpu_shared::HT_BINDING_COUNT; ++b) {
+    bindings[b] = {b, FrameDescriptors::bindingType(b), 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   }
   VkDescriptorSetLayoutCreateInfo si{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  si.bindingCount = kBvhTexelBindings;
+  si.bindingCount = gpu_shared::HT_BINDING_COUNT;
   si.pBindings = bindings;
   HT_VK(vkCreateDescriptorSetLayout(vk.device, &si, nullptr, &setLayout_));
   VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu_shared::PassConstants)};

@@ -1,6 +1,6 @@
 // compute_pipeline.h - compute pipelines built from the SPIR-V embedded at build time, with specialisation
-// constants, all sharing one layout: the PassConstants push-constant block plus one descriptor set holding the
-// BVH's texel-buffer views (gpu/shaders/bvh_access.glsl); every other buffer is reached by device address.
+// constants, all sharing one layout: the PassConstants push-constant block plus descriptor set 0
+// (gpu/frame_descriptors.h).
 #pragma once
 #include <vulkan/vulkan.h>
 
@@ -19,7 +19,6 @@ const char* shaderName(ShaderId id);
 
 class PipelineLayout {
  public:
-  static constexpr std::uint32_t kBvhTexelBindings = 4;  // node float/uint views, triangle float/uint views
   explicit PipelineLayout(VulkanContext::Impl& vk);
   ~PipelineLayout();
   PipelineLayout(const PipelineLayout&) = delete;

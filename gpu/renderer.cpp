@@ -11,7 +11,7 @@
 #include <cstring>
 #include <map>
 
-#include "gpu/bvh_texel_views.h"
+#include "gpu/frame_descriptors.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/device_buffer.h"
 #include "gpu/gpu_scene.h"
@@ -30,7 +30,7 @@ static_assert(sizeof(gpu_shared::HtRay) == 32 && sizeof(gpu_shared::HtHit) == 16
 static_assert(sizeof(gpu_shared::GpuBvhNode) == 64);
 static_assert(sizeof(GpuCounters) == 80 && offsetof(GpuCounters, dispatch) == 32);
 static_assert(sizeof(PassConstants) == 40);
-static_assert(offsetof(FrameBlock, dims) == 192 && sizeof(FrameBlock) % 16 == 0);
+static_assert(offsetof(FrameBlock, dims) == 16 && sizeof(FrameBlock) % 16 == 0);  // std140 == C++ layout
 
 namespace {
 
@@ -52,6 +52,7 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 struct WorkBuffers {
   std::uint32_t capacity = 0;
   std::uint32_t lightSlots = 0;  // shadow slots per path
+  std::uint64_t generation = 0;  // bumped on every reallocation
   DeviceBuffer rays[2], queuePath[2], hits, radiance, throughput, shadowRays, shadowContrib, shadowQueue;
 
   void ensure(VulkanContext::Impl& vk, std::uint32_t paths, std::uint32_t lights) {
@@ -59,6 +60,7 @@ struct WorkBuffers {
     if (paths <= capacity && slots <= lightSlots) return;
     capacity = std::max(paths, capacity);
     lightSlots = std::max(slots, lightSlots);
+    ++generation;
     VkDeviceSize n = capacity, s = static_cast<VkDeviceSize>(capacity) * lightSlots;
     for (int q = 0; q < 2; ++q) {
       rays[q] = DeviceBuffer(vk, n * sizeof(gpu_shared::HtRay), MemoryPlace::Device);
@@ -81,7 +83,9 @@ struct Renderer::Impl {
   VulkanContext::Impl& vk;
   GpuScene scene;
   PipelineLayout layout;
-  BvhTexelViews bvhViews;
+  FrameDescriptors descriptors;
+  bool bvhTexelsCover = true;
+  std::uint64_t boundWorkGeneration = 0;
   std::map<std::vector<std::uint32_t>, std::unique_ptr<ComputePipeline>> pipelines;
   DeviceBuffer frame;     // FrameBlock, host visible
   DeviceBuffer counters;  // GpuCounters, host visible
@@ -93,7 +97,7 @@ struct Renderer::Impl {
   gpu_shared::PinholeParams pinhole{};
 
   Impl(VulkanContext::Impl& v, const Scene& s, const bvh::BuildOptions& o)
-      : vk(v), scene(v, s, o), layout(v), bvhViews(v, layout.setLayout(), scene.nodes, scene.bvhTriangles), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
+      : vk(v), scene(v, s, o), layout(v), descriptors(v, layout.setLayout()), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
         counters(v, sizeof(GpuCounters), MemoryPlace::HostReadback) {
     VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -106,6 +110,7 @@ struct Renderer::Impl {
     HT_VK(vkAllocateCommandBuffers(vk.device, &ai, &cmd));
     VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     HT_VK(vkCreateFence(vk.device, &fci, nullptr, &fence));
+    bindScene();
   }
 
   ~Impl() {
@@ -126,35 +131,57 @@ struct Renderer::Impl {
   // Specialisation of the trace kernels: their own constants, then constant_id 10 = TEXEL_FETCH.
   std::vector<std::uint32_t> traceSpec(std::vector<std::uint32_t> own) const {
     own.resize(10, 0u);
-    own.push_back(bvhViews.covers() ? 1u : 0u);
+    own.push_back(bvhTexelsCover ? 1u : 0u);
     return own;
   }
 
   FrameBlock& frameBlock() { return *static_cast<FrameBlock*>(frame.mapped()); }
   GpuCounters& counterBlock() { return *static_cast<GpuCounters*>(counters.mapped()); }
 
-  void fillSceneAddresses(FrameBlock& f) {
-    f.nodes = scene.nodes.address();
-    f.bvhTriangles = scene.bvhTriangles.address();
-    f.vertices = scene.vertices.address();
-    f.normals = scene.hasNormals ? scene.normals.address() : 0;
-    f.texcoords = scene.hasTexcoords ? scene.texcoords.address() : 0;
-    f.triangles = scene.triangles.address();
-    f.materials = scene.materials.address();
-    f.lights = scene.lights.address();
-    f.textures = scene.textures.address();
-    f.texels = scene.texels.address();
-    for (int q = 0; q < 2; ++q) {
-      f.rays[q] = work.rays[q].address();
-      f.queuePath[q] = work.queuePath[q].address();
+  // Scene records and BVH views: written once, they never change for this Renderer.
+  void bindScene() {
+    using namespace gpu_shared;
+    bool nodes = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 0, scene.nodes, VK_FORMAT_R32G32B32A32_SFLOAT);
+    descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 1, scene.nodes, VK_FORMAT_R32G32B32A32_UINT);
+    bool tris = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 2, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_SFLOAT);
+    descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 3, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_UINT);
+    bvhTexelsCover = nodes && tris;  // else the trace kernels read the BVH by device address
+    descriptors.setUniformBuffer(HT_BINDING_FRAME, frame);
+    const std::pair<const DeviceBuffer*, VkFormat> records[] = {
+        {&scene.vertices, VK_FORMAT_R32G32B32A32_SFLOAT}, {&scene.normals, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {&scene.texcoords, VK_FORMAT_R32G32_SFLOAT},      {&scene.triangles, VK_FORMAT_R32G32B32A32_UINT},
+        {&scene.materials, VK_FORMAT_R32G32B32A32_SFLOAT}, {&scene.lights, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {&scene.textures, VK_FORMAT_R32G32B32A32_UINT},   {&scene.texels, VK_FORMAT_R32G32B32A32_SFLOAT}};
+    for (std::uint32_t k = 0; k < 8; ++k) {
+      if (!descriptors.setUniformTexels(HT_BINDING_SCENE_FIRST + k, *records[k].first, records[k].second)) {
+        throw GpuError("scene too large for the device's texel buffers (" +
+                       std::to_string(vk.info.maxTexelBufferElements) + " elements)");
+      }
     }
-    f.hits = work.hits.address();
-    f.radiance = work.radiance.address();
-    f.throughput = work.throughput.address();
-    f.shadowRays = work.shadowRays.address();
-    f.shadowContrib = work.shadowContrib.address();
-    f.shadowQueue = work.shadowQueue.address();
+  }
+
+  // Per-path state of the current work buffers, plus the frame's outputs.
+  void bindState(const DeviceBuffer& subpixels, const DeviceBuffer& image) {
+    using namespace gpu_shared;
+    const std::uint32_t b = HT_BINDING_STATE_FIRST;
+    const bool freshWork = boundWorkGeneration != work.generation;
+    boundWorkGeneration = work.generation;
+    const std::pair<const DeviceBuffer*, VkFormat> state[] = {
+        {&work.rays[0], VK_FORMAT_R32G32B32A32_SFLOAT},    {&work.rays[1], VK_FORMAT_R32G32B32A32_SFLOAT},
+        {&work.queuePath[0], VK_FORMAT_R32_UINT},          {&work.queuePath[1], VK_FORMAT_R32_UINT},
+        {&work.hits, VK_FORMAT_R32G32B32A32_UINT},         {&work.radiance, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {&work.throughput, VK_FORMAT_R32G32B32A32_SFLOAT}, {&work.shadowRays, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {&work.shadowContrib, VK_FORMAT_R32G32B32A32_SFLOAT}, {&work.shadowQueue, VK_FORMAT_R32_UINT}};
+    for (std::uint32_t k = 0; k < 10; ++k) descriptors.setStorageTexels(b + k, *state[k].first, state[k].second, freshWork);
+    // Outputs are allocated per frame: always new views.
+    descriptors.setStorageTexels(b + 10, subpixels, VK_FORMAT_R32_SFLOAT, true);
+    descriptors.setStorageTexels(b + 11, image, VK_FORMAT_R32G32B32A32_SFLOAT, true);
+    descriptors.flush();
+  }
+
+  void fillFrameBasics(FrameBlock& f) {
     f.counters = counters.address();
+    f.flags = glm::uvec4(scene.hasNormals ? 1u : 0u, scene.hasTexcoords ? 1u : 0u, 0u, 0u);
   }
 
   PassConstants passConstants(std::uint32_t first, std::uint32_t count, std::uint32_t depth, std::uint32_t queue) const {
@@ -223,9 +250,8 @@ RenderResult Renderer::Impl::renderFrame(std::uint32_t model, std::uint32_t widt
 
   FrameBlock& f = frameBlock();
   std::memset(&f, 0, sizeof(f));
-  fillSceneAddresses(f);
-  f.subpixels = subpixels.address();
-  f.image = image.address();
+  fillFrameBasics(f);
+  bindState(subpixels, image);
   f.dims = glm::uvec4(width, height, settings.spp, static_cast<std::uint32_t>(targets));
   f.scene = glm::uvec4(scene.lightCount(), scene.textureCount(), gpu_shared::HT_TRAVERSAL_STEP_LIMIT, settings.maxDepth);
   f.frame = glm::uvec4(settings.seed, 0u, 0u, 0u);
@@ -259,7 +285,7 @@ RenderResult Renderer::Impl::renderFrame(std::uint32_t model, std::uint32_t widt
       vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
       first = false;
     }
-    PassRecorder rec(cmd, layout.handle(), bvhViews.set(), queryPool, kQueryCapacity);
+    PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
     rec.dispatch(raygen, passConstants(batchFirst, count, 0, 0), groupsFor(count), Stage::Raygen);
     for (std::uint32_t depth = 0; depth < depthPasses; ++depth) {
       const std::uint32_t q = depth % 2;
@@ -287,7 +313,7 @@ RenderResult Renderer::Impl::renderFrame(std::uint32_t model, std::uint32_t widt
     if (settings.progress) settings.progress(static_cast<double>(begin + count) / static_cast<double>(totalPaths));
   }
   beginCommands();
-  PassRecorder rec(cmd, layout.handle(), bvhViews.set(), queryPool, kQueryCapacity);
+  PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
   rec.dispatch(interleave, passConstants(0, 0, 0, 0), groupsFor(static_cast<std::uint64_t>(width) * height), Stage::Interleave);
   submitAndWait();
   rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
@@ -318,11 +344,13 @@ std::vector<gpu_shared::HtHit> Renderer::Impl::traceBatch(std::span<const gpu_sh
   std::vector<gpu_shared::HtHit> hits(rays.size());
   const auto chunk = static_cast<std::uint32_t>(std::min<std::uint64_t>(kMaxPathsPerBatch * 4ull, std::max<size_t>(rays.size(), 1)));
   work.ensure(vk, chunk, 1);
+  DeviceBuffer placeholder(vk, 16, MemoryPlace::Device);  // the trace kernels write no subpixels or image
   const ComputePipeline& trace =
       occlusion ? pipeline(ShaderId::TraceAny, traceSpec({0u})) : pipeline(ShaderId::TraceClosest, traceSpec({}));
   FrameBlock& f = frameBlock();
   std::memset(&f, 0, sizeof(f));
-  fillSceneAddresses(f);
+  fillFrameBasics(f);
+  bindState(placeholder, placeholder);
   f.scene = glm::uvec4(0u, 0u, gpu_shared::HT_TRAVERSAL_STEP_LIMIT, 0u);
   std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};
   std::uint32_t maxSteps = 0;
@@ -332,7 +360,7 @@ std::vector<gpu_shared::HtHit> Renderer::Impl::traceBatch(std::span<const gpu_sh
     std::memset(counters.mapped(), 0, sizeof(GpuCounters));
     counterBlock().queueCount[0] = count;
     beginCommands();
-    PassRecorder rec(cmd, layout.handle(), bvhViews.set(), queryPool, kQueryCapacity);
+    PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
     rec.dispatch(trace, passConstants(0, count, 0, 0), groupsFor(count), Stage::Trace);
     submitAndWait();
     rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);

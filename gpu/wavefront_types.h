@@ -62,41 +62,28 @@ struct GpuCounters {
   uvec4 dispatch[3];       // indirect dispatch args: [0] queue 0, [1] queue 1, [2] shadow queue (xyz, w unused)
 };
 
-// One block per frame, in a host-visible buffer; its address is the first push constant.
+// One block per frame, in a uniform buffer (binding HT_BINDING_FRAME). Every member is 16-byte aligned, so the
+// std140 layout GLSL uses equals the C++ layout. Per-path state and scene records are texel buffers (see
+// gpu/shaders/common.glsl for why); only the atomic counters and the BVH fallback are reached by address.
 struct FrameBlock {
-  // scene (immutable after upload)
-  uint64_t nodes;          // GpuBvhNode[]
-  uint64_t bvhTriangles;   // vec4[3 * slots], leaf order
-  uint64_t vertices;       // vec4[] world positions
-  uint64_t normals;        // vec4[] unit vertex normals (w = 0) or 0 when the scene has none
-  uint64_t texcoords;      // vec2[] or 0
-  uint64_t triangles;      // uvec4[] (i0, i1, i2, material) indexed by original triangle id
-  uint64_t materials;      // GpuMaterial[]
-  uint64_t lights;         // GpuLight[]
-  uint64_t textures;       // GpuTexture[]
-  uint64_t texels;         // vec4[] linear RGBA
-  // wavefront state (per batch capacity N paths)
-  uint64_t rays[2];        // HtRay[N] ping-pong ray queues
-  uint64_t queuePath[2];   // uint[N] path index (local to the batch) of each queue entry
-  uint64_t hits;           // HtHit[N] closest hits of the current queue
-  uint64_t radiance;       // vec4[N] accumulated radiance per path
-  uint64_t throughput;     // vec4[N] path throughput
-  uint64_t shadowRays;     // HtRay[N * lightCount], slot = path * lightCount + light
-  uint64_t shadowContrib;  // vec4[N * lightCount] unoccluded contribution; w = 1 when the slot is live
-  uint64_t shadowQueue;    // uint[N * lightCount] compacted list of live slots
-  uint64_t counters;       // GpuCounters
-  uint64_t subpixels;      // float[targets * 3] resolved values (lenticular: one channel used per target)
-  uint64_t image;          // vec4[W * H] output, row 0 = top
+  uint64_t counters;       // GpuCounters (device address)
   uint64_t pad0;
-  // frame parameters
   uvec4 dims;              // x = image width, y = image height, z = spp, w = number of targets
   uvec4 scene;             // x = light count, y = texture count, z = step limit, w = max depth
   uvec4 frame;             // x = seed; yzw unused (per-dispatch values travel in PassConstants)
+  uvec4 flags;             // x = scene has vertex normals, y = scene has texcoords
   vec4 background;         // rgb radiance of escaped rays
   vec4 ambient;            // rgb ambient irradiance on diffuse surfaces
   LenticularParams lenticular;
   PinholeParams pinhole;
 };
+
+// Descriptor set 0 (gpu/shaders/common.glsl, gpu/shaders/bvh_access.glsl).
+HT_CONST uint HT_BINDING_BVH_FIRST = 0u;       // 0-3: BVH node / triangle texel views
+HT_CONST uint HT_BINDING_FRAME = 4u;           // uniform buffer: FrameBlock
+HT_CONST uint HT_BINDING_STATE_FIRST = 5u;     // 5-16: per-path state, storage texel buffers
+HT_CONST uint HT_BINDING_SCENE_FIRST = 17u;    // 17-24: scene records, uniform texel buffers
+HT_CONST uint HT_BINDING_COUNT = 25u;
 
 // Push constants of every pass (40 B of the 128 B guaranteed). The BVH addresses sit here, not in the
 // FrameBlock, so the traversal loop reads them without an extra dependent load per node fetch.

@@ -1,5 +1,12 @@
-// common.glsl - included first by every holotrace compute pass: extensions, buffer-reference types over the
-// shared layouts (gpu/wavefront_types.h), push constants and small helpers.
+// common.glsl - included first by every holotrace compute pass: extensions, the resources of descriptor set 0,
+// accessors over them, push constants and small helpers.
+//
+// Why texel buffers: Mesa 22.3's lavapipe expands each 32-bit component of a storage-buffer or device-address
+// load/store into a loop over the 8 SIMD lanes (gallivm lp_bld_nir_soa.c emit_load_global / emit_load_mem), while
+// image and texel-buffer accesses handle all lanes at once. Per-path state therefore lives in storage texel
+// buffers, read-only scene records in uniform texel buffers, the frame parameters in a uniform buffer (uniform
+// loads are scalar), and only the atomic queue counters are reached by device address. GPUs are indifferent.
+// Binding numbers are gpu/wavefront_types.h's HT_BINDING_*.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference2 : require
@@ -12,24 +19,94 @@
 
 layout(local_size_x = HT_WORKGROUP_SIZE) in;
 
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer FrameRef { FrameBlock f; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer NodeRef { GpuBvhNode n[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer Vec4Ref { vec4 v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer Vec2Ref { vec2 v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer UVec4Ref { uvec4 v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer UintRef { uint v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer FloatRef { float v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer RayRef { HtRay v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer HitRef { HtHit v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MaterialRef { GpuMaterial v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer LightRef { GpuLight v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TextureRef { GpuTexture v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Vec4Ref { vec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer CountersRef { GpuCounters c; };
 
 layout(push_constant, std430) uniform PushBlock { PassConstants pc; };
 
-#define FRAME FrameRef(pc.frame).f
-#define COUNTERS CountersRef(FrameRef(pc.frame).f.counters).c
+layout(set = 0, binding = 4, std140) uniform FrameUniforms { FrameBlock frameBlock; };
+#define FRAME frameBlock
+#define COUNTERS CountersRef(frameBlock.counters).c
+
+// Per-path state (storage texel buffers).
+layout(set = 0, binding = 5, rgba32f) uniform imageBuffer rayQueue0;         // 2 texels per ray
+layout(set = 0, binding = 6, rgba32f) uniform imageBuffer rayQueue1;
+layout(set = 0, binding = 7, r32ui) uniform uimageBuffer queuePath0;
+layout(set = 0, binding = 8, r32ui) uniform uimageBuffer queuePath1;
+layout(set = 0, binding = 9, rgba32ui) uniform uimageBuffer hitBuffer;        // t bits, triId, u bits, v bits
+layout(set = 0, binding = 10, rgba32f) uniform imageBuffer radianceBuffer;
+layout(set = 0, binding = 11, rgba32f) uniform imageBuffer throughputBuffer;
+layout(set = 0, binding = 12, rgba32f) uniform imageBuffer shadowRayBuffer;   // 2 texels per slot
+layout(set = 0, binding = 13, rgba32f) uniform imageBuffer shadowContribBuffer;
+layout(set = 0, binding = 14, r32ui) uniform uimageBuffer shadowQueueBuffer;
+layout(set = 0, binding = 15, r32f) uniform imageBuffer subpixelBuffer;
+layout(set = 0, binding = 16, rgba32f) uniform imageBuffer outputImage;
+// Scene records (uniform texel buffers).
+layout(set = 0, binding = 17) uniform samplerBuffer vertexTexels;
+layout(set = 0, binding = 18) uniform samplerBuffer normalTexels;
+layout(set = 0, binding = 19) uniform samplerBuffer texcoordTexels;           // RG32F
+layout(set = 0, binding = 20) uniform usamplerBuffer triangleTexels;          // (i0, i1, i2, material)
+layout(set = 0, binding = 21) uniform samplerBuffer materialTexels;           // 3 texels per GpuMaterial
+layout(set = 0, binding = 22) uniform samplerBuffer lightTexels;              // 4 texels per GpuLight
+layout(set = 0, binding = 23) uniform usamplerBuffer textureTexels;           // GpuTexture.info
+layout(set = 0, binding = 24) uniform samplerBuffer texelTexels;
+
+HtRay load_ray(uint q, uint i) {
+  int k = int(2u * i);
+  vec4 a = q == 0u ? imageLoad(rayQueue0, k) : imageLoad(rayQueue1, k);
+  vec4 b = q == 0u ? imageLoad(rayQueue0, k + 1) : imageLoad(rayQueue1, k + 1);
+  return HtRay(a.xyz, a.w, b.xyz, b.w);
+}
+void store_ray(uint q, uint i, HtRay r) {
+  int k = int(2u * i);
+  if (q == 0u) {
+    imageStore(rayQueue0, k, vec4(r.origin, r.tmin));
+    imageStore(rayQueue0, k + 1, vec4(r.dir, r.tmax));
+  } else {
+    imageStore(rayQueue1, k, vec4(r.origin, r.tmin));
+    imageStore(rayQueue1, k + 1, vec4(r.dir, r.tmax));
+  }
+}
+uint load_queue_path(uint q, uint i) {
+  return q == 0u ? imageLoad(queuePath0, int(i)).x : imageLoad(queuePath1, int(i)).x;
+}
+void store_queue_path(uint q, uint i, uint path) {
+  if (q == 0u) imageStore(queuePath0, int(i), uvec4(path));
+  else imageStore(queuePath1, int(i), uvec4(path));
+}
+HtHit load_hit(uint i) {
+  uvec4 h = imageLoad(hitBuffer, int(i));
+  return HtHit(uintBitsToFloat(h.x), h.y, uintBitsToFloat(h.z), uintBitsToFloat(h.w));
+}
+void store_hit(uint i, HtHit h) {
+  imageStore(hitBuffer, int(i), uvec4(floatBitsToUint(h.t), h.triId, floatBitsToUint(h.u), floatBitsToUint(h.v)));
+}
+HtRay load_shadow_ray(uint slot) {
+  vec4 a = imageLoad(shadowRayBuffer, int(2u * slot));
+  vec4 b = imageLoad(shadowRayBuffer, int(2u * slot + 1u));
+  return HtRay(a.xyz, a.w, b.xyz, b.w);
+}
+void store_shadow_ray(uint slot, HtRay r) {
+  imageStore(shadowRayBuffer, int(2u * slot), vec4(r.origin, r.tmin));
+  imageStore(shadowRayBuffer, int(2u * slot + 1u), vec4(r.dir, r.tmax));
+}
+
+vec3 scene_vertex(uint i) { return texelFetch(vertexTexels, int(i)).xyz; }
+vec3 scene_normal(uint i) { return texelFetch(normalTexels, int(i)).xyz; }
+vec2 scene_texcoord(uint i) { return texelFetch(texcoordTexels, int(i)).xy; }
+uvec4 scene_triangle(uint i) { return texelFetch(triangleTexels, int(i)); }
+GpuMaterial scene_material(uint i) {
+  int k = int(3u * i);
+  return GpuMaterial(texelFetch(materialTexels, k), texelFetch(materialTexels, k + 1), texelFetch(materialTexels, k + 2));
+}
+GpuLight scene_light(uint i) {
+  int k = int(4u * i);
+  return GpuLight(texelFetch(lightTexels, k), texelFetch(lightTexels, k + 1), texelFetch(lightTexels, k + 2),
+                  texelFetch(lightTexels, k + 3));
+}
+GpuTexture scene_texture(uint i) { return GpuTexture(texelFetch(textureTexels, int(i))); }
+vec4 scene_texel(uint i) { return texelFetch(texelTexels, int(i)); }
 
 // Integer hash (PCG-style output permutation; Jarzynski & Olano, "Hash Functions for GPU Rendering", JCGT 2020).
 uint ht_hash(uint v) {

@@ -8,16 +8,16 @@
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= COUNTERS.queueCount[pc.queue]) return;
-  uint path = UintRef(FRAME.queuePath[pc.queue]).v[i];
+  uint path = load_queue_path(pc.queue, i);
   uint lightCount = FRAME.scene.x;
   vec3 sum = vec3(0.0f);
   for (uint l = 0u; l < lightCount; ++l) {
     uint slot = path * lightCount + l;
-    vec4 c = Vec4Ref(FRAME.shadowContrib).v[slot];
+    vec4 c = imageLoad(shadowContribBuffer, int(slot));
     if (c.w != 0.0f) {
       sum += c.xyz;
-      Vec4Ref(FRAME.shadowContrib).v[slot] = vec4(0.0f);
+      imageStore(shadowContribBuffer, int(slot), vec4(0.0f));
     }
   }
-  Vec4Ref(FRAME.radiance).v[path] += vec4(sum, 0.0f);
+  imageStore(radianceBuffer, int(path), imageLoad(radianceBuffer, int(path)) + vec4(sum, 0.0f));
 }

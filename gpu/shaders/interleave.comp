@@ -13,6 +13,7 @@ void main() {
   uint row = i / width;
   uint x = i % width;
   uint pixel = (height - 1u - row) * width + x;
-  FloatRef sub = FloatRef(FRAME.subpixels);
-  Vec4Ref(FRAME.image).v[i] = vec4(sub.v[3u * pixel], sub.v[3u * pixel + 1u], sub.v[3u * pixel + 2u], 1.0f);
+  int k = int(3u * pixel);
+  vec4 rgb = vec4(imageLoad(subpixelBuffer, k).x, imageLoad(subpixelBuffer, k + 1).x, imageLoad(subpixelBuffer, k + 2).x, 1.0f);
+  imageStore(outputImage, int(i), rgb);
 }

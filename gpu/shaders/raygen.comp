@@ -42,8 +42,8 @@ void main() {
   } else {
     pinhole_ray(FRAME.pinhole, target % width, target / width, xi, origin, dir);
   }
-  RayRef(FRAME.rays[0]).v[i] = HtRay(origin, 0.0f, dir, 3.0e38f);
-  UintRef(FRAME.queuePath[0]).v[i] = i;
-  Vec4Ref(FRAME.radiance).v[i] = vec4(0.0f);
-  Vec4Ref(FRAME.throughput).v[i] = vec4(1.0f);
+  store_ray(0u, i, HtRay(origin, 0.0f, dir, 3.0e38f));
+  store_queue_path(0u, i, i);
+  imageStore(radianceBuffer, int(i), vec4(0.0f));
+  imageStore(throughputBuffer, int(i), vec4(1.0f));
 }

@@ -12,7 +12,7 @@ void main() {
   if (i >= pc.batchCount / spp) return;
   uint target = pc.batchFirst / spp + i;
   vec3 sum = vec3(0.0f);
-  for (uint s = 0u; s < spp; ++s) sum += Vec4Ref(FRAME.radiance).v[i * spp + s].xyz;
+  for (uint s = 0u; s < spp; ++s) sum += imageLoad(radianceBuffer, int(i * spp + s)).xyz;
   vec3 value = sum / float(spp);
   bool finite = !(any(isnan(value)) || any(isinf(value)));
   if (!finite) {
@@ -21,10 +21,10 @@ void main() {
   }
   if (MODEL == HT_MODEL_LENTICULAR) {
     uint c = target % 3u;
-    FloatRef(FRAME.subpixels).v[target] = c == 0u ? value.x : (c == 1u ? value.y : value.z);
+    imageStore(subpixelBuffer, int(target), vec4(c == 0u ? value.x : (c == 1u ? value.y : value.z)));
   } else {
-    FloatRef(FRAME.subpixels).v[3u * target + 0u] = value.x;
-    FloatRef(FRAME.subpixels).v[3u * target + 1u] = value.y;
-    FloatRef(FRAME.subpixels).v[3u * target + 2u] = value.z;
+    imageStore(subpixelBuffer, int(3u * target), vec4(value.x));
+    imageStore(subpixelBuffer, int(3u * target + 1u), vec4(value.y));
+    imageStore(subpixelBuffer, int(3u * target + 2u), vec4(value.z));
   }
 }

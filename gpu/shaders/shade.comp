@@ -35,7 +35,7 @@ uint append_slot(bool want, uint counterSelect) {
 
 // Bilinear lookup with repeat wrapping; texels are linear RGBA, row 0 = glTF v = 0.
 vec3 sample_texture(uint index, vec2 uv) {
-  GpuTexture tex = TextureRef(FRAME.textures).v[index];
+  GpuTexture tex = scene_texture(index);
   vec2 size = vec2(float(tex.info.y), float(tex.info.z));
   vec2 p = fract(uv) * size - 0.5f;
   vec2 f = fract(p);
@@ -46,7 +46,7 @@ vec3 sample_texture(uint index, vec2 uv) {
     uint x = uint((q.x % int(tex.info.y) + int(tex.info.y)) % int(tex.info.y));
     uint y = uint((q.y % int(tex.info.z) + int(tex.info.z)) % int(tex.info.z));
     float w = ((k & 1) == 1 ? f.x : 1.0f - f.x) * ((k >> 1) == 1 ? f.y : 1.0f - f.y);
-    c += w * Vec4Ref(FRAME.texels).v[tex.info.x + y * tex.info.y + x].xyz;
+    c += w * scene_texel(tex.info.x + y * tex.info.y + x).xyz;
   }
   return c;
 }
@@ -61,9 +61,8 @@ struct SurfacePoint {
 };
 
 SurfacePoint surface_point(HtHit hit, vec3 dir) {
-  uvec4 tri = UVec4Ref(FRAME.triangles).v[hit.triId];
-  Vec4Ref verts = Vec4Ref(FRAME.vertices);
-  vec3 p0 = verts.v[tri.x].xyz, p1 = verts.v[tri.y].xyz, p2 = verts.v[tri.z].xyz;
+  uvec4 tri = scene_triangle(hit.triId);
+  vec3 p0 = scene_vertex(tri.x), p1 = scene_vertex(tri.y), p2 = scene_vertex(tri.z);
   float w0 = 1.0f - hit.u - hit.v;
   SurfacePoint s;
   s.p = w0 * p0 + hit.u * p1 + hit.v * p2;
@@ -71,9 +70,8 @@ SurfacePoint surface_point(HtHit hit, vec3 dir) {
   s.front = dot(dir, ng) < 0.0f;
   s.nFace = s.front ? ng : -ng;
   s.nShade = s.nFace;
-  if (FRAME.normals != 0ul) {
-    Vec4Ref ns = Vec4Ref(FRAME.normals);
-    vec3 n = w0 * ns.v[tri.x].xyz + hit.u * ns.v[tri.y].xyz + hit.v * ns.v[tri.z].xyz;
+  if (FRAME.flags.x != 0u) {
+    vec3 n = w0 * scene_normal(tri.x) + hit.u * scene_normal(tri.y) + hit.v * scene_normal(tri.z);
     float len = length(n);
     if (len > 0.0f) {
       n /= len;
@@ -81,9 +79,8 @@ SurfacePoint surface_point(HtHit hit, vec3 dir) {
     }
   }
   s.uv = vec2(0.0f);
-  if (HAS_TEXTURES && FRAME.texcoords != 0ul) {
-    Vec2Ref ts = Vec2Ref(FRAME.texcoords);
-    s.uv = w0 * ts.v[tri.x] + hit.u * ts.v[tri.y] + hit.v * ts.v[tri.z];
+  if (HAS_TEXTURES && FRAME.flags.y != 0u) {
+    s.uv = w0 * scene_texcoord(tri.x) + hit.u * scene_texcoord(tri.y) + hit.v * scene_texcoord(tri.z);
   }
   s.material = tri.w;
   return s;
@@ -121,16 +118,16 @@ void emit_shadow_rays(uint path, SurfacePoint s, vec3 weight) {
   for (uint l = 0u; l < lightCount; ++l) {
     vec3 wi;
     float dist;
-    vec3 e = light_incidence(LightRef(FRAME.lights).v[l], s.p, wi, dist);
+    vec3 e = light_incidence(scene_light(l), s.p, wi, dist);
     float cosTheta = dot(s.nShade, wi);
     vec3 contrib = weight * e * max(cosTheta, 0.0f);
     bool want = cosTheta > 0.0f && dot(s.nFace, wi) > 0.0f && max(contrib.x, max(contrib.y, contrib.z)) > 0.0f;
     uint q = append_slot(want, 2u);
     if (want) {
       uint slot = path * lightCount + l;
-      RayRef(FRAME.shadowRays).v[slot] = HtRay(origin, 0.0f, wi, dist);
-      Vec4Ref(FRAME.shadowContrib).v[slot] = vec4(contrib, 1.0f);
-      UintRef(FRAME.shadowQueue).v[q] = slot;
+      store_shadow_ray(slot, HtRay(origin, 0.0f, wi, dist));
+      imageStore(shadowContribBuffer, int(slot), vec4(contrib, 1.0f));
+      imageStore(shadowQueueBuffer, int(q), uvec4(slot));
     }
   }
 }
@@ -145,10 +142,10 @@ float fresnel_dielectric(float cosI, float cosT, float eta) {
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= COUNTERS.queueCount[pc.queue]) return;
-  uint path = UintRef(FRAME.queuePath[pc.queue]).v[i];
-  HtRay ray = RayRef(FRAME.rays[pc.queue]).v[i];
-  HtHit hit = HitRef(FRAME.hits).v[i];
-  vec3 throughput = Vec4Ref(FRAME.throughput).v[path].xyz;
+  uint path = load_queue_path(pc.queue, i);
+  HtRay ray = load_ray(pc.queue, i);
+  HtHit hit = load_hit(i);
+  vec3 throughput = imageLoad(throughputBuffer, int(path)).xyz;
   vec3 radiance = vec3(0.0f);
   bool hitSurface = hit.triId != HT_MISS;
   bool wantShadows = false;
@@ -161,7 +158,7 @@ void main() {
     radiance = throughput * FRAME.background.xyz;
   } else {
     s = surface_point(hit, dir);
-    GpuMaterial m = MaterialRef(FRAME.materials).v[s.material];
+    GpuMaterial m = scene_material(s.material);
     albedo = m.baseColor.xyz;
     if (HAS_TEXTURES && m.baseColor.w >= 0.0f) albedo *= sample_texture(uint(m.baseColor.w), s.uv);
     radiance = throughput * m.emissive.xyz;
@@ -197,7 +194,7 @@ void main() {
     }
     continues = continues && max(throughput.x, max(throughput.y, throughput.z)) > 1e-4f;
   }
-  Vec4Ref(FRAME.radiance).v[path] += vec4(radiance, 0.0f);
+  imageStore(radianceBuffer, int(path), imageLoad(radianceBuffer, int(path)) + vec4(radiance, 0.0f));
 
   // Subgroup operations act on the lanes active at the call, so each divergent group appends for itself.
   if (HAS_LIGHTS && wantShadows) emit_shadow_rays(path, s, throughput * albedo * HT_INV_PI);
@@ -205,9 +202,9 @@ void main() {
     uint out_queue = 1u - pc.queue;
     uint q = append_slot(continues, out_queue);
     if (continues) {
-      RayRef(FRAME.rays[out_queue]).v[q] = next;
-      UintRef(FRAME.queuePath[out_queue]).v[q] = path;
-      Vec4Ref(FRAME.throughput).v[path] = vec4(throughput, 0.0f);
+      store_ray(out_queue, q, next);
+      store_queue_path(out_queue, q, path);
+      imageStore(throughputBuffer, int(path), vec4(throughput, 0.0f));
     }
   }
 }

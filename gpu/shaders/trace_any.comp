@@ -17,20 +17,20 @@ void main() {
   uint steps = 0u;
   bool overflow = false;
   if (inQueue) {
-    uint slot = SHADOW_QUEUE == 1u ? UintRef(FRAME.shadowQueue).v[i] : i;
+    uint slot = SHADOW_QUEUE == 1u ? imageLoad(shadowQueueBuffer, int(i)).x : i;
     // (if/else, not ?: -- glslang 12 emits an invalid OpStore for a ternary over buffer-reference structs)
     HtTraceResult r;
     if (SHADOW_QUEUE == 1u) {
-      r = ht_trace_any(RayRef(FRAME.shadowRays).v[slot], FRAME.scene.z);
+      r = ht_trace_any(load_shadow_ray(slot), FRAME.scene.z);
     } else {
-      r = ht_trace_any(RayRef(FRAME.rays[0]).v[i], FRAME.scene.z);
+      r = ht_trace_any(load_ray(0u, i), FRAME.scene.z);
     }
     steps = r.steps;
     overflow = r.overflow;
     if (SHADOW_QUEUE == 1u) {
-      if (r.hit.triId != HT_MISS || r.overflow) Vec4Ref(FRAME.shadowContrib).v[slot] = vec4(0.0f, 0.0f, 0.0f, 1.0f);
+      if (r.hit.triId != HT_MISS || r.overflow) imageStore(shadowContribBuffer, int(slot), vec4(0.0f, 0.0f, 0.0f, 1.0f));
     } else {
-      HitRef(FRAME.hits).v[i] = r.hit;
+      store_hit(i, r.hit);
     }
   }
   uint maxSteps = subgroupMax(steps);

@@ -14,8 +14,8 @@ void main() {
   uint steps = 0u;
   bool overflow = false;
   if (inQueue) {
-    HtTraceResult r = ht_trace_closest(RayRef(FRAME.rays[pc.queue]).v[i], FRAME.scene.z);
-    HitRef(FRAME.hits).v[i] = r.hit;
+    HtTraceResult r = ht_trace_closest(load_ray(pc.queue, i), FRAME.scene.z);
+    store_hit(i, r.hit);
     steps = r.steps;
     overflow = r.overflow;
   }
