@@ -53,7 +53,11 @@ HT_INLINE vec2 lenticular_sample_offset_px(LenticularParams p, uint x, uint y, u
   uint cp = lenticular_physical_channel(p, c);
   vec2 centre = vec2(0.5f, 0.5f);
   if (p.flags.x != 0 && p.flags.y > 0) {
-    vec4 cellOffset = p.cellOffset[lenticular_cell(p, x, y) * 3u + cp];
+    // Select instead of a dynamic index: an indexed array inside a by-value struct becomes per-lane scratch
+    // memory on lavapipe (2.4x slower raygen, measured), a select chain stays in registers.
+    uint idx = lenticular_cell(p, x, y) * 3u + cp;
+    vec4 cellOffset = p.cellOffset[0];
+    for (uint k = 1u; k < 3u * HT_MAX_SUBPIXEL_CELLS; ++k) cellOffset = k == idx ? p.cellOffset[k] : cellOffset;
     centre = vec2(0.5f + cellOffset.x * p.panel.x, 0.5f + cellOffset.y * p.panel.y);
   } else {
     float subpSign = p.phase.z < 0.0f ? -1.0f : 1.0f;
