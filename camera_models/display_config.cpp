@@ -15,7 +15,14 @@ using detail::JsonLocation;
 using nlohmann::json;
 
 std::string_view displayModelName(DisplayModel model) {
-  return model == DisplayModel::Pinhole ? "pinhole" : "lenticular";
+  switch (model) {
+    case DisplayModel::Pinhole: return "pinhole";
+    case DisplayModel::ProjectorArray: return "projector-array";
+    case DisplayModel::Integral: return "integral";
+    case DisplayModel::CaptureGrid: return "capture-grid";
+    case DisplayModel::Lenticular: break;
+  }
+  return "lenticular";
 }
 
 namespace {
@@ -112,7 +119,12 @@ DisplayModel readModel(const JsonLocation& at, const json& root) {
   if (field == nullptr) return DisplayModel::Lenticular;
   if (field->is_string() && field->get<std::string>() == "lenticular") return DisplayModel::Lenticular;
   if (field->is_string() && field->get<std::string>() == "pinhole") return DisplayModel::Pinhole;
-  detail::throwFieldError(at, "model", field, "expected \"lenticular\" or \"pinhole\"");
+  if (field->is_string() && field->get<std::string>() == "projector-array") return DisplayModel::ProjectorArray;
+  if (field->is_string() && field->get<std::string>() == "integral") return DisplayModel::Integral;
+  if (field->is_string() && field->get<std::string>() == "capture-grid") return DisplayModel::CaptureGrid;
+  detail::throwFieldError(at, "model", field,
+                          "expected \"projector-array\", \"integral\", \"capture-grid\", \"lenticular\" or "
+                          "\"pinhole\"");
 }
 
 // "calibration": an embedded visual.json object, or a path to one relative to the config file.
@@ -135,6 +147,22 @@ void validateCombination(const JsonLocation& at, const json& root, const Display
     detail::throwFieldError(at, "calibration", nullptr,
                             "expected a visual.json object or a path to a visual.json (required for model "
                             "\"lenticular\")");
+  const bool projectorModel = config.model == DisplayModel::ProjectorArray;
+  if (projectorModel != config.projectorArray.has_value())
+    detail::throwFieldError(at, "projectorArray", detail::findField(root, "projectorArray"),
+                            projectorModel ? "expected a projectorArray section (required for model "
+                                             "\"projector-array\")"
+                                           : "expected no projectorArray section unless model is \"projector-array\"");
+  const bool integralModel = config.model == DisplayModel::Integral;
+  if (integralModel != config.integral.has_value())
+    detail::throwFieldError(at, "integral", detail::findField(root, "integral"),
+                            integralModel ? "expected an integral section (required for model \"integral\")"
+                                          : "expected no integral section unless model is \"integral\"");
+  const bool captureModel = config.model == DisplayModel::CaptureGrid;
+  if (captureModel != config.captureGrid.has_value())
+    detail::throwFieldError(at, "captureGrid", detail::findField(root, "captureGrid"),
+                            captureModel ? "expected a captureGrid section (required for model \"capture-grid\")"
+                                         : "expected no captureGrid section unless model is \"capture-grid\"");
   if (config.calibration && config.calibration->viewCone * config.camera.depthiness >= 180.0) {
     const json* camera = detail::findField(root, "camera");
     detail::throwFieldError(at.child("camera"), "depthiness",
@@ -156,7 +184,8 @@ DisplayConfig fromVisualJson(const json& root, const std::string& sourceName) {
 
 DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, const std::filesystem::path& baseDir) {
   const JsonLocation at{sourceName, ""};
-  rejectUnknownKeys(at, root, {"name", "description", "model", "calibration", "camera", "spp", "pinhole"});
+  rejectUnknownKeys(at, root, {"name", "description", "model", "calibration", "camera", "spp", "pinhole",
+                              "projectorArray", "integral", "captureGrid"});
   DisplayConfig config;
   config.sourcePath = sourceName;
   config.name = detail::optionalString(at, root, "name").value_or(std::filesystem::path(sourceName).stem().string());
@@ -170,6 +199,13 @@ DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, con
     config.spp = static_cast<std::uint32_t>(*spp);
   if (detail::findField(root, "pinhole") != nullptr)
     config.pinhole = readPinhole(at.child("pinhole"), requireObject(at, root, "pinhole"));
+  if (detail::findField(root, "projectorArray") != nullptr)
+    config.projectorArray =
+        parseProjectorArray(at.child("projectorArray"), requireObject(at, root, "projectorArray"));
+  if (detail::findField(root, "integral") != nullptr)
+    config.integral = parseIntegral(at.child("integral"), requireObject(at, root, "integral"));
+  if (detail::findField(root, "captureGrid") != nullptr)
+    config.captureGrid = parseCaptureGrid(at.child("captureGrid"), requireObject(at, root, "captureGrid"));
   validateCombination(at, root, config);
   return config;
 }

@@ -14,12 +14,16 @@
 
 #include <glm/glm.hpp>
 
+#include "camera_models/capture_grid_config.h"
+#include "camera_models/integral_config.h"
 #include "camera_models/looking_glass_calibration.h"
+#include "camera_models/projector_array_config.h"
 
 namespace ht {
 
-enum class DisplayModel { Lenticular, Pinhole };
-std::string_view displayModelName(DisplayModel model);  // "lenticular" | "pinhole"
+enum class DisplayModel { Lenticular, Pinhole, ProjectorArray, Integral, CaptureGrid };
+// "lenticular" | "pinhole" | "projector-array" | "integral" | "capture-grid"
+std::string_view displayModelName(DisplayModel model);
 
 // Where the display's focal rectangle sits in the scene (looking-glass-webxr camera, optics.md §4.3).
 // The display-local frame has its origin at `target` and world-aligned axes (+z toward the viewer).
@@ -48,6 +52,9 @@ struct DisplayConfig {
   CameraPlacement camera;
   std::uint32_t spp = 4;              // default samples per subpixel / pixel, [1, 4096]
   PinholeSettings pinhole;
+  std::optional<ProjectorArrayConfig> projectorArray;  // required for (and only for) model "projector-array"
+  std::optional<IntegralConfig> integral;              // required for (and only for) model "integral"
+  std::optional<CaptureGridConfig> captureGrid;        // required for (and only for) model "capture-grid"
 };
 
 // Reads our format or a raw visual.json from disk. Throws ConfigError.

@@ -1,0 +1,152 @@
+// projector_array_config.cpp - parsing and validation of the "projectorArray" section (see projector_array_config.h).
+#include "camera_models/projector_array_config.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "camera_models/projector_params.h"
+
+namespace ht {
+
+using detail::JsonLocation;
+using nlohmann::json;
+
+namespace {
+
+constexpr long long kMaxImageSize = 32768;
+
+void rejectUnknown(const JsonLocation& at, const json& object, std::initializer_list<std::string_view> allowed) {
+  for (const auto& [key, value] : object.items()) {
+    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+    std::string list;
+    for (std::string_view k : allowed) list += (list.empty() ? "" : ", ") + std::string(k);
+    detail::throwFieldError(at, key, &value, "unknown key; expected one of: " + list);
+  }
+}
+
+double requirePositive(const JsonLocation& at, const json& object, std::string_view key, const std::string& what) {
+  const std::string expected = "expected a finite " + what + " > 0";
+  const double value = detail::requireNumber(at, object, key, false, expected);
+  if (!(value > 0.0)) detail::throwFieldError(at, key, detail::findField(object, key), expected);
+  return value;
+}
+
+// [x, y, z], finite, z < 0: projectors sit behind the screen (optics.md §9 M3, P_k.z < 0).
+glm::dvec3 readPosition(const JsonLocation& at, const json& object) {
+  const std::string expected = "expected [x, y, z] of finite numbers (display units) with z < 0 (behind the screen)";
+  const json* field = detail::findField(object, "position");
+  if (field == nullptr || !field->is_array() || field->size() != 3) detail::throwFieldError(at, "position", field, expected);
+  glm::dvec3 p;
+  for (int i = 0; i < 3; ++i) {
+    const json& c = (*field)[static_cast<std::size_t>(i)];
+    if (!c.is_number() || !std::isfinite(c.get<double>())) detail::throwFieldError(at, "position", field, expected);
+    p[i] = c.get<double>();
+  }
+  if (!(p.z < 0.0)) detail::throwFieldError(at, "position", field, expected);
+  return p;
+}
+
+// 3x3 row-major, finite, mapping every image corner to a finite point (w > 0 there, so the image does not wrap through
+// infinity).
+std::array<double, 9> readHomography(const JsonLocation& at, const json& object, std::uint32_t width,
+                                     std::uint32_t height) {
+  const std::string expected =
+      "expected [[h00, h01, h02], [h10, h11, h12], [h20, h21, h22]] of finite numbers with h20*x + h21*y + h22 > 0 "
+      "at every image corner";
+  const json* field = detail::findField(object, "homography");
+  if (field == nullptr || !field->is_array() || field->size() != 3) detail::throwFieldError(at, "homography", field, expected);
+  std::array<double, 9> h{};
+  for (std::size_t r = 0; r < 3; ++r) {
+    const json& row = (*field)[r];
+    if (!row.is_array() || row.size() != 3) detail::throwFieldError(at, "homography", field, expected);
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (!row[c].is_number() || !std::isfinite(row[c].get<double>()))
+        detail::throwFieldError(at, "homography", field, expected);
+      h[r * 3 + c] = row[c].get<double>();
+    }
+  }
+  for (double x : {0.0, double(width)})
+    for (double y : {0.0, double(height)})
+      if (!(h[6] * x + h[7] * y + h[8] > 0.0)) detail::throwFieldError(at, "homography", field, expected);
+  const double det = h[0] * (h[4] * h[8] - h[5] * h[7]) - h[1] * (h[3] * h[8] - h[5] * h[6]) +
+                     h[2] * (h[3] * h[7] - h[4] * h[6]);
+  if (!(std::fabs(det) > 0.0)) detail::throwFieldError(at, "homography", field, expected + " (non-singular)");
+  return h;
+}
+
+ProjectorConfig readProjector(const JsonLocation& at, const json& object, std::optional<std::uint32_t> defaultWidth,
+                              std::optional<std::uint32_t> defaultHeight) {
+  if (!object.is_object()) detail::throwFieldError(at, "", &object, "expected a projector object");
+  rejectUnknown(at, object, {"position", "width", "height", "homography"});
+  ProjectorConfig projector;
+  projector.position = readPosition(at, object);
+  auto width = detail::optionalInteger(at, object, "width", false, 1, kMaxImageSize);
+  auto height = detail::optionalInteger(at, object, "height", false, 1, kMaxImageSize);
+  if (!width && !defaultWidth)
+    detail::throwFieldError(at, "width", nullptr, "expected an integer in [1, 32768] here or in \"image\"");
+  if (!height && !defaultHeight)
+    detail::throwFieldError(at, "height", nullptr, "expected an integer in [1, 32768] here or in \"image\"");
+  projector.width = width ? static_cast<std::uint32_t>(*width) : *defaultWidth;
+  projector.height = height ? static_cast<std::uint32_t>(*height) : *defaultHeight;
+  if (detail::findField(object, "homography") != nullptr)
+    projector.homography = readHomography(at, object, projector.width, projector.height);
+  return projector;
+}
+
+}  // namespace
+
+std::array<double, 9> linearProjectorMapping(double screenWidth, double screenHeight, std::uint32_t width,
+                                             std::uint32_t height) {
+  // Doronin RenderProjector (optics.md §6): S = (-Sw/2 + Sw*(i+0.5)/W, -Sh/2 + Sh*(j+0.5)/H) with j from the bottom;
+  // (i+0.5, j+0.5) is the pixel position here, so the matrix acts on (px, py, 1).
+  return {screenWidth / width, 0.0, -0.5 * screenWidth, 0.0, screenHeight / height, -0.5 * screenHeight,
+          0.0, 0.0, 1.0};
+}
+
+ProjectorArrayConfig parseProjectorArray(const JsonLocation& at, const json& section) {
+  rejectUnknown(at, section, {"screen", "observerDistance", "observerHeight", "angularScattering", "image",
+                              "projectors"});
+  ProjectorArrayConfig config;
+  const json* screen = detail::findField(section, "screen");
+  if (screen == nullptr || !screen->is_object())
+    detail::throwFieldError(at, "screen", screen, "expected {\"width\": w, \"height\": h} (display units)");
+  const JsonLocation screenAt = at.child("screen");
+  rejectUnknown(screenAt, *screen, {"width", "height"});
+  config.screenWidth = requirePositive(screenAt, *screen, "width", "screen width (display units)");
+  config.screenHeight = requirePositive(screenAt, *screen, "height", "screen height (display units)");
+  config.observerDistance = requirePositive(at, section, "observerDistance", "observer distance (display units)");
+  config.observerHeight =
+      detail::optionalNumber(at, section, "observerHeight", false, "expected a finite height (display units)")
+          .value_or(0.0);
+  const json* scattering = detail::findField(section, "angularScattering");
+  if (scattering != nullptr && !(scattering->is_string() && scattering->get<std::string>() == "auto")) {
+    const std::string expected = "expected a finite angle >= 0 (radians) or \"auto\"";
+    const double value = detail::requireNumber(at, section, "angularScattering", false, expected);
+    if (!(value >= 0.0)) detail::throwFieldError(at, "angularScattering", scattering, expected);
+    config.angularScattering = value;
+  }
+
+  std::optional<std::uint32_t> defaultWidth, defaultHeight;
+  if (const json* image = detail::findField(section, "image")) {
+    if (!image->is_object()) detail::throwFieldError(at, "image", image, "expected {\"width\": W, \"height\": H}");
+    const JsonLocation imageAt = at.child("image");
+    rejectUnknown(imageAt, *image, {"width", "height"});
+    defaultWidth = static_cast<std::uint32_t>(detail::requireInteger(imageAt, *image, "width", false, 1, kMaxImageSize));
+    defaultHeight =
+        static_cast<std::uint32_t>(detail::requireInteger(imageAt, *image, "height", false, 1, kMaxImageSize));
+  }
+  const json* projectors = detail::findField(section, "projectors");
+  const std::string countExpected =
+      "expected an array of 1 to " + std::to_string(gpu_shared::HT_MAX_PROJECTORS) + " projector objects";
+  if (projectors == nullptr || !projectors->is_array() || projectors->empty() ||
+      projectors->size() > gpu_shared::HT_MAX_PROJECTORS)
+    detail::throwFieldError(at, "projectors", projectors, countExpected);
+  for (std::size_t k = 0; k < projectors->size(); ++k) {
+    const JsonLocation projectorAt = at.child("projectors[" + std::to_string(k) + "]");
+    config.projectors.push_back(readProjector(projectorAt, (*projectors)[k], defaultWidth, defaultHeight));
+  }
+  return config;
+}
+
+}  // namespace ht

@@ -1,0 +1,70 @@
+// projector_model.h - primary rays of an HPO projector array (shared C++/GLSL), model M3 of optics.md §9.
+//
+// Double-perspective (multiple-centre-of-projection) ray: horizontal direction from the projector, vertical
+// perspective from the observer (Jones et al., SIGGRAPH 2007; planar form of wps1215/LightFieldDisplayModel
+// RenderingNaive/RayTracer.cpp RenderProjector, optics.md §6):
+//   S  = H_k (i + xi_x, j + xi_y, 1), dehomogenised, on the screen z = 0      (pixel (i, j), j from the bottom)
+//   ox = S.x - (S.x - P_k.x)/P_k.z * Dobs                                      (line P_k -> S continued to z = Dobs)
+//   o  = (ox, h, Dobs);  d = normalize(S - o)
+// Display units are scaled to world units by p.scale.x, then placed by localToWorld. Screen scattering (optics.md §9
+// M3): projector_scattered_ray rotates the ray about the vertical axis through S by dA ~ N(0, sigma),
+// sigma = angular_scattering/1.11741/sqrt(2) (from LightFieldInterpolation.cpp's weight exp(-dA^2*1.11741^2/as^2)).
+#ifndef HT_PROJECTOR_MODEL_H
+#define HT_PROJECTOR_MODEL_H
+#include "common/glsl_cpp.h"
+#include "camera_models/projector_params.h"
+
+HT_SHARED_BEGIN
+
+HT_CONST float HT_PROJECTOR_SCATTER_NORM = 1.11741f;  // LightFieldInterpolation.cpp
+HT_CONST float HT_PROJECTOR_TWO_PI = 6.28318530717958647692f;
+
+// Screen point (display units, z = 0) of projector position (px, py) in pixels (py from the bottom).
+HT_INLINE vec3 projector_screen_point(HT_IN(ProjectorArrayParams) p, uint view, vec2 pixel) {
+  mat3 h = mat3(p.projector[view]);
+  vec3 s = h * vec3(pixel.x, pixel.y, 1.0f);
+  return vec3(s.x / s.z, s.y / s.z, 0.0f);
+}
+
+// Display-local (unscaled) double-perspective ray through screen point s of projector `view`.
+HT_INLINE void projector_local_ray(HT_IN(ProjectorArrayParams) p, uint view, vec3 s, HT_OUT(vec3) origin,
+                                   HT_OUT(vec3) dir) {
+  vec3 position = vec3(p.projector[view][3]);
+  float observerDistance = p.observer.x;
+  float ox = s.x - (s.x - position.x) / position.z * observerDistance;
+  origin = vec3(ox, p.observer.y, observerDistance);
+  dir = normalize(s - origin);
+}
+
+// Display-local -> world: positions scaled by p.scale.x then placed; directions rotated only.
+HT_INLINE void projector_to_world(HT_IN(ProjectorArrayParams) p, HT_INOUT(vec3) origin, HT_INOUT(vec3) dir) {
+  origin = vec3(p.localToWorld * vec4(origin * p.scale.x, 1.0f));
+  dir = normalize(mat3(p.localToWorld) * dir);
+}
+
+// Primary ray of pixel (x, y) (y from the bottom) of projector `view` at footprint position xi in [0,1)^2.
+HT_INLINE void projector_ray(HT_IN(ProjectorArrayParams) p, uint x, uint y, uint view, vec2 xi, HT_OUT(vec3) origin,
+                             HT_OUT(vec3) dir) {
+  vec3 s = projector_screen_point(p, view, vec2(float(x) + xi.x, float(y) + xi.y));
+  projector_local_ray(p, view, s, origin, dir);
+  projector_to_world(p, origin, dir);
+}
+
+// As projector_ray, with the screen's horizontal scattering sampled by xiAngle in [0,1)^2 (Box-Muller normal draw):
+// the ray is rotated about the vertical axis through S by dA, origin and direction alike (optics.md §9 M3).
+HT_INLINE void projector_scattered_ray(HT_IN(ProjectorArrayParams) p, uint x, uint y, uint view, vec2 xi,
+                                       vec2 xiAngle, HT_OUT(vec3) origin, HT_OUT(vec3) dir) {
+  vec3 s = projector_screen_point(p, view, vec2(float(x) + xi.x, float(y) + xi.y));
+  projector_local_ray(p, view, s, origin, dir);
+  float sigma = p.observer.z / HT_PROJECTOR_SCATTER_NORM / sqrt(2.0f);
+  float radius = sqrt(-2.0f * log(max(1.0f - xiAngle.x, 1e-30f)));
+  float angle = sigma * radius * cos(HT_PROJECTOR_TWO_PI * xiAngle.y);
+  float c = cos(angle), sn = sin(angle);
+  vec3 arm = origin - s;  // rotation about +y through S
+  origin = s + vec3(c * arm.x + sn * arm.z, arm.y, -sn * arm.x + c * arm.z);
+  dir = vec3(c * dir.x + sn * dir.z, dir.y, -sn * dir.x + c * dir.z);
+  projector_to_world(p, origin, dir);
+}
+
+HT_SHARED_END
+#endif  // HT_PROJECTOR_MODEL_H
