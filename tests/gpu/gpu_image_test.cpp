@@ -140,7 +140,9 @@ TEST(GpuImage, SpecialisedPipelineGivesTheSameImageAsAllFeaturesOn) {
 }
 
 TEST(GpuImage, OutputLargerThan128MiBStorageRange) {
-  // 3072^2 RGBA32F = 144 MiB, above lavapipe's maxStorageBufferRange (buffers are reached by device address).
+  // 3072^2 RGBA32F = 144 MiB, above lavapipe's maxStorageBufferRange (texel-buffer views count texels).
+  // Device-side behaviour only: the sanitizer build would spend a minute poisoning 144 MiB host copies.
+  if (kSanitized) GTEST_SKIP() << "covered by the Release run; nothing host-side to check beyond the other tests";
   Scene scene = emissiveSphereScene(1.0f, 2);
   gpu::Renderer renderer(sharedContext(), scene);
   gpu::RenderSettings settings;
