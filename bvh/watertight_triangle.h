@@ -13,7 +13,8 @@
 //  4. reject mixed signs and det = U+V+W == 0; compare T = U*Az + V*Bz + W*Cz (z scaled by Sz) with det*tmin
 //     and det*tmax after matching signs, dividing only for accepted hits.
 //  5. pbrt-v3's conservative bound: accept only t > deltaT (gamma(2/3/5) error terms), so no hit is reported
-//     at or just behind the origin.
+//     at or just behind the origin; a hit the float bound cannot confirm is rechecked in double
+//     (ht_confirm_t_double), because the float bound alone rejected real hits at edges (docs/ACCURACY.md).
 // Edge values are computed without FMA: C++ builds with -ffp-contract=off, GLSL marks them `precise`.
 #ifndef HT_WATERTIGHT_TRIANGLE_H
 #define HT_WATERTIGHT_TRIANGLE_H
@@ -61,6 +62,44 @@ HT_INLINE float ht_edge_double(vec3 p, vec3 q) {
   return float(e);
 }
 
+// Double-precision recheck of pbrt-v3's "t > deltaT" for a hit whose float bound could not confirm it.
+// The float bound is loose where the edge functions are small against the vertex coordinates (grazing or
+// needle triangles, rays through an edge): deltaT then exceeds t even for hits far from the origin, and since
+// deltaT differs between the two triangles of an edge, rejecting there opens a hole (docs/ACCURACY.md). The
+// sign decisions stay the float ones (watertightness); only t and its bound are redone with the same formulas
+// (pbr-book 3rd ed. §3.9.6) in double, gamma(n) = n u / (1 - n u) with u = 2^-53, where the bound is 2^29 times
+// tighter. A hit at or behind the origin is still rejected.
+HT_INLINE bool ht_confirm_t_double(HT_IN(HtWatertightRay) r, vec3 a, vec3 b, vec3 c) {
+  HT_PRECISE double az = double(a[r.kz]) - double(r.oz);
+  HT_PRECISE double bz = double(b[r.kz]) - double(r.oz);
+  HT_PRECISE double cz = double(c[r.kz]) - double(r.oz);
+  HT_PRECISE double ax = (double(a[r.kx]) - double(r.ox)) - double(r.Sx) * az;
+  HT_PRECISE double ay = (double(a[r.ky]) - double(r.oy)) - double(r.Sy) * az;
+  HT_PRECISE double bx = (double(b[r.kx]) - double(r.ox)) - double(r.Sx) * bz;
+  HT_PRECISE double by = (double(b[r.ky]) - double(r.oy)) - double(r.Sy) * bz;
+  HT_PRECISE double cx = (double(c[r.kx]) - double(r.ox)) - double(r.Sx) * cz;
+  HT_PRECISE double cy = (double(c[r.ky]) - double(r.oy)) - double(r.Sy) * cz;
+  HT_PRECISE double U = cx * by - cy * bx;
+  HT_PRECISE double V = ax * cy - ay * cx;
+  HT_PRECISE double W = bx * ay - by * ax;
+  HT_PRECISE double det = U + V + W;
+  if (det == 0.0) return false;
+  double sz = double(r.Sz);
+  HT_PRECISE double T = U * (sz * az) + V * (sz * bz) + W * (sz * cz);
+  HT_PRECISE double t = T / det;
+  const double g2 = 2.2204460492503136e-16, g3 = 3.3306690738754696e-16, g5 = 5.5511151231257852e-16;
+  double maxZt = max(abs(sz * az), max(abs(sz * bz), abs(sz * cz)));
+  double maxZ = max(abs(az), max(abs(bz), abs(cz)));
+  double maxX = max(abs(ax), max(abs(bx), abs(cx)));
+  double maxY = max(abs(ay), max(abs(by), abs(cy)));
+  double maxE = max(abs(U), max(abs(V), abs(W)));
+  HT_PRECISE double deltaX = g5 * (maxX + maxZ);
+  HT_PRECISE double deltaY = g5 * (maxY + maxZ);
+  HT_PRECISE double deltaE = 2.0 * (g2 * maxX * maxY + deltaY * maxX + deltaX * maxY);
+  HT_PRECISE double deltaT = 3.0 * (g3 * maxE * maxZt + deltaE * maxZt + g3 * maxZt * maxE) / abs(det);
+  return t > deltaT;
+}
+
 // Watertight intersection of the ray with triangle (a, b, c) within [tmin, tmax].
 // On a hit returns true with t and the barycentrics u (of b) and v (of c); otherwise returns false and
 // leaves t = tmax, u = v = 0.
@@ -96,17 +135,24 @@ HT_INLINE bool ht_intersect_triangle(HT_IN(HtWatertightRay) r, vec3 a, vec3 b, v
   HT_PRECISE float invDet = 1.0f / det;
   HT_PRECISE float tHit = T * invDet;
   // pbrt-v3 triangle.cpp: conservative error bound deltaT on t (pbr-book 3rd ed. §3.9.6).
+  // Units: maxZt is a scaled z (t units, z * Sz); the shear error of x and y (deltaX, deltaY) is in coordinate
+  // units and comes from x = (P[kx] - O[kx]) - Sx * z with the UNscaled z and |Sx| <= 1 (5 roundings), so it
+  // takes maxZ = max |z| before scaling. pbrt-v3 uses the scaled maxZt there, which mixes units: for
+  // |D| << scene size (e.g. D = target - origin on a 1e-4 scale mesh) deltaT then exceeds t and real hits
+  // were rejected (leaks found by tests/accuracy, docs/ACCURACY.md); for |D| >> 1 the bound was too small.
   float maxZt = max(abs(Az), max(abs(Bz), abs(Cz)));
+  float maxZ = max(abs(A.z), max(abs(B.z), abs(C.z)));
   float maxXt = max(abs(A.x), max(abs(B.x), abs(C.x)));
   float maxYt = max(abs(A.y), max(abs(B.y), abs(C.y)));
   HT_PRECISE float deltaZ = HT_GAMMA3 * maxZt;
-  HT_PRECISE float deltaX = HT_GAMMA5 * (maxXt + maxZt);
-  HT_PRECISE float deltaY = HT_GAMMA5 * (maxYt + maxZt);
+  HT_PRECISE float deltaX = HT_GAMMA5 * (maxXt + maxZ);
+  HT_PRECISE float deltaY = HT_GAMMA5 * (maxYt + maxZ);
   HT_PRECISE float deltaE = 2.0f * (HT_GAMMA2 * maxXt * maxYt + deltaY * maxXt + deltaX * maxYt);
   float maxE = max(abs(U), max(abs(V), abs(W)));
   HT_PRECISE float deltaT = 3.0f * (HT_GAMMA3 * maxE * maxZt + deltaE * maxZt + deltaZ * maxE) * abs(invDet);
   // Also keep the rounded t itself inside [tmin, tmax], so a hit never lies beyond the caller's tmax.
-  if (tHit <= deltaT || tHit < r.tmin || tHit > tmax) return false;
+  if (tHit < r.tmin || tHit > tmax) return false;
+  if (tHit <= deltaT && !ht_confirm_t_double(r, a, b, c)) return false;
 
   t = tHit;
   HT_PRECISE float uHit = V * invDet;

@@ -16,9 +16,11 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev libembree-dev libtbb-dev
   # test mesh: the Stanford bunny (69,666 triangles), /usr/share/glmark2/models/bunny.obj
   glmark2-data
+  # holotraced and its protocol (gRPC 1.51 + protobuf 3.21, docs/service.md §4)
+  libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
 )
 if [[ "${HOLOTRACE_WITH_SERVICE:-0}" == 1 ]]; then
-  PKGS+=(libusb-1.0-0-dev libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler)
+  PKGS+=(libusb-1.0-0-dev)
 fi
 missing=()
 for p in "${PKGS[@]}"; do

@@ -1,0 +1,41 @@
+// embree_tracer.h - the CPU reference tracer of the benchmark: Embree 3 single-ray queries (rtcIntersect1,
+// rtcOccluded1) on one triangle mesh, default scene flags and build quality, spread over threads by tiles.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "bvh/ray_types.h"
+#include "scene/scene.h"
+
+namespace ht::bench {
+
+class EmbreeTracer {
+ public:
+  // Builds the Embree scene from the scene's triangles (all geometry in one mesh). Throws ht::Error on an
+  // Embree error.
+  explicit EmbreeTracer(const Scene& scene);
+  ~EmbreeTracer();
+  EmbreeTracer(const EmbreeTracer&) = delete;
+  EmbreeTracer& operator=(const EmbreeTracer&) = delete;
+
+  double buildMs() const { return buildMs_; }
+  static const char* version();  // "3.13.5"
+
+  // `rays` are `width` rays per row; threads take `tile` x `tile` blocks from a shared counter.
+  // Results follow HtHit / traceOccluded conventions: triId = HT_MISS and t = tmax on a miss; 1 = occluded.
+  // Each call returns its wall time in *wallMs.
+  std::vector<gpu_shared::HtHit> traceClosest(std::span<const gpu_shared::HtRay> rays, std::uint32_t width,
+                                              unsigned threads, double* wallMs) const;
+  std::vector<std::uint32_t> traceOccluded(std::span<const gpu_shared::HtRay> rays, std::uint32_t width,
+                                           unsigned threads, double* wallMs) const;
+
+  struct Handles;
+
+ private:
+  std::unique_ptr<Handles> handles_;
+  double buildMs_ = 0.0;
+};
+
+}  // namespace ht::bench

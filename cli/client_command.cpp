@@ -1,0 +1,228 @@
+// client_command.cpp - see client_command.h.
+#include "cli/client_command.h"
+
+#include <grpcpp/grpcpp.h>
+
+#include <array>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "cli/arguments.h"
+#include "common/error.h"
+#include "holotrace/v1/holotrace.grpc.pb.h"
+
+namespace ht::cli {
+namespace {
+
+namespace v1 = holotrace::v1;
+using Stub = v1::Holotrace::Stub;
+constexpr const char* kCommand = "holotrace client";
+
+const std::array<OptionSpec, 11> kOptions = {{
+    {"--socket", "", "ADDR", "daemon address (default unix:$XDG_RUNTIME_DIR/holotrace/holotraced.sock)"},
+    {"--scene", "", "SPEC", "scene below the daemon's scene root, or builtin:NAME (default builtin:showcase)"},
+    {"--upload", "", "FILE", "send this local scene file's bytes instead of --scene"},
+    {"--display", "", "ID", "display id from `client displays` (default builtin:portrait)"},
+    {"--format", "", "FMT", "rgba8 | rgba16f | png (render/stream; default png for render)"},
+    {"--spp", "", "N", "samples per subpixel (default: the display's)"},
+    {"--out", "-o", "FILE", "render: write the frame bytes here"},
+    {"--fps", "", "N", "stream: requested frames per second (default 10)"},
+    {"--frames", "", "N", "stream: stop after N frames (default 10); capture: file count (default 1)"},
+    {"--name", "", "NAME", "capture: file name prefix under the daemon's output root"},
+    {"--exr", "", "", "capture: linear half EXR instead of 8-bit PNG"},
+}};
+
+std::string defaultSocket() {
+  const char* runtime = std::getenv("XDG_RUNTIME_DIR");
+  return std::string("unix:") + (runtime && *runtime ? std::string(runtime) : std::string("/run")) +
+         "/holotrace/holotraced.sock";
+}
+
+void check(const grpc::Status& status, const std::string& what) {
+  if (!status.ok()) {
+    throw IoError(std::string(kCommand) + ": " + what + " failed: status " + std::to_string(status.error_code()) +
+                  ": " + status.error_message());
+  }
+}
+
+std::unique_ptr<Stub> connectTo(const ParsedArguments& a) {
+  grpc::ChannelArguments args;
+  args.SetMaxReceiveMessageSize(64 << 20);
+  return v1::Holotrace::NewStub(
+      grpc::CreateCustomChannel(a.textOr("--socket", defaultSocket()), grpc::InsecureChannelCredentials(), args));
+}
+
+int listDisplays(Stub& stub, std::ostream& out) {
+  grpc::ClientContext context;
+  v1::ListDisplaysResponse response;
+  check(stub.ListDisplays(&context, {}, &response), "ListDisplays");
+  for (const auto& d : response.displays()) {
+    out << d.id() << "  " << d.model() << "  " << d.panel_width() << "x" << d.panel_height() << "  " << d.name()
+        << "\n";
+  }
+  return 0;
+}
+
+v1::SceneHandle uploadScene(Stub& stub, const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw IoError(std::string(kCommand) + ": cannot read " + file);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  grpc::ClientContext context;
+  v1::SceneHandle handle;
+  auto writer = stub.UploadScene(&context, &handle);
+  v1::UploadSceneChunk chunk;
+  chunk.mutable_info()->set_file_name(std::filesystem::path(file).filename().string());
+  chunk.mutable_info()->set_total_bytes(bytes.size());
+  constexpr std::size_t kChunk = 1 << 20;
+  bool open = writer->Write(chunk);
+  for (std::size_t offset = 0; open && offset < bytes.size(); offset += kChunk) {
+    chunk.set_data(bytes.substr(offset, kChunk));
+    open = writer->Write(chunk);
+  }
+  writer->WritesDone();
+  check(writer->Finish(), "UploadScene");
+  return handle;
+}
+
+v1::SceneHandle openScene(Stub& stub, const ParsedArguments& a, std::ostream& out) {
+  v1::SceneHandle handle;
+  if (auto file = a.text("--upload")) {
+    handle = uploadScene(stub, *file);
+  } else {
+    grpc::ClientContext context;
+    v1::LoadSceneRequest request;
+    request.set_path(a.textOr("--scene", "builtin:showcase"));
+    check(stub.LoadScene(&context, request, &handle), "LoadScene");
+  }
+  out << "scene " << handle.scene_id() << ": " << handle.triangles() << " triangles, BVH " << handle.bvh_build_ms()
+      << " ms, SAH " << handle.sah_cost() << (handle.reused() ? " (shared)" : "") << "\n";
+  return handle;
+}
+
+v1::PixelFormat pixelFormat(const ParsedArguments& a, const std::string& fallback) {
+  const std::string f = a.textOr("--format", fallback);
+  if (f == "rgba8") return v1::PIXEL_FORMAT_RGBA8;
+  if (f == "rgba16f") return v1::PIXEL_FORMAT_RGBA16F;
+  if (f == "png") return v1::PIXEL_FORMAT_PNG;
+  throw UsageError(usageMessage(kCommand, "--format must be rgba8, rgba16f or png, not '" + f + "'"));
+}
+
+v1::RenderRequest renderRequest(const ParsedArguments& a, const std::string& sceneId, const std::string& format) {
+  v1::RenderRequest request;
+  request.set_scene_id(sceneId);
+  request.set_display_id(a.textOr("--display", "builtin:portrait"));
+  request.set_format(pixelFormat(a, format));
+  request.set_spp(a.unsignedValue("--spp", 1, 4096).value_or(0));
+  return request;
+}
+
+// Reads header + chunks of one frame; false at end of stream.
+bool readFrame(grpc::ClientReaderInterface<v1::FramePart>& reader, v1::FrameHeader& header, std::string& bytes) {
+  v1::FramePart part;
+  if (!reader.Read(&part) || !part.has_header()) return false;
+  header = part.header();
+  bytes.clear();
+  while (bytes.size() < header.total_bytes() && reader.Read(&part) && part.has_chunk()) bytes += part.chunk().data();
+  return bytes.size() == header.total_bytes();
+}
+
+void printFrame(std::ostream& out, const v1::FrameHeader& h) {
+  out << "frame " << h.frame_id() << ": " << h.width() << "x" << h.height() << ", " << h.total_bytes() << " bytes, "
+      << h.render_ms() << " ms render, " << h.queue_ms() << " ms queued";
+  if (h.dropped_frames()) out << ", " << h.dropped_frames() << " dropped";
+  out << "\n";
+}
+
+int render(Stub& stub, const ParsedArguments& a, std::ostream& out) {
+  const v1::SceneHandle scene = openScene(stub, a, out);
+  grpc::ClientContext context;
+  auto reader = stub.RenderFrame(&context, renderRequest(a, scene.scene_id(), "png"));
+  v1::FrameHeader header;
+  std::string bytes;
+  const bool got = readFrame(*reader, header, bytes);
+  check(reader->Finish(), "RenderFrame");
+  if (!got) throw IoError(std::string(kCommand) + ": the daemon sent an incomplete frame");
+  printFrame(out, header);
+  for (const auto& s : header.stages()) out << "  " << s.name() << " " << s.ms() << " ms\n";
+  if (auto file = a.text("--out")) {
+    std::ofstream(*file, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out << "wrote " << *file << "\n";
+  }
+  return 0;
+}
+
+int stream(Stub& stub, const ParsedArguments& a, std::ostream& out) {
+  const v1::SceneHandle scene = openScene(stub, a, out);
+  v1::StreamRequest request;
+  *request.mutable_render() = renderRequest(a, scene.scene_id(), "rgba8");
+  request.set_frames_per_second(a.unsignedValue("--fps", 1, 120).value_or(10));
+  const std::uint32_t frames = a.unsignedValue("--frames", 1, 1'000'000).value_or(10);
+  grpc::ClientContext context;
+  auto reader = stub.StreamFrames(&context, request);
+  v1::FrameHeader header;
+  std::string bytes;
+  const auto start = std::chrono::steady_clock::now();
+  std::uint32_t received = 0;
+  while (received < frames && readFrame(*reader, header, bytes)) {
+    printFrame(out, header);
+    ++received;
+  }
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  context.TryCancel();
+  while (readFrame(*reader, header, bytes)) {
+  }
+  const grpc::Status status = reader->Finish();
+  if (status.error_code() != grpc::StatusCode::CANCELLED) check(status, "StreamFrames");
+  out << received << " frames in " << s << " s (" << (s > 0 ? received / s : 0.0) << " frames/s)\n";
+  return 0;
+}
+
+int capture(Stub& stub, const ParsedArguments& a, std::ostream& out) {
+  const auto name = a.text("--name");
+  if (!name) throw UsageError(usageMessage(kCommand, "capture needs --name NAME"));
+  const v1::SceneHandle scene = openScene(stub, a, out);
+  v1::CaptureRequest request;
+  *request.mutable_render() = renderRequest(a, scene.scene_id(), "png");
+  request.set_name(*name);
+  request.set_frames(a.unsignedValue("--frames", 1, 100'000).value_or(1));
+  request.set_format(a.has("--exr") ? v1::CAPTURE_FORMAT_EXR : v1::CAPTURE_FORMAT_PNG);
+  grpc::ClientContext context;
+  auto reader = stub.Capture(&context, request);
+  v1::CaptureProgress progress;
+  while (reader->Read(&progress)) {
+    out << "[" << progress.frames_done() << "/" << progress.frames_total() << "] " << progress.file() << "\n";
+  }
+  check(reader->Finish(), "Capture");
+  return 0;
+}
+
+}  // namespace
+
+std::string clientHelp() {
+  return "Usage: holotrace client displays|load|render|stream|capture [options]\n\n"
+         "Talks to a running holotraced (docs/SERVICE.md).\n"
+         "  displays  list the daemon's displays\n"
+         "  load      load (--scene) or upload (--upload) a scene, print its handle and BVH report\n"
+         "  render    render one frame, print timings, optionally save it (--out)\n"
+         "  stream    receive --frames frames at --fps, then cancel\n"
+         "  capture   write --frames native panel files NAME_fNNNN.png|.exr under the daemon's output root\n\n"
+         "Options:\n" + formatOptions(kOptions);
+}
+
+int runClient(std::span<const std::string> args, std::ostream& out) {
+  if (args.empty()) throw UsageError(usageMessage(kCommand, "missing subcommand (displays|load|render|stream|capture)"));
+  const std::string sub = args[0];
+  const ParsedArguments a = parseArguments(kCommand, kOptions, args.subspan(1));
+  auto stub = connectTo(a);
+  if (sub == "displays") return listDisplays(*stub, out);
+  if (sub == "load") return openScene(*stub, a, out), 0;
+  if (sub == "render") return render(*stub, a, out);
+  if (sub == "stream") return stream(*stub, a, out);
+  if (sub == "capture") return capture(*stub, a, out);
+  throw UsageError(usageMessage(kCommand, "unknown subcommand '" + sub + "'"));
+}
+
+}  // namespace ht::cli

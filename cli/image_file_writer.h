@@ -1,0 +1,27 @@
+// image_file_writer.h - writes a rendered frame (linear float RGBA, row 0 = top) to PNG or OpenEXR.
+// OpenImageIO is used only here (and in the CLI's tests), never in the core libraries.
+//
+// Files appear atomically: the image is written to a temporary file in the target directory and renamed
+// into place. Any failure throws ht::IoError naming the path and the reason, and leaves no file behind.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <span>
+
+namespace ht::cli {
+
+enum class ImageFormat {
+  Png8Srgb,   // 8-bit RGBA PNG: colour through the sRGB OETF, alpha linear; clamped to [0, 1], rounded
+  ExrHalf,    // OpenEXR, linear, 16-bit half RGBA, ZIP compression
+  ExrFloat,   // OpenEXR, linear, 32-bit float RGBA, ZIP compression
+};
+
+struct RgbaImageView {
+  std::uint32_t width = 0, height = 0;
+  std::span<const float> rgba;  // width * height * 4 floats, row 0 = top
+};
+
+// Writes `image` to `path` in `format`, creating the parent directory if needed.
+void writeImageFile(const std::filesystem::path& path, const RgbaImageView& image, ImageFormat format);
+
+}  // namespace ht::cli

@@ -1,0 +1,31 @@
+// render_options.h - the options of `holotrace render`, parsed and checked before any work starts.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+
+namespace ht::cli {
+
+struct RenderOptions {
+  std::string displaySpec = "builtin:portrait";  // config.json, visual.json or builtin:NAME
+  std::string sceneSpec = "builtin:showcase";    // .gltf/.glb/.obj or builtin:NAME
+  std::optional<std::uint32_t> spp;              // unset: the display config's spp
+  std::optional<std::uint32_t> maxDepth;         // unset: RenderSettings default
+  std::optional<std::filesystem::path> png;      // -o
+  std::optional<std::filesystem::path> exr;      // --exr
+  std::filesystem::path outDir = "out";          // where default-named outputs go
+  int deviceIndex = -1;                          // -1: automatic choice
+  bool validation = false;
+  std::uint32_t seed = 0;
+  bool noSpecialize = false;
+};
+
+// Throws UsageError ("holotrace render: ...") for unknown options and bad values.
+RenderOptions parseRenderOptions(std::span<const std::string> args);
+
+// The help text of `holotrace render`.
+std::string renderHelp();
+
+}  // namespace ht::cli

@@ -1,0 +1,76 @@
+// file_sink.cpp - see file_sink.h.
+#include "server/file_sink.h"
+
+#include <fcntl.h>
+#include <linux/openat2.h>
+#include <sys/stat.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+
+#include "common/error.h"
+
+namespace ht::server {
+namespace {
+
+std::string errnoText(int err) { return std::strerror(err); }
+
+[[noreturn]] void throwWriteError(const std::string& name, int err) {
+  if (err == ENOSPC || err == EDQUOT) throw DiskFull("output disk full while writing " + name);
+  throw IoError("cannot write " + name + ": " + errnoText(err));
+}
+
+std::string tempNameFor(const std::string& name) {
+  static std::atomic<std::uint64_t> counter{0};
+  return "." + name + ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
+}
+
+}  // namespace
+
+FileSink::FileSink(const std::filesystem::path& root) {
+  std::error_code ec;
+  std::filesystem::create_directories(root, ec);
+  rootFd_ = ::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (rootFd_ < 0) throw IoError("cannot open output root " + root.string() + ": " + errnoText(errno));
+}
+
+FileSink::~FileSink() {
+  if (rootFd_ >= 0) ::close(rootFd_);
+}
+
+int FileSink::openTemp(const std::string& tempName) {
+  const int flags = O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW;
+  open_how how{};
+  how.flags = static_cast<std::uint64_t>(flags);
+  how.mode = 0640;
+  how.resolve = RESOLVE_BENEATH | RESOLVE_NO_SYMLINKS;
+  const long fd = ::syscall(SYS_openat2, rootFd_, tempName.c_str(), &how, sizeof how);
+  if (fd >= 0 || errno != ENOSYS) return static_cast<int>(fd);
+  return ::openat(rootFd_, tempName.c_str(), flags, 0640);  // kernel < 5.6; the name is one checked component
+}
+
+void FileSink::writeFile(const std::string& name, std::span<const std::uint8_t> bytes) {
+  const std::string temp = tempNameFor(name);
+  const int fd = openTemp(temp);
+  if (fd < 0) throwWriteError(name, errno);
+  std::size_t done = 0;
+  int err = 0;
+  while (done < bytes.size() && err == 0) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) err = errno;
+    else done += static_cast<std::size_t>(n);
+  }
+  if (err == 0 && ::fsync(fd) != 0) err = errno;
+  if (::close(fd) != 0 && err == 0) err = errno;
+  if (err == 0 && ::renameat(rootFd_, temp.c_str(), rootFd_, name.c_str()) != 0) err = errno;
+  if (err != 0) {
+    ::unlinkat(rootFd_, temp.c_str(), 0);
+    throwWriteError(name, err);
+  }
+}
+
+}  // namespace ht::server

@@ -1,0 +1,144 @@
+// frame_rpcs.cpp - RenderFrame, StreamFrames, Capture.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "server/frame_sender.h"
+#include "server/holotrace_service.h"
+#include "server/path_rules.h"
+#include "server/request_checks.h"
+#include "server/status_mapping.h"
+
+namespace ht::server {
+namespace v1 = holotrace::v1;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame, v1::PixelFormat format,
+                           double queueMs) {
+  v1::FrameHeader header;
+  header.set_frame_id(frameId);
+  header.set_width(frame.width);
+  header.set_height(frame.height);
+  header.set_format(format == v1::PIXEL_FORMAT_UNSPECIFIED ? v1::PIXEL_FORMAT_RGBA8 : format);
+  header.set_render_ms(frame.totalMs);
+  header.set_queue_ms(queueMs);
+  for (const auto& stage : frame.stages) {
+    auto* s = header.add_stages();
+    s->set_name(stage.name);
+    s->set_ms(stage.ms);
+  }
+  return header;
+}
+
+// Renders one frame and sends it; false when the client went away.
+bool renderAndSend(ServiceState& state, const std::string& client, const FrameJob& job, v1::PixelFormat format,
+                   std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer) {
+  const auto queued = Clock::now();
+  const gpu::RenderResult frame = renderFrameJob(state.worker, client, job);
+  const double queueMs = std::max(0.0, msBetween(queued, Clock::now()) - frame.totalMs);
+  const auto bytes = encodeFrame(frame, checkPixelFormat(format));
+  v1::FrameHeader header = makeHeader(state.nextFrameId++, frame, format, queueMs);
+  header.set_dropped_frames(dropped);
+  return sendFrame(writer, std::move(header), bytes);
+}
+
+// Sleeps until `due` in short slices, so a cancelled call or a shutdown frees its slot within ~20 ms.
+void waitForTick(ServiceState& state, grpc::ServerContext& context, Clock::time_point due) {
+  while (Clock::now() < due && !context.IsCancelled()) {
+    if (!state.sleepUntil(std::min(due, Clock::now() + std::chrono::milliseconds(20)))) return;
+  }
+}
+
+std::string captureFileName(const std::string& name, std::uint32_t index, v1::CaptureFormat format) {
+  char suffix[32];
+  std::snprintf(suffix, sizeof suffix, "_f%04u", index);
+  return name + suffix + (format == v1::CAPTURE_FORMAT_EXR ? ".exr" : ".png");
+}
+
+}  // namespace
+
+grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v1::RenderRequest* request,
+                                           grpc::ServerWriter<v1::FramePart>* writer) {
+  return guarded([&] {
+    const FrameJob job = checkRenderRequest(state_, *request);
+    StreamSlot slot(state_);
+    if (!renderAndSend(state_, clientKey(*context), job, request->format(), 0, *writer)) {
+      throw ClientGone("client closed the stream");
+    }
+    return grpc::Status::OK;
+  });
+}
+
+// Frames on a fixed clock (frame k due at start + k/fps). A frame is rendered only when the previous one has been
+// written, so a slow client is never queued old frames: it gets the newest, and dropped_frames counts the ticks
+// it missed (latest-frame-wins, docs/service.md §4 "Backpressure").
+grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const v1::StreamRequest* request,
+                                            grpc::ServerWriter<v1::FramePart>* writer) {
+  return guarded([&] {
+    const double fps = request->frames_per_second();
+    if (!(fps > 0.0) || fps > state_.config.limits.maxFramesPerSecond) {
+      throw BadRequest("frames_per_second", "must be in (0, " +
+                                                std::to_string(state_.config.limits.maxFramesPerSecond) + "]");
+    }
+    FrameJob job = checkRenderRequest(state_, request->render());
+    StreamSlot slot(state_);
+    const std::string client = clientKey(*context);
+    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / fps));
+    const auto start = Clock::now();
+    std::uint64_t tick = 0, dropped = 0;
+    while (!context->IsCancelled()) {
+      if (state_.shuttingDown) throw ShuttingDown("holotraced is shutting down");
+      job.session = state_.scenes.find(request->render().scene_id());  // picks up UpdateScene
+      job.seed = request->render().seed() + static_cast<std::uint32_t>(tick);
+      if (!renderAndSend(state_, client, job, request->render().format(), dropped, *writer)) break;
+      const auto now = Clock::now();
+      const auto due = static_cast<std::uint64_t>((now - start) / period) + 1;  // next tick not yet passed
+      dropped = due > tick + 1 ? due - tick - 1 : 0;
+      tick = std::max(tick + 1, due);
+      waitForTick(state_, *context, start + period * static_cast<Clock::rep>(tick));
+    }
+    return grpc::Status(grpc::StatusCode::CANCELLED, "client cancelled the stream");
+  });
+}
+
+grpc::Status HolotraceService::Capture(grpc::ServerContext* context, const v1::CaptureRequest* request,
+                                       grpc::ServerWriter<v1::CaptureProgress>* writer) {
+  return guarded([&] {
+    checkFileNameComponent("name", request->name());
+    const std::uint32_t frames = request->frames() == 0 ? 1 : request->frames();
+    if (frames > state_.config.limits.maxCaptureFrames) {
+      throw LimitExceeded("frames = " + std::to_string(frames) + " (limits.max_capture_frames = " +
+                          std::to_string(state_.config.limits.maxCaptureFrames) + ")");
+    }
+    if (request->format() != v1::CAPTURE_FORMAT_UNSPECIFIED && request->format() != v1::CAPTURE_FORMAT_PNG &&
+        request->format() != v1::CAPTURE_FORMAT_EXR) {
+      throw BadRequest("format", "unknown capture format");
+    }
+    FrameJob job = checkRenderRequest(state_, request->render());
+    StreamSlot slot(state_);
+    const std::string client = clientKey(*context);
+    const bool exr = request->format() == v1::CAPTURE_FORMAT_EXR;
+    for (std::uint32_t i = 0; i < frames; ++i) {
+      if (context->IsCancelled()) throw ClientGone("capture cancelled after " + std::to_string(i) + " files");
+      if (state_.shuttingDown) throw ShuttingDown("shutting down after " + std::to_string(i) + " complete files");
+      job.seed = request->render().seed() + i;
+      const gpu::RenderResult frame = renderFrameJob(state_.worker, client, job);
+      const std::string file = captureFileName(request->name(), i, request->format());
+      state_.outputSink.writeFile(file, encodeFrame(frame, exr ? FrameEncoding::ExrHalf : FrameEncoding::Png8Srgb));
+      v1::CaptureProgress progress;
+      progress.set_frames_done(i + 1);
+      progress.set_frames_total(frames);
+      progress.set_file(file);
+      writer->Write(progress);  // a gone client is noticed at the next frame (IsCancelled)
+    }
+    return grpc::Status::OK;
+  });
+}
+
+}  // namespace ht::server

@@ -1,0 +1,70 @@
+// scene_library.h - loaded scenes. Content (keyed by a hash of the file bytes, or the builtin name) is loaded and
+// its BVH built and uploaded once; every LoadScene returns a new session handle with its own camera placement
+// that shares that content (and its Renderer) with other sessions loading the same bytes.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "camera_models/display_config.h"
+#include "gpu/renderer.h"
+#include "scene/scene.h"
+#include "server/render_worker.h"
+
+namespace ht::server {
+
+struct SceneContent {
+  std::string contentKey;
+  Scene scene;
+  std::unique_ptr<gpu::Renderer> renderer;  // used on the render worker thread only
+  double loadMs = 0.0;
+};
+
+struct SceneSession {
+  std::string id;
+  std::shared_ptr<SceneContent> content;
+  CameraPlacement cameraOverride;  // target / size set by UpdateScene (unset = display's own)
+  bool reused = false;
+};
+
+// The handle names no loaded scene (-> NOT_FOUND).
+class UnknownScene : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class SceneLibrary {
+ public:
+  SceneLibrary(RenderWorker& worker, std::uint64_t maxTriangles, std::size_t maxSessions = 256);
+  ~SceneLibrary();  // releases the Renderers; call after the worker stopped, before the Vulkan context dies
+
+  // `spec` is a file path (already confined by the caller) or "builtin:NAME"; `bytes` are its contents (empty
+  // for builtins). `client` is charged for the BVH upload job.
+  std::shared_ptr<const SceneSession> open(const std::string& client, const std::string& spec,
+                                           std::span<const std::uint8_t> bytes);
+  std::shared_ptr<const SceneSession> find(const std::string& id) const;  // throws UnknownScene
+  void updateCamera(const std::string& id, const CameraPlacement& placement);
+  std::size_t contentCount() const;
+
+ private:
+  std::shared_ptr<SceneContent> build(const std::string& client, const std::string& key, const std::string& spec);
+
+  RenderWorker& worker_;
+  const std::uint64_t maxTriangles_;
+  const std::size_t maxSessions_;
+  mutable std::mutex mutex_;
+  std::mutex buildMutex_;  // one content build at a time: a second load of the same bytes waits and reuses
+  std::map<std::string, std::shared_ptr<SceneContent>> contents_;
+  std::map<std::string, std::shared_ptr<const SceneSession>> sessions_;
+  std::uint64_t nextSession_ = 1;
+};
+
+// 64-bit FNV-1a of `bytes`, as 16 hex digits (content key; not a security boundary).
+std::string contentHash(std::span<const std::uint8_t> bytes);
+
+}  // namespace ht::server

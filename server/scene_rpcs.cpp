@@ -1,0 +1,165 @@
+// scene_rpcs.cpp - ListDisplays, GetDisplay, LoadScene, UploadScene, UpdateScene, Status.
+#include <cmath>
+#include <fstream>
+#include <iterator>
+
+#include "server/display_messages.h"
+#include "server/holotrace_service.h"
+#include "server/path_rules.h"
+#include "server/status_mapping.h"
+
+namespace ht::server {
+namespace v1 = holotrace::v1;
+namespace {
+
+std::vector<std::uint8_t> readCapped(const std::filesystem::path& file, std::uint64_t maxBytes) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(file, ec);
+  if (ec) throw BadRequest("path", "cannot read '" + file.filename().string() + "': " + ec.message());
+  if (size > maxBytes) {
+    throw LimitExceeded("scene file is " + std::to_string(size) + " bytes (limits.max_scene_bytes = " +
+                        std::to_string(maxBytes) + ")");
+  }
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Symlinks inside the scene root must not lead out of it.
+void checkStaysBeneath(const std::filesystem::path& root, const std::filesystem::path& file, const std::string& given) {
+  std::error_code ec;
+  const auto realRoot = std::filesystem::canonical(root, ec);
+  const auto realFile = std::filesystem::canonical(file, ec);
+  if (ec) throw BadRequest("path", "'" + given + "' does not exist below the scene root");
+  const auto rel = realFile.lexically_relative(realRoot);
+  if (rel.empty() || *rel.begin() == "..") throw AccessDenied("path '" + given + "' resolves outside the scene root");
+}
+
+void fillHandle(const SceneSession& session, v1::SceneHandle& out) {
+  out.set_scene_id(session.id);
+  out.set_triangles(session.content->scene.triangleCount());
+  out.set_bvh_build_ms(session.content->renderer->bvhReport().buildMs);
+  out.set_sah_cost(session.content->renderer->bvhReport().sahCost);
+  out.set_reused(session.reused);
+  out.set_load_ms(session.content->loadMs);
+}
+
+std::string sceneExtension(const std::string& fileName) {
+  checkFileNameComponent("info.file_name", fileName);
+  const auto dot = fileName.rfind('.');
+  const std::string ext = dot == std::string::npos ? "" : fileName.substr(dot);
+  if (ext != ".glb" && ext != ".gltf" && ext != ".obj" && ext != ".off") {
+    throw BadRequest("info.file_name", "'" + fileName + "' must end in .glb, .gltf, .obj or .off");
+  }
+  return ext;
+}
+
+}  // namespace
+
+std::string clientKey(const grpc::ServerContext& context) {
+  return context.peer() + "#" + std::to_string(reinterpret_cast<std::uintptr_t>(&context));
+}
+
+grpc::Status HolotraceService::ListDisplays(grpc::ServerContext*, const v1::ListDisplaysRequest*,
+                                            v1::ListDisplaysResponse* response) {
+  return guarded([&] {
+    for (const auto& display : state_.displays.list()) fillDisplaySummary(*display, *response->add_displays());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status HolotraceService::GetDisplay(grpc::ServerContext*, const v1::GetDisplayRequest* request,
+                                          v1::Display* response) {
+  return guarded([&] {
+    fillDisplay(*state_.displays.find(request->display_id()), *response);
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status HolotraceService::LoadScene(grpc::ServerContext* context, const v1::LoadSceneRequest* request,
+                                         v1::SceneHandle* response) {
+  return guarded([&] {
+    const std::string& given = request->path();
+    if (given.rfind("builtin:", 0) == 0) {
+      fillHandle(*state_.scenes.open(clientKey(*context), given, {}), *response);
+      return grpc::Status::OK;
+    }
+    const auto file = resolveBeneath(state_.config.sceneRoot, "path", given);
+    checkStaysBeneath(state_.config.sceneRoot, file, given);
+    const auto bytes = readCapped(file, state_.config.limits.maxSceneBytes);
+    fillHandle(*state_.scenes.open(clientKey(*context), file.string(), bytes), *response);
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status HolotraceService::UploadScene(grpc::ServerContext* context,
+                                           grpc::ServerReader<v1::UploadSceneChunk>* reader,
+                                           v1::SceneHandle* response) {
+  return guarded([&] {
+    v1::UploadSceneChunk chunk;
+    if (!reader->Read(&chunk) || !chunk.has_info()) throw BadRequest("info", "the first message must carry info");
+    const std::string ext = sceneExtension(chunk.info().file_name());
+    const std::uint64_t total = chunk.info().total_bytes();
+    if (total > state_.config.limits.maxSceneBytes) {
+      throw LimitExceeded("upload of " + std::to_string(total) + " bytes (limits.max_scene_bytes = " +
+                          std::to_string(state_.config.limits.maxSceneBytes) + ")");
+    }
+    std::vector<std::uint8_t> bytes;
+    bytes.reserve(total);
+    while (reader->Read(&chunk)) {
+      if (!chunk.has_data()) throw BadRequest("data", "only the first message may carry info");
+      if (bytes.size() + chunk.data().size() > total) throw BadRequest("data", "more bytes than info.total_bytes");
+      bytes.insert(bytes.end(), chunk.data().begin(), chunk.data().end());
+    }
+    if (context->IsCancelled()) throw ClientGone("upload cancelled");
+    if (bytes.size() != total) throw BadRequest("data", "fewer bytes than info.total_bytes");
+    // The loaders read files: the bytes go to a private file named by their hash (docs/service.md §6).
+    const std::string name = "upload-" + contentHash(bytes) + ext;
+    state_.uploadSink.writeFile(name, bytes);
+    const auto path = state_.config.workDir / name;
+    struct Remove {
+      std::filesystem::path p;
+      ~Remove() { std::error_code ec; std::filesystem::remove(p, ec); }
+    } remove{path};
+    fillHandle(*state_.scenes.open(clientKey(*context), path.string(), bytes), *response);
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status HolotraceService::UpdateScene(grpc::ServerContext*, const v1::UpdateSceneRequest* request,
+                                           v1::UpdateSceneResponse*) {
+  return guarded([&] {
+    CameraPlacement placement;
+    if (request->has_target()) {
+      const auto& t = request->target();
+      if (!std::isfinite(t.x()) || !std::isfinite(t.y()) || !std::isfinite(t.z())) {
+        throw BadRequest("target", "must be finite");
+      }
+      placement.target = glm::dvec3(t.x(), t.y(), t.z());
+    }
+    if (request->size() != 0.0) {
+      if (!std::isfinite(request->size()) || request->size() < 0.0) throw BadRequest("size", "must be > 0");
+      placement.size = request->size();
+    }
+    if (!placement.target && !placement.size) throw BadRequest("target", "give a target and/or a size");
+    state_.scenes.updateCamera(request->scene_id(), placement);
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status HolotraceService::Status(grpc::ServerContext*, const v1::StatusRequest*, v1::StatusResponse* response) {
+  return guarded([&] {
+    const WorkerStats stats = state_.worker.stats();
+    auto* device = response->add_devices();
+    device->set_name(stats.deviceName);
+    device->set_frames_rendered(stats.framesRendered);
+    device->set_last_frame_ms(stats.lastFrameMs);
+    device->set_mean_frame_ms(stats.meanFrameMs);
+    device->set_queued(stats.queued);
+    response->set_active_streams(state_.activeStreams.load());
+    response->set_scenes_loaded(static_cast<std::uint32_t>(state_.scenes.contentCount()));
+    response->set_version(HT_VERSION);
+    return grpc::Status::OK;
+  });
+}
+
+}  // namespace ht::server

@@ -1,0 +1,60 @@
+// service_state.h - what the RPC handlers share: registries, the render worker, the file sinks, limits, and the
+// shutdown signal that stream handlers watch.
+#pragma once
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <mutex>
+
+#include "server/daemon_config.h"
+#include "server/display_registry.h"
+#include "server/file_sink.h"
+#include "server/render_worker.h"
+#include "server/scene_library.h"
+
+namespace ht::server {
+
+struct ServiceState {
+  const DaemonConfig& config;
+  DisplayRegistry& displays;
+  SceneLibrary& scenes;
+  RenderWorker& worker;
+  FileSink& outputSink;
+  FileSink& uploadSink;  // private work directory for uploaded scene bytes
+
+  std::atomic<std::uint32_t> activeStreams{0};
+  std::atomic<std::uint64_t> nextFrameId{1};
+
+  // Shutdown: stream handlers stop at the next frame boundary.
+  std::mutex shutdownMutex;
+  std::condition_variable shutdownCv;
+  std::atomic<bool> shuttingDown{false};
+
+  void beginShutdown() {
+    {
+      std::lock_guard lock(shutdownMutex);
+      shuttingDown = true;
+    }
+    shutdownCv.notify_all();
+  }
+  // Sleeps until `deadline` or shutdown; returns false on shutdown.
+  bool sleepUntil(std::chrono::steady_clock::time_point deadline) {
+    std::unique_lock lock(shutdownMutex);
+    return !shutdownCv.wait_until(lock, deadline, [this] { return shuttingDown.load(); });
+  }
+};
+
+// Holds one of limits.max_clients streaming-call slots for its lifetime; throws LimitExceeded when none is free.
+class StreamSlot {
+ public:
+  explicit StreamSlot(ServiceState& state);
+  ~StreamSlot();
+  StreamSlot(const StreamSlot&) = delete;
+  StreamSlot& operator=(const StreamSlot&) = delete;
+
+ private:
+  ServiceState& state_;
+};
+
+}  // namespace ht::server

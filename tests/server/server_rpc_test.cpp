@@ -1,0 +1,335 @@
+// server_rpc_test.cpp - holotraced end to end through the C++ stubs: displays, scene loading and upload, frames,
+// streams, capture, and misbehaving clients (each answered with the right status while others keep working).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <thread>
+
+#include "tests/server/server_fixture.h"
+
+namespace ht::server::test {
+namespace {
+
+using grpc::StatusCode;
+using Clock = std::chrono::steady_clock;
+
+class ServerTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    files_ = new DaemonFiles();
+    daemon_ = new Daemon(files_->config(), std::cerr);
+    daemon_->start();
+  }
+  static void TearDownTestSuite() {
+    delete daemon_;
+    delete files_;
+  }
+  void SetUp() override {
+    stub_ = connect(files_->socketAddress());
+    v1::SceneHandle handle;
+    ASSERT_TRUE(loadScene(*stub_, "builtin:plain", &handle).ok());
+    sceneId_ = handle.scene_id();
+  }
+
+  static DaemonFiles* files_;
+  static Daemon* daemon_;
+  std::unique_ptr<v1::Holotrace::Stub> stub_;
+  std::string sceneId_;
+};
+
+DaemonFiles* ServerTest::files_ = nullptr;
+Daemon* ServerTest::daemon_ = nullptr;
+
+TEST_F(ServerTest, ListsBuiltinAndDirectoryDisplays) {
+  grpc::ClientContext context;
+  v1::ListDisplaysResponse response;
+  ASSERT_TRUE(stub_->ListDisplays(&context, {}, &response).ok());
+  bool tiny = false, portrait = false;
+  for (const auto& d : response.displays()) {
+    if (d.id() == "tiny") tiny = d.panel_width() == kTinyWidth && d.panel_height() == kTinyHeight;
+    if (d.id() == "builtin:portrait") portrait = d.model() == "lenticular";
+  }
+  EXPECT_TRUE(tiny);
+  EXPECT_TRUE(portrait);
+}
+
+TEST_F(ServerTest, GetDisplayReturnsOpticsAndCalibrationVerbatim) {
+  grpc::ClientContext context;
+  v1::GetDisplayRequest request;
+  request.set_display_id("tiny");
+  v1::Display display;
+  ASSERT_TRUE(stub_->GetDisplay(&context, request, &display).ok());
+  EXPECT_EQ(display.calibration_json(), tinyDisplayJson());
+  EXPECT_DOUBLE_EQ(display.optics().pitch(), 52.59);
+  EXPECT_DOUBLE_EQ(display.optics().view_cone_deg(), 40.0);
+  EXPECT_EQ(display.default_spp(), 1u);
+}
+
+TEST_F(ServerTest, UnknownDisplayIsNotFound) {
+  grpc::ClientContext context;
+  v1::GetDisplayRequest request;
+  request.set_display_id("no-such-panel");
+  v1::Display display;
+  EXPECT_EQ(stub_->GetDisplay(&context, request, &display).error_code(), StatusCode::NOT_FOUND);
+  auto render = tinyRequest(sceneId_);
+  render.set_display_id("no-such-panel");
+  EXPECT_EQ(renderOne(*stub_, render).error_code(), StatusCode::NOT_FOUND);
+}
+
+TEST_F(ServerTest, LoadByPathSharesTheBvhBetweenSessions) {
+  v1::SceneHandle first, second;
+  ASSERT_TRUE(loadScene(*stub_, "cube.obj", &first).ok());
+  ASSERT_TRUE(loadScene(*stub_, "./cube.obj", &second).ok());
+  EXPECT_EQ(first.triangles(), 12u);
+  EXPECT_NE(first.scene_id(), second.scene_id());
+  EXPECT_TRUE(second.reused());
+  EXPECT_GT(first.sah_cost(), 0.0);
+}
+
+TEST_F(ServerTest, PathsOutsideTheSceneRootArePermissionDenied) {
+  EXPECT_EQ(loadScene(*stub_, "../secret.obj").error_code(), StatusCode::PERMISSION_DENIED);
+  EXPECT_EQ(loadScene(*stub_, (files_->dir.path / "secret.obj").string()).error_code(), StatusCode::PERMISSION_DENIED);
+  EXPECT_EQ(loadScene(*stub_, "a/../../secret.obj").error_code(), StatusCode::PERMISSION_DENIED);
+  std::filesystem::create_symlink(files_->dir.path / "secret.obj", files_->sceneRoot() / "link.obj");
+  EXPECT_EQ(loadScene(*stub_, "link.obj").error_code(), StatusCode::PERMISSION_DENIED);
+  EXPECT_EQ(loadScene(*stub_, "missing.obj").error_code(), StatusCode::INVALID_ARGUMENT);
+}
+
+grpc::Status upload(v1::Holotrace::Stub& stub, const std::string& name, const std::string& bytes,
+                    std::uint64_t declared, std::size_t chunkBytes, v1::SceneHandle* handle) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
+  auto writer = stub.UploadScene(&context, handle);
+  v1::UploadSceneChunk chunk;
+  chunk.mutable_info()->set_file_name(name);
+  chunk.mutable_info()->set_total_bytes(declared);
+  bool open = writer->Write(chunk);
+  for (std::size_t offset = 0; open && offset < bytes.size(); offset += chunkBytes) {
+    chunk.set_data(bytes.substr(offset, chunkBytes));
+    open = writer->Write(chunk);
+  }
+  writer->WritesDone();
+  return writer->Finish();
+}
+
+TEST_F(ServerTest, UploadedBytesLoadAndShareContentWithThePathLoad) {
+  v1::SceneHandle byPath, byUpload;
+  ASSERT_TRUE(loadScene(*stub_, "cube.obj", &byPath).ok());
+  const std::string obj = cubeObj();
+  const grpc::Status status = upload(*stub_, "mesh.obj", obj, obj.size(), 50, &byUpload);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  EXPECT_EQ(byUpload.triangles(), 12u);
+  EXPECT_TRUE(byUpload.reused());
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(byUpload.scene_id())).ok());
+}
+
+TEST_F(ServerTest, CorruptOversizedAndMisnamedUploadsAreRefused) {
+  v1::SceneHandle handle;
+  const std::string junk = "\x01\x02 this is not a glb file at all";
+  EXPECT_EQ(upload(*stub_, "bad.glb", junk, junk.size(), 1024, &handle).error_code(), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(upload(*stub_, "big.obj", "", 2u << 20, 1024, &handle).error_code(), StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(upload(*stub_, "../x.obj", "v 0 0 0", 7, 1024, &handle).error_code(), StatusCode::PERMISSION_DENIED);
+  EXPECT_EQ(upload(*stub_, "x.exe", "v 0 0 0", 7, 1024, &handle).error_code(), StatusCode::INVALID_ARGUMENT);
+  const std::string big(300u << 10, 'v');  // one message over limits.max_message_bytes (256 KiB)
+  EXPECT_EQ(upload(*stub_, "m.obj", big, big.size(), big.size(), &handle).error_code(), StatusCode::RESOURCE_EXHAUSTED);
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_)).ok());  // the daemon is still fine
+}
+
+TEST_F(ServerTest, RenderFrameInEachPixelFormat) {
+  ReceivedFrame frame;
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_, v1::PIXEL_FORMAT_RGBA8), &frame).ok());
+  EXPECT_EQ(frame.header.width(), kTinyWidth);
+  EXPECT_EQ(frame.header.height(), kTinyHeight);
+  EXPECT_EQ(frame.bytes.size(), std::size_t{kTinyWidth} * kTinyHeight * 4);
+  EXPECT_GT(frame.header.stages_size(), 0);
+  std::size_t lit = 0;
+  for (std::size_t i = 0; i < frame.bytes.size(); i += 4) lit += frame.bytes[i] + frame.bytes[i + 1] > 0;
+  EXPECT_GT(lit, frame.bytes.size() / 40);  // the plain scene is visible, not a black frame
+
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_, v1::PIXEL_FORMAT_RGBA16F), &frame).ok());
+  EXPECT_EQ(frame.bytes.size(), std::size_t{kTinyWidth} * kTinyHeight * 8);
+  const grpc::Status png = renderOne(*stub_, tinyRequest(sceneId_, v1::PIXEL_FORMAT_PNG), &frame);
+  ASSERT_TRUE(png.ok()) << png.error_message();
+  ASSERT_GT(frame.bytes.size(), 8u);
+  EXPECT_EQ(frame.bytes[1], 'P');
+  EXPECT_EQ(frame.header.format(), v1::PIXEL_FORMAT_PNG);
+}
+
+TEST_F(ServerTest, RequestLimitsAnswerPreciseStatuses) {
+  auto request = tinyRequest(sceneId_);
+  request.set_spp(1000);
+  const grpc::Status spp = renderOne(*stub_, request);
+  EXPECT_EQ(spp.error_code(), StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(spp.error_message().find("spp"), std::string::npos);
+  request = tinyRequest(sceneId_);
+  request.set_display_id("builtin:portrait");  // 1536x2048 > limits.max_panel_pixels
+  EXPECT_EQ(renderOne(*stub_, request).error_code(), StatusCode::RESOURCE_EXHAUSTED);
+  request = tinyRequest("s999-nope");
+  EXPECT_EQ(renderOne(*stub_, request).error_code(), StatusCode::NOT_FOUND);
+}
+
+TEST_F(ServerTest, UpdateSceneMovesTheCamera) {
+  ReceivedFrame before, after;
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_), &before).ok());
+  grpc::ClientContext context;
+  v1::UpdateSceneRequest update;
+  update.set_scene_id(sceneId_);
+  update.mutable_target()->set_x(100.0);  // look far away from the scene
+  update.set_size(0.5);
+  v1::UpdateSceneResponse response;
+  ASSERT_TRUE(stub_->UpdateScene(&context, update, &response).ok());
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_), &after).ok());
+  EXPECT_NE(before.bytes, after.bytes);
+  grpc::ClientContext bad;
+  update.set_size(-1.0);
+  EXPECT_EQ(stub_->UpdateScene(&bad, update, &response).error_code(), StatusCode::INVALID_ARGUMENT);
+}
+
+TEST_F(ServerTest, StreamDeliversFramesUntilCancelledWhileOthersRender) {
+  grpc::ClientContext context;
+  v1::StreamRequest request;
+  *request.mutable_render() = tinyRequest(sceneId_);
+  request.set_frames_per_second(30);
+  auto reader = stub_->StreamFrames(&context, request);
+  ReceivedFrame frame;
+  std::uint64_t lastId = 0;
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_TRUE(readFrame(*reader, frame));
+    EXPECT_GT(frame.header.frame_id(), lastId);
+    lastId = frame.header.frame_id();
+  }
+  auto other = connect(files_->socketAddress());
+  EXPECT_TRUE(renderOne(*other, tinyRequest(sceneId_)).ok());  // a second client is served meanwhile
+  context.TryCancel();
+  while (readFrame(*reader, frame)) {
+  }
+  EXPECT_EQ(reader->Finish().error_code(), StatusCode::CANCELLED);
+}
+
+TEST_F(ServerTest, SlowConsumerGetsNewestFramesAndDoesNotBlockOthers) {
+  grpc::ClientContext context;
+  v1::StreamRequest request;
+  *request.mutable_render() = tinyRequest(sceneId_, v1::PIXEL_FORMAT_RGBA16F);
+  request.set_frames_per_second(60);
+  auto reader = stub_->StreamFrames(&context, request);
+  ReceivedFrame frame;
+  ASSERT_TRUE(readFrame(*reader, frame));
+  auto other = connect(files_->socketAddress());
+  const auto start = Clock::now();
+  for (int i = 0; i < 3; ++i) ASSERT_TRUE(renderOne(*other, tinyRequest(sceneId_)).ok());
+  EXPECT_LT(Clock::now() - start, std::chrono::seconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // not reading
+  std::uint64_t dropped = 0;
+  for (int i = 0; i < 400 && dropped == 0 && readFrame(*reader, frame); ++i) dropped += frame.header.dropped_frames();
+  EXPECT_GT(dropped, 0u);  // missed ticks were skipped, not queued
+  context.TryCancel();
+  while (readFrame(*reader, frame)) {
+  }
+  reader->Finish();
+}
+
+v1::StatusResponse daemonStatus(v1::Holotrace::Stub& stub) {
+  grpc::ClientContext context;
+  v1::StatusResponse response;
+  EXPECT_TRUE(stub.Status(&context, {}, &response).ok());
+  return response;
+}
+
+TEST_F(ServerTest, ClientThatDisconnectsMidStreamIsCleanedUp) {
+  {
+    auto vanishing = connect(files_->socketAddress());
+    grpc::ClientContext context;
+    v1::StreamRequest request;
+    *request.mutable_render() = tinyRequest(sceneId_);
+    request.set_frames_per_second(30);
+    auto reader = vanishing->StreamFrames(&context, request);
+    ReceivedFrame frame;
+    ASSERT_TRUE(readFrame(*reader, frame));
+    context.TryCancel();  // destroying a call mid-stream requires cancelling it first (grpcpp ClientContext)
+  }
+  const auto deadline = Clock::now() + std::chrono::seconds(10);
+  while (daemonStatus(*stub_).active_streams() != 0 && Clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_EQ(daemonStatus(*stub_).active_streams(), 0u);
+  EXPECT_TRUE(renderOne(*stub_, tinyRequest(sceneId_)).ok());
+  EXPECT_GT(daemonStatus(*stub_).devices(0).frames_rendered(), 0u);
+}
+
+TEST_F(ServerTest, TooManyStreamingClientsIsResourceExhausted) {
+  struct Stream {
+    grpc::ClientContext context;
+    std::unique_ptr<grpc::ClientReader<v1::FramePart>> reader;
+  };
+  std::vector<std::unique_ptr<Stream>> streams;
+  v1::StreamRequest request;
+  *request.mutable_render() = tinyRequest(sceneId_);
+  request.set_frames_per_second(1);
+  for (std::uint32_t i = 0; i < files_->config().limits.maxClients; ++i) {
+    auto s = std::make_unique<Stream>();
+    s->reader = stub_->StreamFrames(&s->context, request);
+    ReceivedFrame frame;
+    ASSERT_TRUE(readFrame(*s->reader, frame));
+    streams.push_back(std::move(s));
+  }
+  const grpc::Status refused = renderOne(*stub_, tinyRequest(sceneId_));
+  EXPECT_EQ(refused.error_code(), StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(refused.error_message().find("max_clients"), std::string::npos);
+  for (auto& s : streams) s->context.TryCancel();
+  for (auto& s : streams) s->reader->Finish();
+  const auto deadline = Clock::now() + std::chrono::seconds(5);  // slots come back promptly after cancel
+  while (daemonStatus(*stub_).active_streams() != 0 && Clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(daemonStatus(*stub_).active_streams(), 0u);
+}
+
+grpc::Status capture(v1::Holotrace::Stub& stub, const std::string& name, std::uint32_t frames,
+                     const v1::RenderRequest& render, std::vector<std::string>* files = nullptr) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
+  v1::CaptureRequest request;
+  *request.mutable_render() = render;
+  request.set_name(name);
+  request.set_frames(frames);
+  auto reader = stub.Capture(&context, request);
+  v1::CaptureProgress progress;
+  while (reader->Read(&progress)) {
+    if (files) files->push_back(progress.file());
+  }
+  return reader->Finish();
+}
+
+TEST_F(ServerTest, CaptureWritesOnlyCompleteFilesBeneathTheOutputRoot) {
+  std::vector<std::string> files;
+  const grpc::Status status = capture(*stub_, "shot", 2, tinyRequest(sceneId_), &files);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  ASSERT_EQ(files, (std::vector<std::string>{"shot_f0000.png", "shot_f0001.png"}));
+  for (const auto& f : files) EXPECT_TRUE(isCompletePng(files_->outputRoot() / f)) << f;
+  for (const auto& entry : std::filesystem::directory_iterator(files_->outputRoot())) {
+    EXPECT_NE(entry.path().filename().string().front(), '.') << "temp file left: " << entry.path();
+  }
+  EXPECT_EQ(capture(*stub_, "../evil", 1, tinyRequest(sceneId_)).error_code(), StatusCode::PERMISSION_DENIED);
+  EXPECT_EQ(capture(*stub_, "/tmp/evil", 1, tinyRequest(sceneId_)).error_code(), StatusCode::PERMISSION_DENIED);
+  EXPECT_EQ(capture(*stub_, "a b", 1, tinyRequest(sceneId_)).error_code(), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(capture(*stub_, "many", 51, tinyRequest(sceneId_)).error_code(), StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_FALSE(std::filesystem::exists(files_->dir.path / "evil_f0000.png"));
+}
+
+TEST_F(ServerTest, CaptureOverAnExistingSymlinkDoesNotFollowIt) {
+  // A planted symlink named like a capture output is replaced by rename(), the target is never written.
+  const auto outside = files_->dir.path / "victim.png";
+  writeText(outside, "untouched");
+  std::filesystem::create_symlink(outside, files_->outputRoot() / "trap_f0000.png");
+  ASSERT_TRUE(capture(*stub_, "trap", 1, tinyRequest(sceneId_)).ok());
+  std::ifstream in(outside);
+  std::string text;
+  std::getline(in, text);
+  EXPECT_EQ(text, "untouched");
+  EXPECT_TRUE(isCompletePng(files_->outputRoot() / "trap_f0000.png"));
+}
+
+}  // namespace
+}  // namespace ht::server::test
