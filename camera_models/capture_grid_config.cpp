@@ -12,22 +12,6 @@ using nlohmann::json;
 
 namespace {
 
-void rejectUnknown(const JsonLocation& at, const json& object, std::initializer_list<std::string_view> allowed) {
-  for (const auto& [key, value] : object.items()) {
-    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-    std::string list;
-    for (std::string_view k : allowed) list += (list.empty() ? "" : ", ") + std::string(k);
-    detail::throwFieldError(at, key, &value, "unknown key; expected one of: " + list);
-  }
-}
-
-double requirePositive(const JsonLocation& at, const json& object, std::string_view key) {
-  const std::string expected = "expected a finite number > 0 (world units)";
-  const double value = detail::requireNumber(at, object, key, false, expected);
-  if (!(value > 0.0)) detail::throwFieldError(at, key, detail::findField(object, key), expected);
-  return value;
-}
-
 glm::dvec2 readSpacing(const JsonLocation& at, const json& object) {
   const std::string expected = "expected [ds, dt] of finite numbers > 0 (world units)";
   const json* field = detail::findField(object, "spacing");
@@ -45,22 +29,22 @@ glm::dvec2 readSpacing(const JsonLocation& at, const json& object) {
 }  // namespace
 
 CaptureGridConfig parseCaptureGrid(const JsonLocation& at, const json& section) {
-  rejectUnknown(at, section, {"columns", "rows", "spacing", "distance", "window", "image"});
+  detail::rejectUnknownKeys(at, section, {"columns", "rows", "spacing", "distance", "window", "image"});
   CaptureGridConfig c;
   c.columns = static_cast<std::uint32_t>(detail::requireInteger(at, section, "columns", false, 1, 1024));
   c.rows = static_cast<std::uint32_t>(detail::requireInteger(at, section, "rows", false, 1, 1024));
   c.spacing = readSpacing(at, section);
-  c.distance = requirePositive(at, section, "distance");
+  c.distance = detail::requirePositiveNumber(at, section, "distance", "expected a finite number > 0 (world units)");
   const json* window = detail::findField(section, "window");
   if (window == nullptr || !window->is_object())
     detail::throwFieldError(at, "window", window, "expected {\"width\": w, \"height\": h} (world units)");
-  rejectUnknown(at.child("window"), *window, {"width", "height"});
-  c.windowWidth = requirePositive(at.child("window"), *window, "width");
-  c.windowHeight = requirePositive(at.child("window"), *window, "height");
+  detail::rejectUnknownKeys(at.child("window"), *window, {"width", "height"});
+  c.windowWidth = detail::requirePositiveNumber(at.child("window"), *window, "width", "expected a finite number > 0 (world units)");
+  c.windowHeight = detail::requirePositiveNumber(at.child("window"), *window, "height", "expected a finite number > 0 (world units)");
   const json* image = detail::findField(section, "image");
   if (image == nullptr || !image->is_object())
     detail::throwFieldError(at, "image", image, "expected {\"width\": W, \"height\": H} (pixels)");
-  rejectUnknown(at.child("image"), *image, {"width", "height"});
+  detail::rejectUnknownKeys(at.child("image"), *image, {"width", "height"});
   c.imageWidth = static_cast<std::uint32_t>(detail::requireInteger(at.child("image"), *image, "width", false, 1, 32768));
   c.imageHeight =
       static_cast<std::uint32_t>(detail::requireInteger(at.child("image"), *image, "height", false, 1, 32768));

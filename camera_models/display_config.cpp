@@ -30,19 +30,7 @@ namespace {
 constexpr long long kMaxSpp = 4096;
 constexpr long long kMaxImageSize = 32768;
 
-std::string joinKeys(std::initializer_list<std::string_view> keys) {
-  std::string text;
-  for (std::string_view key : keys) text += (text.empty() ? "" : ", ") + std::string(key);
-  return text;
-}
-
-// Our format is strict: every key must be known, so a typo ("fovy", "depthines") is reported, not ignored.
-void rejectUnknownKeys(const JsonLocation& at, const json& object, std::initializer_list<std::string_view> allowed) {
-  for (const auto& [key, value] : object.items()) {
-    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
-      detail::throwFieldError(at, key, &value, "unknown key; expected one of: " + joinKeys(allowed));
-  }
-}
+// Our format is strict: every key must be known (detail::rejectUnknownKeys), so a typo is reported, not ignored.
 
 const json& requireObject(const JsonLocation& at, const json& parent, std::string_view key) {
   const json* field = detail::findField(parent, key);
@@ -77,7 +65,7 @@ double readAngle(const JsonLocation& at, const json& object, std::string_view ke
 }
 
 CameraPlacement readCamera(const JsonLocation& at, const json& camera) {
-  rejectUnknownKeys(at, camera, {"target", "size", "fovyDeg", "depthiness"});
+  detail::rejectUnknownKeys(at, camera, {"target", "size", "fovyDeg", "depthiness"});
   CameraPlacement placement;
   placement.target = readPoint(at, camera, "target", true);
   const json* size = detail::findField(camera, "size");
@@ -97,7 +85,7 @@ CameraPlacement readCamera(const JsonLocation& at, const json& camera) {
 }
 
 PinholeSettings readPinhole(const JsonLocation& at, const json& pinhole) {
-  rejectUnknownKeys(at, pinhole, {"width", "height", "fovyDeg", "eye", "lookAt", "up"});
+  detail::rejectUnknownKeys(at, pinhole, {"width", "height", "fovyDeg", "eye", "lookAt", "up"});
   PinholeSettings settings;
   if (auto w = detail::optionalInteger(at, pinhole, "width", false, 1, kMaxImageSize))
     settings.width = static_cast<std::uint32_t>(*w);
@@ -184,7 +172,7 @@ DisplayConfig fromVisualJson(const json& root, const std::string& sourceName) {
 
 DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, const std::filesystem::path& baseDir) {
   const JsonLocation at{sourceName, ""};
-  rejectUnknownKeys(at, root, {"name", "description", "model", "calibration", "camera", "spp", "pinhole",
+  detail::rejectUnknownKeys(at, root, {"name", "description", "model", "calibration", "camera", "spp", "pinhole",
                               "projectorArray", "integral", "captureGrid"});
   DisplayConfig config;
   config.sourcePath = sourceName;

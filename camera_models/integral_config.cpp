@@ -14,22 +14,6 @@ namespace {
 
 constexpr long long kMaxPanelSize = 32768;
 
-void rejectUnknown(const JsonLocation& at, const json& object, std::initializer_list<std::string_view> allowed) {
-  for (const auto& [key, value] : object.items()) {
-    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-    std::string list;
-    for (std::string_view k : allowed) list += (list.empty() ? "" : ", ") + std::string(k);
-    detail::throwFieldError(at, key, &value, "unknown key; expected one of: " + list);
-  }
-}
-
-double requirePositive(const JsonLocation& at, const json& object, std::string_view key, const std::string& what) {
-  const std::string expected = "expected a finite " + what + " > 0 (display units)";
-  const double value = detail::requireNumber(at, object, key, false, expected);
-  if (!(value > 0.0)) detail::throwFieldError(at, key, detail::findField(object, key), expected);
-  return value;
-}
-
 glm::dvec2 readOffset(const JsonLocation& at, const json& object) {
   const json* field = detail::findField(object, "lensOffset");
   if (field == nullptr) return glm::dvec2(0.0);
@@ -55,20 +39,20 @@ LensSampling readSampling(const JsonLocation& at, const json& object) {
 }  // namespace
 
 IntegralConfig parseIntegral(const JsonLocation& at, const json& section) {
-  rejectUnknown(at, section, {"panelWidth", "panelHeight", "pixelPitch", "lensPitch", "lensOffset", "lensRotationDeg",
+  detail::rejectUnknownKeys(at, section, {"panelWidth", "panelHeight", "pixelPitch", "lensPitch", "lensOffset", "lensRotationDeg",
                               "gap", "focalLength", "viewerDistance", "frontPlane", "sampling"});
   IntegralConfig c;
   c.panelWidth = static_cast<std::uint32_t>(detail::requireInteger(at, section, "panelWidth", false, 1, kMaxPanelSize));
   c.panelHeight =
       static_cast<std::uint32_t>(detail::requireInteger(at, section, "panelHeight", false, 1, kMaxPanelSize));
-  c.pixelPitch = requirePositive(at, section, "pixelPitch", "pixel pitch");
-  c.lensPitch = requirePositive(at, section, "lensPitch", "lens pitch");
+  c.pixelPitch = detail::requirePositiveNumber(at, section, "pixelPitch", "expected a finite pixel pitch > 0 (display units)");
+  c.lensPitch = detail::requirePositiveNumber(at, section, "lensPitch", "expected a finite lens pitch > 0 (display units)");
   c.lensOffset = readOffset(at, section);
   c.lensRotationDeg = detail::optionalNumber(at, section, "lensRotationDeg", false,
                                              "expected a finite angle in degrees").value_or(0.0);
-  c.gap = requirePositive(at, section, "gap", "LCD-to-lens gap");
-  c.focalLength = requirePositive(at, section, "focalLength", "lens focal length");
-  c.viewerDistance = requirePositive(at, section, "viewerDistance", "viewer distance");
+  c.gap = detail::requirePositiveNumber(at, section, "gap", "expected a finite LCD-to-lens gap > 0 (display units)");
+  c.focalLength = detail::requirePositiveNumber(at, section, "focalLength", "expected a finite lens focal length > 0 (display units)");
+  c.viewerDistance = detail::requirePositiveNumber(at, section, "viewerDistance", "expected a finite viewer distance > 0 (display units)");
   c.frontPlane = c.viewerDistance;
   if (detail::findField(section, "frontPlane") != nullptr) {
     const std::string expected = "expected a finite distance in (0, viewerDistance] (display units)";

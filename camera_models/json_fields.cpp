@@ -1,6 +1,7 @@
 // json_fields.cpp - typed JSON field access with ConfigError reporting (see json_fields.h).
 #include "camera_models/json_fields.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -155,6 +156,22 @@ std::optional<std::string> optionalString(const JsonLocation& at, const json& ob
   const json& value = unwrapValue(*field);
   if (value.is_string()) return value.get<std::string>();
   throwFieldError(at, key, field, "expected a string");
+}
+
+void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object, std::initializer_list<std::string_view> allowed) {
+  for (const auto& [key, value] : object.items()) {
+    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+    std::string list;
+    for (std::string_view k : allowed) list += (list.empty() ? "" : ", ") + std::string(k);
+    throwFieldError(at, key, &value, "unknown key; expected one of: " + list);
+  }
+}
+
+double requirePositiveNumber(const JsonLocation& at, const nlohmann::json& object, std::string_view key,
+                             const std::string& expected) {
+  const double value = requireNumber(at, object, key, false, expected);
+  if (!(value > 0.0)) throwFieldError(at, key, findField(object, key), expected);
+  return value;
 }
 
 }  // namespace ht::detail

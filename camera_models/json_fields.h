@@ -1,6 +1,7 @@
 // json_fields.h - reading typed fields out of display-config / visual.json objects with errors that name the file,
 // the field path and the offending value (ht::ConfigError). Internal to camera_models.
 #pragma once
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -53,6 +54,14 @@ std::optional<std::string> optionalString(const JsonLocation& at, const nlohmann
 
 [[noreturn]] void throwFieldError(const JsonLocation& at, std::string_view key, const nlohmann::json* value,
                                   const std::string& expected);
+
+// Throws a ConfigError for the first key of `object` not in `allowed`, listing the allowed keys: typos in our
+// config sections must not pass silently.
+void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object, std::initializer_list<std::string_view> allowed);
+
+// Required finite number > 0; `expected` is the error's "expected ..." text.
+double requirePositiveNumber(const JsonLocation& at, const nlohmann::json& object, std::string_view key,
+                             const std::string& expected);
 
 // Formats a double for error messages ("0.001", "1e+06").
 std::string formatNumber(double value);

@@ -16,22 +16,6 @@ namespace {
 
 constexpr long long kMaxImageSize = 32768;
 
-void rejectUnknown(const JsonLocation& at, const json& object, std::initializer_list<std::string_view> allowed) {
-  for (const auto& [key, value] : object.items()) {
-    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-    std::string list;
-    for (std::string_view k : allowed) list += (list.empty() ? "" : ", ") + std::string(k);
-    detail::throwFieldError(at, key, &value, "unknown key; expected one of: " + list);
-  }
-}
-
-double requirePositive(const JsonLocation& at, const json& object, std::string_view key, const std::string& what) {
-  const std::string expected = "expected a finite " + what + " > 0";
-  const double value = detail::requireNumber(at, object, key, false, expected);
-  if (!(value > 0.0)) detail::throwFieldError(at, key, detail::findField(object, key), expected);
-  return value;
-}
-
 // [x, y, z], finite, z < 0: projectors sit behind the screen (optics.md §9 M3, P_k.z < 0).
 glm::dvec3 readPosition(const JsonLocation& at, const json& object) {
   const std::string expected = "expected [x, y, z] of finite numbers (display units) with z < 0 (behind the screen)";
@@ -78,7 +62,7 @@ std::array<double, 9> readHomography(const JsonLocation& at, const json& object,
 ProjectorConfig readProjector(const JsonLocation& at, const json& object, std::optional<std::uint32_t> defaultWidth,
                               std::optional<std::uint32_t> defaultHeight) {
   if (!object.is_object()) detail::throwFieldError(at, "", &object, "expected a projector object");
-  rejectUnknown(at, object, {"position", "width", "height", "homography"});
+  detail::rejectUnknownKeys(at, object, {"position", "width", "height", "homography"});
   ProjectorConfig projector;
   projector.position = readPosition(at, object);
   auto width = detail::optionalInteger(at, object, "width", false, 1, kMaxImageSize);
@@ -105,17 +89,17 @@ std::array<double, 9> linearProjectorMapping(double screenWidth, double screenHe
 }
 
 ProjectorArrayConfig parseProjectorArray(const JsonLocation& at, const json& section) {
-  rejectUnknown(at, section, {"screen", "observerDistance", "observerHeight", "angularScattering", "image",
+  detail::rejectUnknownKeys(at, section, {"screen", "observerDistance", "observerHeight", "angularScattering", "image",
                               "projectors"});
   ProjectorArrayConfig config;
   const json* screen = detail::findField(section, "screen");
   if (screen == nullptr || !screen->is_object())
     detail::throwFieldError(at, "screen", screen, "expected {\"width\": w, \"height\": h} (display units)");
   const JsonLocation screenAt = at.child("screen");
-  rejectUnknown(screenAt, *screen, {"width", "height"});
-  config.screenWidth = requirePositive(screenAt, *screen, "width", "screen width (display units)");
-  config.screenHeight = requirePositive(screenAt, *screen, "height", "screen height (display units)");
-  config.observerDistance = requirePositive(at, section, "observerDistance", "observer distance (display units)");
+  detail::rejectUnknownKeys(screenAt, *screen, {"width", "height"});
+  config.screenWidth = detail::requirePositiveNumber(screenAt, *screen, "width", "expected a finite screen width (display units) > 0");
+  config.screenHeight = detail::requirePositiveNumber(screenAt, *screen, "height", "expected a finite screen height (display units) > 0");
+  config.observerDistance = detail::requirePositiveNumber(at, section, "observerDistance", "expected a finite observer distance (display units) > 0");
   config.observerHeight =
       detail::optionalNumber(at, section, "observerHeight", false, "expected a finite height (display units)")
           .value_or(0.0);
@@ -131,7 +115,7 @@ ProjectorArrayConfig parseProjectorArray(const JsonLocation& at, const json& sec
   if (const json* image = detail::findField(section, "image")) {
     if (!image->is_object()) detail::throwFieldError(at, "image", image, "expected {\"width\": W, \"height\": H}");
     const JsonLocation imageAt = at.child("image");
-    rejectUnknown(imageAt, *image, {"width", "height"});
+    detail::rejectUnknownKeys(imageAt, *image, {"width", "height"});
     defaultWidth = static_cast<std::uint32_t>(detail::requireInteger(imageAt, *image, "width", false, 1, kMaxImageSize));
     defaultHeight =
         static_cast<std::uint32_t>(detail::requireInteger(imageAt, *image, "height", false, 1, kMaxImageSize));
