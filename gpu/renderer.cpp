@@ -79,6 +79,22 @@ struct WorkBuffers {
   }
 };
 
+// The frame's outputs, kept across frames of the same size (a daemon streams many) instead of reallocated.
+struct OutputBuffers {
+  std::uint32_t width = 0, height = 0;
+  std::uint64_t generation = 0;  // bumped on every reallocation
+  DeviceBuffer subpixels, image;
+
+  void ensure(VulkanContext::Impl& vk, std::uint32_t w, std::uint32_t h) {
+    if (w == width && h == height) return;
+    subpixels = DeviceBuffer(vk, static_cast<VkDeviceSize>(w) * h * 3 * sizeof(float), MemoryPlace::Device);
+    image = DeviceBuffer(vk, static_cast<VkDeviceSize>(w) * h * 16, MemoryPlace::HostReadback);
+    width = w;
+    height = h;
+    ++generation;
+  }
+};
+
 struct Renderer::Impl {
   VulkanContext::Impl& vk;
   GpuScene scene;
@@ -86,10 +102,12 @@ struct Renderer::Impl {
   FrameDescriptors descriptors;
   bool bvhTexelsCover = true;
   std::uint64_t boundWorkGeneration = 0;
+  std::uint64_t boundOutputGeneration = 0;
   std::map<std::vector<std::uint32_t>, std::unique_ptr<ComputePipeline>> pipelines;
   DeviceBuffer frame;     // FrameBlock, host visible
   DeviceBuffer counters;  // GpuCounters, host visible
   WorkBuffers work;
+  OutputBuffers outputs;
   VkQueryPool queryPool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
@@ -161,7 +179,7 @@ struct Renderer::Impl {
   }
 
   // Per-path state of the current work buffers, plus the frame's outputs.
-  void bindState(const DeviceBuffer& subpixels, const DeviceBuffer& image) {
+  void bindState() {
     using namespace gpu_shared;
     const std::uint32_t b = HT_BINDING_STATE_FIRST;
     const bool freshWork = boundWorkGeneration != work.generation;
@@ -173,9 +191,10 @@ struct Renderer::Impl {
         {&work.throughput, VK_FORMAT_R32G32B32A32_SFLOAT}, {&work.shadowRays, VK_FORMAT_R32G32B32A32_SFLOAT},
         {&work.shadowContrib, VK_FORMAT_R32G32B32A32_SFLOAT}, {&work.shadowQueue, VK_FORMAT_R32_UINT}};
     for (std::uint32_t k = 0; k < 10; ++k) descriptors.setStorageTexels(b + k, *state[k].first, state[k].second, freshWork);
-    // Outputs are allocated per frame: always new views.
-    descriptors.setStorageTexels(b + 10, subpixels, VK_FORMAT_R32_SFLOAT, true);
-    descriptors.setStorageTexels(b + 11, image, VK_FORMAT_R32G32B32A32_SFLOAT, true);
+    const bool freshOutputs = boundOutputGeneration != outputs.generation;
+    boundOutputGeneration = outputs.generation;
+    descriptors.setStorageTexels(b + 10, outputs.subpixels, VK_FORMAT_R32_SFLOAT, freshOutputs);
+    descriptors.setStorageTexels(b + 11, outputs.image, VK_FORMAT_R32G32B32A32_SFLOAT, freshOutputs);
     descriptors.flush();
   }
 
@@ -245,13 +264,12 @@ RenderResult Renderer::Impl::renderFrame(std::uint32_t model, std::uint32_t widt
   perBatch = std::min(perBatch, totalPaths);
   work.ensure(vk, static_cast<std::uint32_t>(perBatch), scene.lightCount());
 
-  DeviceBuffer subpixels(vk, static_cast<VkDeviceSize>(width) * height * 3 * sizeof(float), MemoryPlace::Device);
-  DeviceBuffer image(vk, static_cast<VkDeviceSize>(width) * height * 16, MemoryPlace::HostReadback);
+  outputs.ensure(vk, width, height);
 
   FrameBlock& f = frameBlock();
   std::memset(&f, 0, sizeof(f));
   fillFrameBasics(f);
-  bindState(subpixels, image);
+  bindState();
   f.dims = glm::uvec4(width, height, settings.spp, static_cast<std::uint32_t>(targets));
   f.scene = glm::uvec4(scene.lightCount(), scene.textureCount(), gpu_shared::HT_TRAVERSAL_STEP_LIMIT, settings.maxDepth);
   f.frame = glm::uvec4(settings.seed, 0u, 0u, 0u);
@@ -323,7 +341,7 @@ RenderResult Renderer::Impl::renderFrame(std::uint32_t model, std::uint32_t widt
   result.height = height;
   auto tRead = std::chrono::steady_clock::now();
   result.rgba.resize(static_cast<size_t>(width) * height * 4);
-  image.download(result.rgba.data(), result.rgba.size() * sizeof(float));
+  outputs.image.download(result.rgba.data(), result.rgba.size() * sizeof(float));
   double readbackMs = msSince(tRead);
   for (size_t s = 0; s < stageMs.size(); ++s) {
     auto stage = static_cast<Stage>(s);
@@ -344,13 +362,13 @@ std::vector<gpu_shared::HtHit> Renderer::Impl::traceBatch(std::span<const gpu_sh
   std::vector<gpu_shared::HtHit> hits(rays.size());
   const auto chunk = static_cast<std::uint32_t>(std::min<std::uint64_t>(kMaxPathsPerBatch * 4ull, std::max<size_t>(rays.size(), 1)));
   work.ensure(vk, chunk, 1);
-  DeviceBuffer placeholder(vk, 16, MemoryPlace::Device);  // the trace kernels write no subpixels or image
+  if (outputs.generation == 0) outputs.ensure(vk, 1, 1);  // the trace kernels write no outputs; views need a buffer
   const ComputePipeline& trace =
       occlusion ? pipeline(ShaderId::TraceAny, traceSpec({0u})) : pipeline(ShaderId::TraceClosest, traceSpec({}));
   FrameBlock& f = frameBlock();
   std::memset(&f, 0, sizeof(f));
   fillFrameBasics(f);
-  bindState(placeholder, placeholder);
+  bindState();
   f.scene = glm::uvec4(0u, 0u, gpu_shared::HT_TRAVERSAL_STEP_LIMIT, 0u);
   std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};
   std::uint32_t maxSteps = 0;
