@@ -1,6 +1,8 @@
 // embree_tracer.cpp - see embree_tracer.h.
 #include "bench/embree_tracer.h"
 
+#include "bench/embree_ray.h"
+
 #include <embree3/rtcore.h>
 #include <pmmintrin.h>
 #include <xmmintrin.h>
@@ -33,23 +35,6 @@ void throwOnDeviceError(RTCDevice device, const char* step) {
 void setEmbreeFloatMode() {
   _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
   _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-}
-
-RTCRay toEmbree(const gpu_shared::HtRay& r) {
-  RTCRay ray{};
-  ray.org_x = r.origin.x;
-  ray.org_y = r.origin.y;
-  ray.org_z = r.origin.z;
-  ray.tnear = r.tmin;
-  ray.dir_x = r.dir.x;
-  ray.dir_y = r.dir.y;
-  ray.dir_z = r.dir.z;
-  ray.time = 0.0f;
-  ray.tfar = r.tmax;
-  ray.mask = std::numeric_limits<unsigned>::max();
-  ray.id = 0;
-  ray.flags = 0;
-  return ray;
 }
 
 }  // namespace
@@ -105,10 +90,7 @@ std::vector<gpu_shared::HtHit> EmbreeTracer::traceClosest(std::span<const gpu_sh
     for (std::uint32_t y = tile.y0; y < tile.y1; ++y) {
       for (std::uint32_t x = tile.x0; x < tile.x1; ++x) {
         const std::size_t i = std::size_t(y) * width + x;
-        RTCRayHit rayHit{};
-        rayHit.ray = toEmbree(rays[i]);
-        rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        RTCRayHit rayHit = ht::embree::toEmbreeRayHit(rays[i]);
         rtcIntersect1(scene, &context, &rayHit);
         const bool hit = rayHit.hit.geomID != RTC_INVALID_GEOMETRY_ID;
         hits[i] = {rayHit.ray.tfar, hit ? rayHit.hit.primID : gpu_shared::HT_MISS, rayHit.hit.u, rayHit.hit.v};
@@ -132,7 +114,7 @@ std::vector<std::uint32_t> EmbreeTracer::traceOccluded(std::span<const gpu_share
     for (std::uint32_t y = tile.y0; y < tile.y1; ++y) {
       for (std::uint32_t x = tile.x0; x < tile.x1; ++x) {
         const std::size_t i = std::size_t(y) * width + x;
-        RTCRay ray = toEmbree(rays[i]);
+        RTCRay ray = ht::embree::toEmbreeRay(rays[i]);
         rtcOccluded1(scene, &context, &ray);
         occluded[i] = ray.tfar == -std::numeric_limits<float>::infinity() ? 1u : 0u;
       }

@@ -7,6 +7,7 @@
 #include <embree3/rtcore.h>
 #include <gtest/gtest.h>
 
+#include "bench/embree_ray.h"
 #include "bvh/cpu_traversal.h"
 #include "bvh_test_util.h"
 
@@ -46,18 +47,7 @@ struct EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   RTCRayHit intersect(const HtRay& ray, RTCIntersectContext& context) const {
-    RTCRayHit rh{};
-    rh.ray.org_x = ray.origin.x;
-    rh.ray.org_y = ray.origin.y;
-    rh.ray.org_z = ray.origin.z;
-    rh.ray.tnear = ray.tmin;
-    rh.ray.dir_x = ray.dir.x;
-    rh.ray.dir_y = ray.dir.y;
-    rh.ray.dir_z = ray.dir.z;
-    rh.ray.tfar = ray.tmax;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = ht::embree::toEmbreeRayHit(ray);
     rtcIntersect1(scene, &context, &rh);
     return rh;
   }

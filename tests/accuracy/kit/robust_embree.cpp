@@ -5,6 +5,7 @@
 
 #include <embree3/rtcore.h>
 
+#include "bench/embree_ray.h"
 #include "common/error.h"
 
 namespace ht::accuracy {
@@ -47,17 +48,7 @@ namespace {
 gpu_shared::HtHit intersectOne(RTCScene scene, const gpu_shared::HtRay& ray) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh{};
-  rh.ray.org_x = ray.origin.x;
-  rh.ray.org_y = ray.origin.y;
-  rh.ray.org_z = ray.origin.z;
-  rh.ray.tnear = ray.tmin;
-  rh.ray.dir_x = ray.dir.x;
-  rh.ray.dir_y = ray.dir.y;
-  rh.ray.dir_z = ray.dir.z;
-  rh.ray.tfar = ray.tmax;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = ht::embree::toEmbreeRayHit(ray);
   rtcIntersect1(scene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {ray.tmax, gpu_shared::HT_MISS, 0.0f, 0.0f};
   return {rh.ray.tfar, rh.hit.primID, rh.hit.u, rh.hit.v};
