@@ -72,10 +72,21 @@ glm::dvec2 IntegralReference::lensCentre(glm::dvec2 q) const {
   return integral_.lensOffset + rotation_ * (index * integral_.lensPitch);
 }
 
-ReferenceRay IntegralReference::ray(std::uint32_t x, std::uint32_t y, std::uint32_t view, glm::dvec2 xi) const {
+double IntegralReference::lensBorderDistance(glm::dvec2 q) const {
+  const glm::dvec2 grid = glm::transpose(rotation_) * (q - integral_.lensOffset) / integral_.lensPitch;
+  const glm::dvec2 rel = grid - glm::floor(grid + 0.5);  // [-0.5, 0.5)
+  return 0.5 - std::max(std::fabs(rel.x), std::fabs(rel.y));
+}
+
+glm::dvec2 IntegralReference::samplePosition(std::uint32_t x, std::uint32_t y, std::uint32_t view, glm::dvec2 xi) const {
   const bool aperture = integral_.sampling == LensSampling::Aperture;
   const glm::dvec2 f = aperture ? glm::dvec2(0.5) : xi;
-  const glm::dvec2 pixel = pixelPosition(x, y, view < 3 ? glm::dvec2((view + f.x) / 3.0, f.y) : f);
+  return pixelPosition(x, y, view < 3 ? glm::dvec2((view + f.x) / 3.0, f.y) : f);
+}
+
+ReferenceRay IntegralReference::ray(std::uint32_t x, std::uint32_t y, std::uint32_t view, glm::dvec2 xi) const {
+  const bool aperture = integral_.sampling == LensSampling::Aperture;
+  const glm::dvec2 pixel = samplePosition(x, y, view, xi);
   const glm::dvec2 c = lensCentre(pixel);
   const glm::dvec2 s = aperture ? c + rotation_ * ((xi - 0.5) * integral_.lensPitch) : c;
   // Thin lens, ray-transfer form (see integral_model.h): slope = (s - p)/g - (s - c)/f.

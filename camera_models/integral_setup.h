@@ -24,6 +24,11 @@ class IntegralReference {
   IntegralReference(const DisplayConfig& config, const Bounds3& sceneBounds);
   glm::dvec2 pixelPosition(std::uint32_t x, std::uint32_t y, glm::dvec2 f) const;
   glm::dvec2 lensCentre(glm::dvec2 q) const;
+  // Distance of q from the border of its lens cell, in lens pitches (0 on the border, 0.5 at the centre): where two
+  // lenses meet, float and double may each pick either, and both are right.
+  double lensBorderDistance(glm::dvec2 q) const;
+  // The LCD point a sample of (x, y, view) at xi starts from (pixel or stripe subpixel, integral_model.h).
+  glm::dvec2 samplePosition(std::uint32_t x, std::uint32_t y, std::uint32_t view, glm::dvec2 xi) const;
   // view 0, 1, 2 = R, G, B stripe subpixel, anything else = whole pixel (integral_model.h integral_in_pixel).
   ReferenceRay ray(std::uint32_t x, std::uint32_t y, std::uint32_t view, glm::dvec2 xi) const;
 

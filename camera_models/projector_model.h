@@ -19,51 +19,79 @@ HT_SHARED_BEGIN
 HT_CONST float HT_PROJECTOR_SCATTER_NORM = 1.11741f;  // LightFieldInterpolation.cpp
 HT_CONST float HT_PROJECTOR_TWO_PI = 6.28318530717958647692f;
 
+// One projector with the array's shared values. The kernels build it from single uniform members (raygen.comp) rather
+// than pass the 8 KiB ProjectorArrayParams by value: a by-value struct indexed with a per-lane projector number would
+// be copied to per-invocation scratch memory by the shader compiler.
+struct ProjectorView {
+  vec4 observer;      // as ProjectorArrayParams.observer
+  vec4 scale;         // as ProjectorArrayParams.scale
+  mat4 localToWorld;  // as ProjectorArrayParams.localToWorld
+  mat4 projector;     // ProjectorArrayParams.projector[k]
+};
+
+HT_INLINE ProjectorView projector_view(HT_IN(ProjectorArrayParams) p, uint view) {
+  ProjectorView v;
+  v.observer = p.observer;
+  v.scale = p.scale;
+  v.localToWorld = p.localToWorld;
+  v.projector = p.projector[view];
+  return v;
+}
+
 // Screen point (display units, z = 0) of projector position (px, py) in pixels (py from the bottom).
-HT_INLINE vec3 projector_screen_point(HT_IN(ProjectorArrayParams) p, uint view, vec2 pixel) {
-  mat3 h = mat3(p.projector[view]);
+HT_INLINE vec3 projector_screen_point(HT_IN(ProjectorView) v, vec2 pixel) {
+  mat3 h = mat3(v.projector);
   vec3 s = h * vec3(pixel.x, pixel.y, 1.0f);
   return vec3(s.x / s.z, s.y / s.z, 0.0f);
 }
 
-// Display-local (unscaled) double-perspective ray through screen point s of projector `view`.
-HT_INLINE void projector_local_ray(HT_IN(ProjectorArrayParams) p, uint view, vec3 s, HT_OUT(vec3) origin,
-                                   HT_OUT(vec3) dir) {
-  vec3 position = vec3(p.projector[view][3]);
-  float observerDistance = p.observer.x;
+// Display-local (unscaled) double-perspective ray through screen point s of the projector.
+HT_INLINE void projector_local_ray(HT_IN(ProjectorView) v, vec3 s, HT_OUT(vec3) origin, HT_OUT(vec3) dir) {
+  vec3 position = vec3(v.projector[3]);
+  float observerDistance = v.observer.x;
   float ox = s.x - (s.x - position.x) / position.z * observerDistance;
-  origin = vec3(ox, p.observer.y, observerDistance);
+  origin = vec3(ox, v.observer.y, observerDistance);
   dir = normalize(s - origin);
 }
 
-// Display-local -> world: positions scaled by p.scale.x then placed; directions rotated only.
-HT_INLINE void projector_to_world(HT_IN(ProjectorArrayParams) p, HT_INOUT(vec3) origin, HT_INOUT(vec3) dir) {
-  origin = vec3(p.localToWorld * vec4(origin * p.scale.x, 1.0f));
-  dir = normalize(mat3(p.localToWorld) * dir);
+// Display-local -> world: positions scaled by scale.x then placed; directions rotated only.
+HT_INLINE void projector_to_world(HT_IN(ProjectorView) v, HT_INOUT(vec3) origin, HT_INOUT(vec3) dir) {
+  origin = vec3(v.localToWorld * vec4(origin * v.scale.x, 1.0f));
+  dir = normalize(mat3(v.localToWorld) * dir);
 }
 
-// Primary ray of pixel (x, y) (y from the bottom) of projector `view` at footprint position xi in [0,1)^2.
-HT_INLINE void projector_ray(HT_IN(ProjectorArrayParams) p, uint x, uint y, uint view, vec2 xi, HT_OUT(vec3) origin,
-                             HT_OUT(vec3) dir) {
-  vec3 s = projector_screen_point(p, view, vec2(float(x) + xi.x, float(y) + xi.y));
-  projector_local_ray(p, view, s, origin, dir);
-  projector_to_world(p, origin, dir);
+// Primary ray of pixel (x, y) (y from the bottom) of the projector at footprint position xi in [0,1)^2.
+HT_INLINE void projector_view_ray(HT_IN(ProjectorView) v, uint x, uint y, vec2 xi, HT_OUT(vec3) origin,
+                                  HT_OUT(vec3) dir) {
+  vec3 s = projector_screen_point(v, vec2(float(x) + xi.x, float(y) + xi.y));
+  projector_local_ray(v, s, origin, dir);
+  projector_to_world(v, origin, dir);
 }
 
-// As projector_ray, with the screen's horizontal scattering sampled by xiAngle in [0,1)^2 (Box-Muller normal draw):
-// the ray is rotated about the vertical axis through S by dA, origin and direction alike (optics.md §9 M3).
-HT_INLINE void projector_scattered_ray(HT_IN(ProjectorArrayParams) p, uint x, uint y, uint view, vec2 xi,
-                                       vec2 xiAngle, HT_OUT(vec3) origin, HT_OUT(vec3) dir) {
-  vec3 s = projector_screen_point(p, view, vec2(float(x) + xi.x, float(y) + xi.y));
-  projector_local_ray(p, view, s, origin, dir);
-  float sigma = p.observer.z / HT_PROJECTOR_SCATTER_NORM / sqrt(2.0f);
+// As projector_view_ray, with the screen's horizontal scattering sampled by xiAngle in [0,1)^2 (Box-Muller normal
+// draw): the ray is rotated about the vertical axis through S by dA, origin and direction alike (optics.md §9 M3).
+HT_INLINE void projector_view_scattered_ray(HT_IN(ProjectorView) v, uint x, uint y, vec2 xi, vec2 xiAngle,
+                                            HT_OUT(vec3) origin, HT_OUT(vec3) dir) {
+  vec3 s = projector_screen_point(v, vec2(float(x) + xi.x, float(y) + xi.y));
+  projector_local_ray(v, s, origin, dir);
+  float sigma = v.observer.z / HT_PROJECTOR_SCATTER_NORM / sqrt(2.0f);
   float radius = sqrt(-2.0f * log(max(1.0f - xiAngle.x, 1e-30f)));
   float angle = sigma * radius * cos(HT_PROJECTOR_TWO_PI * xiAngle.y);
   float c = cos(angle), sn = sin(angle);
   vec3 arm = origin - s;  // rotation about +y through S
   origin = s + vec3(c * arm.x + sn * arm.z, arm.y, -sn * arm.x + c * arm.z);
   dir = vec3(c * dir.x + sn * dir.z, dir.y, -sn * dir.x + c * dir.z);
-  projector_to_world(p, origin, dir);
+  projector_to_world(v, origin, dir);
+}
+
+// Whole-array conveniences (C++ callers and tests): projector `view` of the array.
+HT_INLINE void projector_ray(HT_IN(ProjectorArrayParams) p, uint x, uint y, uint view, vec2 xi, HT_OUT(vec3) origin,
+                             HT_OUT(vec3) dir) {
+  projector_view_ray(projector_view(p, view), x, y, xi, origin, dir);
+}
+HT_INLINE void projector_scattered_ray(HT_IN(ProjectorArrayParams) p, uint x, uint y, uint view, vec2 xi,
+                                       vec2 xiAngle, HT_OUT(vec3) origin, HT_OUT(vec3) dir) {
+  projector_view_scattered_ray(projector_view(p, view), x, y, xi, xiAngle, origin, dir);
 }
 
 HT_SHARED_END

@@ -70,16 +70,55 @@ void writeWithOiio(const fs::path& target, const fs::path& file, const OIIO::Ima
 
 }  // namespace
 
-void writeImageFile(const fs::path& path, const RgbaImageView& image, ImageFormat format) {
+void writeImageFile(const fs::path& path, const RgbaImageView& image, ImageFormat format,
+                    const ImageAttributes& attributes) {
   checkImage(path, image);
   AtomicOutputFile file(path);
-  const OIIO::ImageSpec spec = makeSpec(image, format);
+  OIIO::ImageSpec spec = makeSpec(image, format);
+  for (const auto& [name, value] : attributes) spec.attribute(name, value);
   if (format == ImageFormat::Png8Srgb) {
     const std::vector<std::uint8_t> bytes = encodePng8(image);
     writeWithOiio(path, file.tempPath(), spec, OIIO::TypeDesc::UINT8, bytes.data(), "png");
   } else {
     writeWithOiio(path, file.tempPath(), spec, OIIO::TypeDesc::FLOAT, image.rgba.data(), "openexr");
   }
+  file.commit();
+}
+
+void writeMultiViewExr(const fs::path& path, std::uint32_t width, std::uint32_t height, std::span<const float> rgba,
+                       const std::vector<std::string>& viewNames, ImageFormat format, const ImageAttributes& attributes) {
+  const std::size_t views = viewNames.size();
+  const std::size_t viewFloats = std::size_t(width) * height * kChannels;
+  if (views == 0 || width == 0 || height == 0 || rgba.size() != viewFloats * views || format == ImageFormat::Png8Srgb) {
+    throw IoError("cannot write '" + path.string() + "': " + std::to_string(views) + " views of " +
+                  std::to_string(width) + "x" + std::to_string(height) + " with " + std::to_string(rgba.size()) +
+                  " floats as " + (format == ImageFormat::Png8Srgb ? "PNG" : "EXR") +
+                  ", expected EXR and views*width*height*4 floats (a renderer bug)");
+  }
+  AtomicOutputFile file(path);
+  const OIIO::TypeDesc type = format == ImageFormat::ExrHalf ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+  OIIO::ImageSpec spec(int(width), int(height), int(views * kChannels), type);
+  spec.channelnames.clear();
+  for (const std::string& name : viewNames) {
+    for (const char* c : {"R", "G", "B", "A"}) spec.channelnames.push_back(name + "." + c);
+  }
+  spec.alpha_channel = -1;  // several alpha channels; none is "the" alpha
+  std::vector<const char*> names;
+  for (const std::string& name : viewNames) names.push_back(name.c_str());
+  spec.attribute("multiView", OIIO::TypeDesc(OIIO::TypeDesc::STRING, int(views)), names.data());
+  spec.attribute("oiio:ColorSpace", "Linear");
+  spec.attribute("Software", "holotrace");
+  spec.attribute("compression", "zip");
+  for (const auto& [name, value] : attributes) spec.attribute(name, value);
+  // Channel-interleaved pixels: for each pixel, view 0 RGBA, view 1 RGBA, ...
+  std::vector<float> pixels(rgba.size());
+  const std::size_t pixelCount = std::size_t(width) * height;
+  for (std::size_t v = 0; v < views; ++v) {
+    for (std::size_t i = 0; i < pixelCount; ++i) {
+      for (int c = 0; c < kChannels; ++c) pixels[(i * views + v) * kChannels + c] = rgba[v * viewFloats + i * kChannels + c];
+    }
+  }
+  writeWithOiio(path, file.tempPath(), spec, OIIO::TypeDesc::FLOAT, pixels.data(), "openexr");
   file.commit();
 }
 

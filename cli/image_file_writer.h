@@ -4,6 +4,9 @@
 // Files appear atomically: the image is written to a temporary file in the target directory and renamed
 // into place. Any failure throws ht::IoError naming the path and the reason, and leaves no file behind.
 #pragma once
+#include <string>
+#include <utility>
+#include <vector>
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -21,7 +24,19 @@ struct RgbaImageView {
   std::span<const float> rgba;  // width * height * 4 floats, row 0 = top
 };
 
+// Text attributes stored in the file (PNG tEXt chunks, EXR string attributes), e.g. {"ImageDescription", json}.
+using ImageAttributes = std::vector<std::pair<std::string, std::string>>;
+
 // Writes `image` to `path` in `format`, creating the parent directory if needed.
-void writeImageFile(const std::filesystem::path& path, const RgbaImageView& image, ImageFormat format);
+void writeImageFile(const std::filesystem::path& path, const RgbaImageView& image, ImageFormat format,
+                    const ImageAttributes& attributes = {});
+
+// One OpenEXR file holding several views of the same size (OpenEXR multi-view convention, "Storing Multi-View Images
+// in OpenEXR Files", Kainz & Bogart): the `multiView` string-vector attribute lists `viewNames` (the first is the
+// default view) and view k's channels are named "<name>.R/G/B/A". `rgba` holds the views one after the other, each
+// width * height * 4 floats with row 0 = top. `format` must be ExrHalf or ExrFloat.
+void writeMultiViewExr(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height,
+                       std::span<const float> rgba, const std::vector<std::string>& viewNames, ImageFormat format,
+                       const ImageAttributes& attributes = {});
 
 }  // namespace ht::cli

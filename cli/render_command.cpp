@@ -2,16 +2,23 @@
 #include "cli/render_command.h"
 
 #include <chrono>
+#include <cstdio>
+#include <iostream>
 #include <memory>
+
+#include <unistd.h>
 
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_params.h"
 #include "camera_models/pinhole_params.h"
 #include "cli/atomic_output_file.h"
 #include "cli/cli_app.h"
-#include "cli/image_file_writer.h"
+#include "cli/frame_outputs.h"
 #include "cli/output_paths.h"
 #include "cli/render_report.h"
+#include "cli/view_phase_debug.h"
+#include "common/error.h"
+#include "gpu/display_camera.h"
 #include "gpu/renderer.h"
 #include "gpu/vulkan_context.h"
 #include "scene/scene.h"
@@ -31,15 +38,19 @@ gpu::RenderSettings makeSettings(const RenderOptions& options, const DisplayConf
   if (options.maxDepth) settings.maxDepth = *options.maxDepth;
   settings.forceAllFeatures = options.noSpecialize;
   settings.seed = options.seed;
+  settings.filter = options.filter;
+  if (isatty(STDERR_FILENO)) {  // a progress line on a terminal only; logs and pipes get the final report
+    settings.progress = [](double done) { std::fprintf(stderr, "\rrender %5.1f %%", 100.0 * done); };
+  }
   return settings;
 }
 
-gpu::RenderResult renderFrame(gpu::Renderer& renderer, const DisplayConfig& display, const Scene& scene,
-                              const gpu::RenderSettings& settings) {
-  if (display.model == DisplayModel::Pinhole) {
-    return renderer.renderPinhole(makePinholeParams(display, scene.bounds()), settings);
+const char* filterName(gpu::SampleFilter filter) {
+  switch (filter) {
+    case gpu::SampleFilter::Tent: return "tent";
+    case gpu::SampleFilter::Gaussian: return "gaussian";
+    default: return "box";
   }
-  return renderer.renderLenticular(makeLenticularParams(display, scene.bounds()), settings);
 }
 
 // Builds the BVH and uploads the scene, then prints the scene and BVH reports.
@@ -55,11 +66,15 @@ std::unique_ptr<gpu::Renderer> buildRenderer(std::ostream& out, gpu::VulkanConte
   return renderer;
 }
 
-gpu::RenderResult renderAndReport(std::ostream& out, gpu::Renderer& renderer, const DisplayConfig& display,
-                                  const Scene& scene, const gpu::RenderSettings& settings) {
-  out << "render: spp " << settings.spp << ", depth " << settings.maxDepth << ", seed " << settings.seed
+gpu::RenderResult renderAndReport(std::ostream& out, gpu::Renderer& renderer, const gpu::DisplayCamera& camera,
+                                  const gpu::RenderSettings& settings) {
+  const gpu::FrameShape& shape = camera.shape;
+  out << "render: " << shape.views << (shape.views == 1 ? " view" : " views") << " of " << shape.width << "x"
+      << shape.height << ", " << shape.targets() << " targets, spp " << settings.spp << ", filter "
+      << filterName(settings.filter) << ", depth " << settings.maxDepth << ", seed " << settings.seed
       << (settings.forceAllFeatures ? ", all features forced on" : "") << "\n";
-  gpu::RenderResult frame = renderFrame(renderer, display, scene, settings);
+  gpu::RenderResult frame = renderer.render(camera.camera, settings);
+  if (settings.progress) std::fprintf(stderr, "\r");
   printFrame(out, frame);
   if (frame.nonFiniteSamples > 0) {
     out << "warning: " << frame.nonFiniteSamples << " samples were NaN/Inf and were written as 0 (a renderer bug)\n";
@@ -67,16 +82,21 @@ gpu::RenderResult renderAndReport(std::ostream& out, gpu::Renderer& renderer, co
   return frame;
 }
 
-void writeOutputs(std::ostream& out, const OutputPaths& paths, const gpu::RenderResult& frame) {
-  const RgbaImageView image{frame.width, frame.height, frame.rgba};
-  if (paths.png) {
-    writeImageFile(*paths.png, image, ImageFormat::Png8Srgb);
-    out << "wrote " << paths.png->string() << " (" << frame.width << "x" << frame.height << ", 8-bit sRGB PNG)\n";
+int runViewPhaseDebug(std::ostream& out, const RenderOptions& options, const DisplayConfig& display,
+                      const OutputPaths& paths, Clock::time_point start) {
+  if (display.model != DisplayModel::Lenticular) {
+    throw UsageError("holotrace render: --debug views: display '" + display.name + "' is a '" +
+                     std::string(displayModelName(display.model)) +
+                     "' display; view phases exist for lenticular displays only");
   }
-  if (paths.exr) {
-    writeImageFile(*paths.exr, image, ImageFormat::ExrHalf);
-    out << "wrote " << paths.exr->string() << " (" << frame.width << "x" << frame.height << ", linear half EXR)\n";
-  }
+  (void)options;
+  const gpu::RenderResult frame = renderViewPhaseDebug(makeLenticularParams(display, Bounds3{}));
+  out << "debug views: channel value = view phase t of the subpixel (0 = leftmost view), no tracing, "
+      << formatMs(frame.totalMs) << "\n";
+  const gpu::DisplayCamera camera{gpu_shared::LenticularParams{}, {}, std::nullopt};
+  writeFrameOutputs(out, paths, frame, display, camera, ViewLayout::Auto);
+  out << "total " << formatMs(msSince(start)) << "\n";
+  return kExitOk;
 }
 
 }  // namespace
@@ -92,16 +112,19 @@ int runRender(std::span<const std::string> args, std::ostream& out) {
   out << "display: " << display.name << " (" << displayModelName(display.model) << ", " << options.displaySpec
       << ")\n";
 
+  if (options.debugViews) return runViewPhaseDebug(out, options, display, paths, start);
+
   const auto loadStart = Clock::now();
   const Scene scene = loadScene(options.sceneSpec);
   const double loadMs = msSince(loadStart);
+  const gpu::DisplayCamera camera = makeDisplayCamera(display, scene.bounds(), options.cameraPath);
 
   gpu::VulkanContext context({options.deviceIndex, options.validation});
   printDevice(out, context.device());
   const auto renderer = buildRenderer(out, context, scene, loadMs);
 
-  const gpu::RenderResult frame = renderAndReport(out, *renderer, display, scene, makeSettings(options, display));
-  writeOutputs(out, paths, frame);
+  const gpu::RenderResult frame = renderAndReport(out, *renderer, camera, makeSettings(options, display));
+  writeFrameOutputs(out, paths, frame, display, camera, options.layout);
   if (options.validation) out << "validation messages: " << context.validationMessageCount() << "\n";
   out << "total " << formatMs(msSince(start)) << "\n";
   return kExitOk;

@@ -17,10 +17,14 @@ constexpr std::uint32_t kMaxSpp = 4096;  // same bound as the display config's s
 constexpr std::uint32_t kMaxDepth = 32;  // Renderer limit (gpu/renderer.cpp)
 constexpr std::uint32_t kMaxDevice = 255;
 
-const std::array<OptionSpec, 11> kSpecs = {{
+const std::array<OptionSpec, 15> kSpecs = {{
     {"--display", "", "SPEC", "display: config.json, visual.json or builtin:NAME (default builtin:portrait)"},
     {"--scene", "", "SPEC", "scene: .gltf, .glb, .obj, .off or builtin:NAME (default builtin:showcase)"},
-    {"--spp", "", "N", "samples per subpixel (lenticular) or pixel (pinhole), 1-4096 (default: the config's spp)"},
+    {"--spp", "", "N", "samples per subpixel (lenticular, integral) or pixel (other models), 1-4096 (default: the config's spp)"},
+    {"--filter", "", "NAME", "reconstruction filter over each footprint: box, tent or gaussian (default box)"},
+    {"--quilt", "", "", "lenticular displays: render the vendor quilt views instead of per-subpixel rays"},
+    {"--layout", "", "NAME", "multi-view frames in -o: auto, quilt or views (default auto: quilt if the views form one)"},
+    {"--debug", "", "views", "no tracing: colour each subpixel by its view phase (lenticular displays)"},
     {"--depth", "", "N", "specular bounces after the primary hit, 0-32 (default 4)"},
     {"--output", "-o", "FILE.png", "write the frame as 8-bit sRGB PNG here"},
     {"--exr", "", "FILE.exr", "write the frame as linear half-float OpenEXR here"},
@@ -63,20 +67,42 @@ RenderOptions parseRenderOptions(std::span<const std::string> args) {
   options.validation = parsed.has("--validation");
   options.seed = parsed.unsignedValue("--seed", 0, std::numeric_limits<std::uint32_t>::max()).value_or(0);
   options.noSpecialize = parsed.has("--no-specialize");
+  if (parsed.has("--quilt")) options.cameraPath = gpu::CameraPath::Quilt;
+  if (auto text = parsed.text("--layout")) {
+    auto layout = parseViewLayout(*text);
+    if (!layout) throw UsageError(usageMessage(kCommand, "option '--layout' = '" + *text + "': expected auto, quilt or views"));
+    options.layout = *layout;
+  }
+  if (auto text = parsed.text("--filter")) {
+    if (*text == "box") options.filter = gpu::SampleFilter::Box;
+    else if (*text == "tent") options.filter = gpu::SampleFilter::Tent;
+    else if (*text == "gaussian") options.filter = gpu::SampleFilter::Gaussian;
+    else throw UsageError(usageMessage(kCommand, "option '--filter' = '" + *text + "': expected box, tent or gaussian"));
+  }
+  if (auto text = parsed.text("--debug")) {
+    if (*text != "views") throw UsageError(usageMessage(kCommand, "option '--debug' = '" + *text + "': expected views"));
+    options.debugViews = true;
+  }
   return options;
 }
 
 std::string renderHelp() {
   return "Usage: holotrace render [options]\n\n"
-         "Renders one frame for a light-field display: every panel subpixel gets its own primary rays (lenticular\n"
-         "displays) or every pixel a pinhole ray (pinhole displays). Prints device, scene, BVH and per-stage\n"
-         "timings. Without -o/--exr it writes <out-dir>/<display>_<scene>.png and .exr.\n\nOptions:\n" +
+         "Renders one frame for a light-field display through its own optics: every panel subpixel gets its own\n"
+         "primary rays (lenticular, integral), every projector pixel its double-perspective ray (projector arrays),\n"
+         "every view pixel its ray (capture grids, pinhole). Prints device, scene, BVH and per-stage timings.\n"
+         "Without -o/--exr it writes <out-dir>/<display>_<scene>.png and .exr. Multi-view frames go to a quilt\n"
+         "(<stem>_qs{cols}x{rows}a{aspect}.png + .json metadata) or one PNG per view (<stem>_v00.png, ...), and\n"
+         "to one EXR with the multiView attribute.\n\nOptions:\n" +
          formatOptions(kSpecs) +
          "\n"
          "Examples:\n"
          "  holotrace render\n"
          "  holotrace render --display builtin:portrait --scene model.glb --spp 8 -o portrait.png\n"
-         "  holotrace render --display visual.json --scene bunny.obj --exr frame.exr\n";
+         "  holotrace render --display visual.json --scene bunny.obj --exr frame.exr\n"
+         "  holotrace render --display builtin:portrait --quilt -o out/portrait.png   (-> portrait_qs8x6a0.75.png)\n"
+         "  holotrace render --display builtin:holovizio-wall-70 --spp 2 -o out/wall.png   (-> wall_v00.png ...)\n"
+         "  holotrace render --display builtin:portrait --debug views -o phase.png\n";
 }
 
 }  // namespace ht::cli

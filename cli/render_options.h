@@ -6,6 +6,10 @@
 #include <span>
 #include <string>
 
+#include "cli/view_layout.h"
+#include "gpu/display_camera.h"
+#include "gpu/renderer.h"
+
 namespace ht::cli {
 
 struct RenderOptions {
@@ -20,6 +24,10 @@ struct RenderOptions {
   bool validation = false;
   std::uint32_t seed = 0;
   bool noSpecialize = false;
+  gpu::CameraPath cameraPath = gpu::CameraPath::Native;  // --quilt: the lenticular display's quilt cameras
+  ViewLayout layout = ViewLayout::Auto;
+  gpu::SampleFilter filter = gpu::SampleFilter::Box;
+  bool debugViews = false;                       // --debug views: no tracing, subpixels coloured by view phase
 };
 
 // Throws UsageError ("holotrace render: ...") for unknown options and bad values.

@@ -10,6 +10,9 @@
 #include <chrono>
 #include <cstring>
 #include <map>
+#include <tuple>
+#include <type_traits>
+#include <utility>
 
 #include "gpu/frame_descriptors.h"
 #include "gpu/compute_pipeline.h"
@@ -39,6 +42,8 @@ constexpr std::uint32_t kMaxPathsPerBatch = 1u << 20;
 constexpr std::uint32_t kQueryCapacity = 4096;
 constexpr std::uint32_t kMaxSpp = 4096;
 constexpr std::uint32_t kMaxDepth = 32;
+constexpr std::uint64_t kMaxChunkPixels = 8ull << 20;  // pixels of all views rendered by one chunk (output buffers)
+constexpr std::uint32_t kMaxImageSide = 32768;
 
 std::uint32_t groupsFor(std::uint64_t n) { return static_cast<std::uint32_t>((n + HT_WORKGROUP_SIZE - 1) / HT_WORKGROUP_SIZE); }
 
@@ -111,8 +116,7 @@ struct Renderer::Impl {
   VkQueryPool queryPool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
-  gpu_shared::LenticularParams lenticular{};
-  gpu_shared::PinholeParams pinhole{};
+  FrameCamera camera;
 
   Impl(VulkanContext::Impl& v, const Scene& s, const bvh::BuildOptions& o)
       : vk(v), scene(v, s, o), layout(v), descriptors(v, layout.setLayout()), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
@@ -234,24 +238,161 @@ struct Renderer::Impl {
     }
   }
 
-  RenderResult renderFrame(std::uint32_t model, std::uint32_t width, std::uint32_t height, const RenderSettings& settings);
+  // Writes the camera block and the frame-wide values of a frame of `shape` covering views [viewFirst, +viewCount).
+  void fillFrame(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount, const RenderSettings& settings);
+  RenderResult render(const RenderSettings& settings);
+  void renderChunk(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
+                   const RenderSettings& settings, std::array<double, static_cast<size_t>(Stage::Count)>& stageMs,
+                   RenderResult& result);
+  std::vector<gpu_shared::HtRay> generateRays(const RenderSettings& settings, std::uint64_t firstTarget,
+                                              std::uint32_t targetCount, TraceStats* stats);
   std::vector<gpu_shared::HtHit> traceBatch(std::span<const gpu_shared::HtRay> rays, bool occlusion, TraceStats* stats);
 };
 
-RenderResult Renderer::Impl::renderFrame(std::uint32_t model, std::uint32_t width, std::uint32_t height,
-                                         const RenderSettings& settings) {
-  auto t0 = std::chrono::steady_clock::now();
+namespace {
+
+void checkSettings(const RenderSettings& settings) {
   if (settings.spp < 1 || settings.spp > kMaxSpp) throw GpuError("spp " + std::to_string(settings.spp) + " out of range [1, 4096]");
   if (settings.maxDepth > kMaxDepth) throw GpuError("depth " + std::to_string(settings.maxDepth) + " out of range [0, 32]");
-  if (width == 0 || height == 0 || width > 32768 || height > 32768) {
-    throw GpuError("image size " + std::to_string(width) + "x" + std::to_string(height) + " out of range [1, 32768]");
+  if (static_cast<std::uint32_t>(settings.filter) > 2) throw GpuError("unknown sample filter");
+}
+
+void checkShape(const FrameShape& shape, std::uint32_t spp) {
+  if (shape.width == 0 || shape.height == 0 || shape.width > kMaxImageSide || shape.height > kMaxImageSide) {
+    throw GpuError("image size " + std::to_string(shape.width) + "x" + std::to_string(shape.height) +
+                   " out of range [1, 32768]");
   }
-  const std::uint64_t targets = static_cast<std::uint64_t>(width) * height * (model == gpu_shared::HT_MODEL_LENTICULAR ? 3 : 1);
+  if (shape.views == 0) throw GpuError("camera has no views");
+  if (shape.targets() * spp >= (1ull << 32)) {
+    throw GpuError("frame of " + std::to_string(shape.targets()) + " targets x spp " + std::to_string(spp) +
+                   " exceeds 2^32 rays per frame: lower --spp to at most " +
+                   std::to_string(((1ull << 32) - 1) / shape.targets()));
+  }
+}
+
+}  // namespace
+
+FrameShape frameShape(const FrameCamera& camera) {
+  using namespace gpu_shared;
+  FrameShape shape;
+  shape.model = static_cast<std::uint32_t>(camera.index());
+  static_assert(std::variant_size_v<FrameCamera> == HT_MODEL_COUNT);
+  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_LENTICULAR, FrameCamera>, LenticularParams>);
+  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_PINHOLE, FrameCamera>, PinholeParams>);
+  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_QUILT, FrameCamera>, QuiltParams>);
+  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_PROJECTOR_ARRAY, FrameCamera>, ProjectorArrayParams>);
+  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_INTEGRAL, FrameCamera>, IntegralParams>);
+  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_CAPTURE_GRID, FrameCamera>, CaptureGridParams>);
+  auto size = [](float w, float h) { return std::pair{static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)}; };
+  switch (shape.model) {
+    case HT_MODEL_LENTICULAR: {
+      const auto& p = std::get<LenticularParams>(camera);
+      std::tie(shape.width, shape.height) = size(p.panel.x, p.panel.y);
+      shape.targetsPerPixel = 3;
+      break;
+    }
+    case HT_MODEL_PINHOLE: {
+      const auto& p = std::get<PinholeParams>(camera);
+      std::tie(shape.width, shape.height) = size(p.lens.z, p.lens.w);
+      break;
+    }
+    case HT_MODEL_QUILT: {
+      const auto& p = std::get<QuiltParams>(camera);
+      shape.width = static_cast<std::uint32_t>(p.tiles.z);
+      shape.height = static_cast<std::uint32_t>(p.tiles.w);
+      shape.views = static_cast<std::uint32_t>(p.views.x);
+      break;
+    }
+    case HT_MODEL_PROJECTOR_ARRAY: {
+      const auto& p = std::get<ProjectorArrayParams>(camera);
+      std::tie(shape.width, shape.height) = size(p.projector[0][0].w, p.projector[0][1].w);
+      shape.views = static_cast<std::uint32_t>(p.observer.w);
+      if (shape.views > HT_MAX_PROJECTORS) throw GpuError("projector array of " + std::to_string(shape.views) + " projectors exceeds 128");
+      break;
+    }
+    case HT_MODEL_INTEGRAL: {
+      const auto& p = std::get<IntegralParams>(camera);
+      std::tie(shape.width, shape.height) = size(p.panel.x, p.panel.y);
+      shape.targetsPerPixel = 3;
+      break;
+    }
+    default: {
+      const auto& p = std::get<CaptureGridParams>(camera);
+      shape.width = static_cast<std::uint32_t>(p.grid.z);
+      shape.height = static_cast<std::uint32_t>(p.grid.w);
+      shape.views = static_cast<std::uint32_t>(p.grid.x) * static_cast<std::uint32_t>(p.grid.y);
+      break;
+    }
+  }
+  return shape;
+}
+
+void Renderer::Impl::fillFrame(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
+                               const RenderSettings& settings) {
+  FrameBlock& f = frameBlock();
+  std::memset(&f, 0, sizeof(f));
+  fillFrameBasics(f);
+  const std::uint64_t chunkTargets = static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
+  f.dims = glm::uvec4(shape.width, shape.height, settings.spp, static_cast<std::uint32_t>(chunkTargets));
+  f.views = glm::uvec4(viewCount, viewFirst, static_cast<std::uint32_t>(settings.filter), 0u);
+  f.scene = glm::uvec4(scene.lightCount(), scene.textureCount(), gpu_shared::HT_TRAVERSAL_STEP_LIMIT, settings.maxDepth);
+  f.frame = glm::uvec4(settings.seed, 0u, 0u, 0u);
+  f.background = glm::vec4(scene.background(), 0.0f);
+  f.ambient = glm::vec4(scene.ambient(), 0.0f);
+  std::visit([&f](const auto& p) {
+    using T = std::decay_t<decltype(p)>;
+    if constexpr (std::is_same_v<T, gpu_shared::LenticularParams>) f.lenticular = p;
+    else if constexpr (std::is_same_v<T, gpu_shared::PinholeParams>) f.pinhole = p;
+    else if constexpr (std::is_same_v<T, gpu_shared::QuiltParams>) f.quilt = p;
+    else if constexpr (std::is_same_v<T, gpu_shared::ProjectorArrayParams>) f.projectors = p;
+    else if constexpr (std::is_same_v<T, gpu_shared::IntegralParams>) f.integral = p;
+    else f.captureGrid = p;
+  }, camera);
+}
+
+RenderResult Renderer::Impl::render(const RenderSettings& settings) {
+  auto t0 = std::chrono::steady_clock::now();
+  checkSettings(settings);
+  const FrameShape shape = frameShape(camera);
+  checkShape(shape, settings.spp);
+  RenderResult result;
+  result.width = shape.width;
+  result.height = shape.height;
+  result.views = shape.views;
+  const std::uint64_t viewPixels = static_cast<std::uint64_t>(shape.width) * shape.height;
+  result.rgba.resize(static_cast<size_t>(viewPixels * shape.views * 4));
+  const auto chunkViews = static_cast<std::uint32_t>(std::clamp<std::uint64_t>(kMaxChunkPixels / viewPixels, 1, shape.views));
+  std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};
+  double readbackMs = 0.0;
+  for (std::uint32_t first = 0; first < shape.views; first += chunkViews) {
+    const std::uint32_t count = std::min(chunkViews, shape.views - first);
+    RenderSettings chunkSettings = settings;
+    if (settings.progress) {
+      chunkSettings.progress = [&settings, first, count, views = shape.views](double done) {
+        settings.progress((first + done * count) / views);
+      };
+    }
+    renderChunk(shape, first, count, chunkSettings, stageMs, result);
+    auto tRead = std::chrono::steady_clock::now();
+    outputs.image.download(result.rgba.data() + viewPixels * first * 4, viewPixels * count * 16);
+    readbackMs += msSince(tRead);
+  }
+  const bool lights = scene.lightCount() > 0 && (scene.features().lights || settings.forceAllFeatures);
+  for (size_t s = 0; s < stageMs.size(); ++s) {
+    auto stage = static_cast<Stage>(s);
+    if (stage == Stage::Shadow && !lights) continue;
+    result.stages.push_back({stageName(stage), stageMs[s]});
+  }
+  result.stages.push_back({"readback", readbackMs});
+  result.totalMs = msSince(t0);
+  return result;
+}
+
+void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
+                                 const RenderSettings& settings,
+                                 std::array<double, static_cast<size_t>(Stage::Count)>& stageMs, RenderResult& result) {
+  const std::uint64_t targets = static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
   const std::uint64_t totalPaths = targets * settings.spp;
-  if (totalPaths >= (1ull << 32)) {
-    throw GpuError("panel of " + std::to_string(targets) + " subpixels x spp " + std::to_string(settings.spp) +
-                   " exceeds 2^32 rays per frame: lower --spp to at most " + std::to_string(((1ull << 32) - 1) / targets));
-  }
   const SceneFeatures& feat = scene.features();
   const bool all = settings.forceAllFeatures;
   const bool lights = scene.lightCount() > 0 && (feat.lights || all);
@@ -263,33 +404,21 @@ RenderResult Renderer::Impl::renderFrame(std::uint32_t model, std::uint32_t widt
   perBatch = std::max<std::uint64_t>(settings.spp, perBatch / settings.spp * settings.spp);
   perBatch = std::min(perBatch, totalPaths);
   work.ensure(vk, static_cast<std::uint32_t>(perBatch), scene.lightCount());
-
-  outputs.ensure(vk, width, height);
-
-  FrameBlock& f = frameBlock();
-  std::memset(&f, 0, sizeof(f));
-  fillFrameBasics(f);
+  outputs.ensure(vk, shape.width, shape.height * viewCount);
   bindState();
-  f.dims = glm::uvec4(width, height, settings.spp, static_cast<std::uint32_t>(targets));
-  f.scene = glm::uvec4(scene.lightCount(), scene.textureCount(), gpu_shared::HT_TRAVERSAL_STEP_LIMIT, settings.maxDepth);
-  f.frame = glm::uvec4(settings.seed, 0u, 0u, 0u);
-  f.background = glm::vec4(scene.background(), 0.0f);
-  f.ambient = glm::vec4(scene.ambient(), 0.0f);
-  if (model == gpu_shared::HT_MODEL_LENTICULAR) f.lenticular = lenticular;
-  else f.pinhole = pinhole;
+  fillFrame(shape, viewFirst, viewCount, settings);
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));
 
-  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, {model});
+  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, {shape.model});
   const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest, traceSpec({}));
   const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
   const ComputePipeline& shade = pipeline(ShaderId::Shade, {lights, mirror, glass, textures});
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
   const ComputePipeline& gather = pipeline(ShaderId::GatherDirect);
-  const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {model});
+  const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {shape.model});
   const ComputePipeline& interleave = pipeline(ShaderId::Interleave);
 
-  std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};
   const VkBuffer args = counters.handle();
   bool first = true;
   for (std::uint64_t begin = 0; begin < totalPaths; begin += perBatch) {
@@ -332,29 +461,46 @@ RenderResult Renderer::Impl::renderFrame(std::uint32_t model, std::uint32_t widt
   }
   beginCommands();
   PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
-  rec.dispatch(interleave, passConstants(0, 0, 0, 0), groupsFor(static_cast<std::uint64_t>(width) * height), Stage::Interleave);
+  rec.dispatch(interleave, passConstants(0, 0, 0, 0), groupsFor(static_cast<std::uint64_t>(shape.width) * shape.height * viewCount),
+               Stage::Interleave);
   submitAndWait();
   rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
-
-  RenderResult result;
-  result.width = width;
-  result.height = height;
-  auto tRead = std::chrono::steady_clock::now();
-  result.rgba.resize(static_cast<size_t>(width) * height * 4);
-  outputs.image.download(result.rgba.data(), result.rgba.size() * sizeof(float));
-  double readbackMs = msSince(tRead);
-  for (size_t s = 0; s < stageMs.size(); ++s) {
-    auto stage = static_cast<Stage>(s);
-    if (stage == Stage::Shadow && !lights) continue;
-    result.stages.push_back({stageName(stage), stageMs[s]});
-  }
-  result.stages.push_back({"readback", readbackMs});
   const GpuCounters& c = counterBlock();
-  result.raysTraced = c.raysTraced;
-  result.maxTraversalSteps = c.maxSteps;
-  result.nonFiniteSamples = c.nanCount;
-  result.totalMs = msSince(t0);
-  return result;
+  result.raysTraced += c.raysTraced;
+  result.maxTraversalSteps = std::max(result.maxTraversalSteps, c.maxSteps);
+  result.nonFiniteSamples += c.nanCount;
+}
+
+std::vector<gpu_shared::HtRay> Renderer::Impl::generateRays(const RenderSettings& settings, std::uint64_t firstTarget,
+                                                           std::uint32_t targetCount, TraceStats* stats) {
+  checkSettings(settings);
+  const FrameShape shape = frameShape(camera);
+  checkShape(shape, settings.spp);
+  if (firstTarget + targetCount > shape.targets()) {
+    throw GpuError("targets [" + std::to_string(firstTarget) + ", " + std::to_string(firstTarget + targetCount) +
+                   ") outside the camera's " + std::to_string(shape.targets()));
+  }
+  const std::uint64_t totalPaths = static_cast<std::uint64_t>(targetCount) * settings.spp;
+  std::vector<gpu_shared::HtRay> rays(totalPaths);
+  const std::uint64_t perBatch = std::max<std::uint64_t>(settings.spp, kMaxPathsPerBatch / settings.spp * settings.spp);
+  work.ensure(vk, static_cast<std::uint32_t>(std::min(perBatch, std::max<std::uint64_t>(totalPaths, 1))), 1);
+  if (outputs.generation == 0) outputs.ensure(vk, 1, 1);  // raygen writes no outputs; the views need a buffer
+  bindState();
+  fillFrame(shape, 0, shape.views, settings);
+  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, {shape.model});
+  std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};
+  for (std::uint64_t begin = 0; begin < totalPaths; begin += perBatch) {
+    const auto count = static_cast<std::uint32_t>(std::min(perBatch, totalPaths - begin));
+    const auto batchFirst = static_cast<std::uint32_t>(firstTarget * settings.spp + begin);
+    beginCommands();
+    PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+    rec.dispatch(raygen, passConstants(batchFirst, count, 0, 0), groupsFor(count), Stage::Raygen);
+    submitAndWait();
+    rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+    work.rays[0].download(rays.data() + begin, count * sizeof(gpu_shared::HtRay));
+  }
+  if (stats) stats->gpuMs = stageMs[static_cast<size_t>(Stage::Raygen)];
+  return rays;
 }
 
 std::vector<gpu_shared::HtHit> Renderer::Impl::traceBatch(std::span<const gpu_shared::HtRay> rays, bool occlusion,
@@ -401,16 +547,28 @@ Renderer::~Renderer() = default;
 const bvh::BuildReport& Renderer::bvhReport() const { return impl_->scene.bvhReport(); }
 const SceneFeatures& Renderer::features() const { return impl_->scene.features(); }
 
+RenderResult Renderer::render(const FrameCamera& camera, const RenderSettings& settings) {
+  impl_->camera = camera;
+  return impl_->render(settings);
+}
+
 RenderResult Renderer::renderLenticular(const gpu_shared::LenticularParams& params, const RenderSettings& settings) {
-  impl_->lenticular = params;
-  const auto w = static_cast<std::uint32_t>(params.panel.x), h = static_cast<std::uint32_t>(params.panel.y);
-  return impl_->renderFrame(gpu_shared::HT_MODEL_LENTICULAR, w, h, settings);
+  return render(params, settings);
 }
 
 RenderResult Renderer::renderPinhole(const gpu_shared::PinholeParams& params, const RenderSettings& settings) {
-  impl_->pinhole = params;
-  const auto w = static_cast<std::uint32_t>(params.lens.z), h = static_cast<std::uint32_t>(params.lens.w);
-  return impl_->renderFrame(gpu_shared::HT_MODEL_PINHOLE, w, h, settings);
+  return render(params, settings);
+}
+
+RenderResult Renderer::renderQuilt(const gpu_shared::QuiltParams& params, const RenderSettings& settings) {
+  return render(params, settings);
+}
+
+std::vector<gpu_shared::HtRay> Renderer::generateRays(const FrameCamera& camera, const RenderSettings& settings,
+                                                      std::uint64_t firstTarget, std::uint32_t targetCount,
+                                                      TraceStats* stats) {
+  impl_->camera = camera;
+  return impl_->generateRays(settings, firstTarget, targetCount, stats);
 }
 
 std::vector<gpu_shared::HtHit> Renderer::traceClosest(std::span<const gpu_shared::HtRay> rays, TraceStats* stats) {

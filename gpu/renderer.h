@@ -5,19 +5,43 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "bvh/bvh_builder.h"
 #include "bvh/ray_types.h"
 #include "camera_models/camera_params.h"
+#include "camera_models/capture_grid_params.h"
+#include "camera_models/integral_params.h"
+#include "camera_models/projector_params.h"
+#include "camera_models/quilt_params.h"
 #include "scene/scene.h"
 
 namespace ht::gpu {
 
 class VulkanContext;
 
+// Reconstruction filter over each pixel / subpixel footprint, applied by warping the samples
+// (camera_models/footprint_sampling.h).
+enum class SampleFilter : std::uint32_t { Box = 0, Tent = 1, Gaussian = 2 };
+
+// The camera of a frame. The alternative selects the ray-generation model (specialisation constant of raygen).
+using FrameCamera = std::variant<gpu_shared::LenticularParams, gpu_shared::PinholeParams, gpu_shared::QuiltParams,
+                                 gpu_shared::ProjectorArrayParams, gpu_shared::IntegralParams,
+                                 gpu_shared::CaptureGridParams>;
+
+// What a camera renders: `views` images of width x height pixels; subpixel models trace 3 targets per pixel.
+struct FrameShape {
+  std::uint32_t model = 0;  // gpu_shared::HT_MODEL_*
+  std::uint32_t width = 0, height = 0, views = 1;
+  std::uint32_t targetsPerPixel = 1;
+  std::uint64_t targets() const { return static_cast<std::uint64_t>(width) * height * views * targetsPerPixel; }
+};
+FrameShape frameShape(const FrameCamera& camera);
+
 struct RenderSettings {
-  std::uint32_t spp = 4;          // samples per subpixel (lenticular) or pixel (pinhole)
+  std::uint32_t spp = 4;          // samples per target (subpixel or pixel)
+  SampleFilter filter = SampleFilter::Box;
   std::uint32_t maxDepth = 4;     // specular bounces (mirror/glass) after the primary hit
   bool forceAllFeatures = false;  // disable scene specialisation (benchmark of the skipping)
   std::uint32_t seed = 0;         // decorrelates sample patterns; same seed -> bit-identical frame
@@ -30,8 +54,9 @@ struct StageTiming {
 };
 
 struct RenderResult {
-  std::uint32_t width = 0, height = 0;
-  std::vector<float> rgba;            // linear RGBA float, row 0 = image TOP, 4 floats per pixel
+  std::uint32_t width = 0, height = 0;  // of one view
+  std::uint32_t views = 1;
+  std::vector<float> rgba;            // linear RGBA float, view after view, row 0 = the view's TOP, 4 floats per pixel
   std::vector<StageTiming> stages;
   double totalMs = 0.0;               // host wall time of the frame
   std::uint64_t raysTraced = 0;       // closest-hit + any-hit rays
@@ -54,10 +79,21 @@ class Renderer {
   const bvh::BuildReport& bvhReport() const;
   const SceneFeatures& features() const;
 
+  // Every view of the camera. Large view arrays are rendered in chunks of views (bounded device memory).
+  RenderResult render(const FrameCamera& camera, const RenderSettings& settings);
   // Native interleaved panel image (screenW x screenH), each subpixel traced with its own rays.
   RenderResult renderLenticular(const gpu_shared::LenticularParams& params, const RenderSettings& settings);
   // Ordinary RGB image through a pinhole camera.
   RenderResult renderPinhole(const gpu_shared::PinholeParams& params, const RenderSettings& settings);
+  // The N quilt views (tile size each), view 0 = leftmost camera.
+  RenderResult renderQuilt(const gpu_shared::QuiltParams& params, const RenderSettings& settings);
+
+  // The primary rays raygen writes for targets [firstTarget, firstTarget + targetCount), settings.spp samples each
+  // (sample s of target t at index (t - firstTarget)*spp + s), read back without tracing them: the GPU side of
+  // the float-vs-double ray tests, `holotrace rays`, and the ray-generation benchmark (stats->gpuMs = raygen time).
+  std::vector<gpu_shared::HtRay> generateRays(const FrameCamera& camera, const RenderSettings& settings,
+                                              std::uint64_t firstTarget, std::uint32_t targetCount,
+                                              TraceStats* stats = nullptr);
 
   // Closest-hit / any-hit for a user batch (parity tests, `raycast`). Throws GpuError if a ray exceeded the
   // traversal step limit (the lavapipe loop cap), naming how many rays did.

@@ -11,6 +11,10 @@
 #define HT_WAVEFRONT_TYPES_H
 #include "common/glsl_cpp.h"
 #include "camera_models/camera_params.h"
+#include "camera_models/capture_grid_params.h"
+#include "camera_models/integral_params.h"
+#include "camera_models/projector_params.h"
+#include "camera_models/quilt_params.h"
 
 HT_SHARED_BEGIN
 
@@ -29,9 +33,19 @@ HT_CONST uint HT_LIGHT_POINT = 0u;
 HT_CONST uint HT_LIGHT_SPOT = 1u;
 HT_CONST uint HT_LIGHT_DIRECTIONAL = 2u;
 
-// Camera model selected by the raygen specialisation constant.
+// Camera model selected by the raygen specialisation constant. Subpixel models (lenticular, integral) trace each
+// R, G, B subpixel with its own rays and keep one channel per target; the others trace RGB pixels of `views` images.
 HT_CONST uint HT_MODEL_LENTICULAR = 0u;
 HT_CONST uint HT_MODEL_PINHOLE = 1u;
+HT_CONST uint HT_MODEL_QUILT = 2u;
+HT_CONST uint HT_MODEL_PROJECTOR_ARRAY = 3u;
+HT_CONST uint HT_MODEL_INTEGRAL = 4u;
+HT_CONST uint HT_MODEL_CAPTURE_GRID = 5u;
+HT_CONST uint HT_MODEL_COUNT = 6u;
+
+HT_INLINE bool ht_model_has_subpixel_targets(uint model) {
+  return model == HT_MODEL_LENTICULAR || model == HT_MODEL_INTEGRAL;
+}
 
 struct GpuMaterial {
   vec4 baseColor;  // rgb linear; w = texture index (as float, -1 = none)
@@ -68,7 +82,8 @@ struct GpuCounters {
 struct FrameBlock {
   uint64_t counters;       // GpuCounters (device address)
   uint64_t pad0;
-  uvec4 dims;              // x = image width, y = image height, z = spp, w = number of targets
+  uvec4 dims;              // x = image width, y = image height (one view), z = spp, w = number of targets
+  uvec4 views;             // x = views in this frame, y = index of its first view, z = filter (HT_FILTER_*), w unused
   uvec4 scene;             // x = light count, y = texture count, z = step limit, w = max depth
   uvec4 frame;             // x = seed; yzw unused (per-dispatch values travel in PassConstants)
   uvec4 flags;             // x = scene has vertex normals, y = scene has texcoords
@@ -76,6 +91,10 @@ struct FrameBlock {
   vec4 ambient;            // rgb ambient irradiance on diffuse surfaces
   LenticularParams lenticular;
   PinholeParams pinhole;
+  QuiltParams quilt;
+  IntegralParams integral;
+  CaptureGridParams captureGrid;
+  ProjectorArrayParams projectors;
 };
 
 // Descriptor set 0 (gpu/shaders/common.glsl, gpu/shaders/bvh_access.glsl).

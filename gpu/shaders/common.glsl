@@ -108,11 +108,5 @@ GpuLight scene_light(uint i) {
 GpuTexture scene_texture(uint i) { return GpuTexture(texelFetch(textureTexels, int(i))); }
 vec4 scene_texel(uint i) { return texelFetch(texelTexels, int(i)); }
 
-// Integer hash (PCG-style output permutation; Jarzynski & Olano, "Hash Functions for GPU Rendering", JCGT 2020).
-uint ht_hash(uint v) {
-  uint state = v * 747796405u + 2891336453u;
-  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-  return (word >> 22u) ^ word;
-}
-
-float ht_uint_to_unit(uint v) { return float(v >> 8) * (1.0f / 16777216.0f); }  // [0,1), 24 bits
+// ht_hash / ht_uint_to_unit (shared with the C++ tests that regenerate sample positions).
+#include "camera_models/footprint_sampling.h"

@@ -1,24 +1,24 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // raygen: one invocation per path (target x sample). Writes the primary ray of the path into ray queue 0
-// and initialises its radiance and throughput. Targets are subpixels (lenticular: target = 3*(y*W + x) + c)
-// or pixels (pinhole: target = y*W + x), y counted from the bottom (optics.md §0).
+// and initialises its radiance and throughput. Targets count pixels x, then rows y (from the bottom, optics.md §0),
+// then views; subpixel models (lenticular, integral) have 3 targets per pixel (target = 3*pixel + c).
+// The MODEL specialisation constant removes every other model's code.
 #include "gpu/shaders/common.glsl"
+#include "camera_models/footprint_sampling.h"
+#include "camera_models/capture_grid_model.h"
+#include "camera_models/integral_model.h"
 #include "camera_models/lenticular_model.h"
 #include "camera_models/pinhole_model.h"
+#include "camera_models/projector_model.h"
+#include "camera_models/quilt_model.h"
 
 layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
 
-// Sample s of the target's footprint. One sample: the footprint centre, i.e. exactly the vendor's sample point.
-// More: the R2 low-discrepancy sequence (Roberts 2018, generalised golden ratio g: g^3 = g + 1) with a
-// per-target Cranley-Patterson rotation, so neighbouring subpixels are decorrelated.
-vec2 footprint_sample(uint target, uint s, uint spp, uint seed) {
-  if (spp == 1u) return vec2(0.5f);
-  const float g = 1.32471795724474602596f;
-  const vec2 alpha = vec2(1.0f / g, 1.0f / (g * g));
-  uint h = ht_hash(target * 0x9E3779B9u ^ ht_hash(seed));
-  vec2 shift = vec2(ht_uint_to_unit(h), ht_uint_to_unit(ht_hash(h)));
-  return fract(shift + alpha * float(s));
+// Projector `view` assembled from single uniform members (projector_model.h ProjectorView: no 8 KiB copy).
+ProjectorView frame_projector(uint view) {
+  return ProjectorView(FRAME.projectors.observer, FRAME.projectors.scale, FRAME.projectors.localToWorld,
+                       FRAME.projectors.projector[view]);
 }
 
 void main() {
@@ -31,16 +31,38 @@ void main() {
   if (i >= pc.batchCount) return;
   uint spp = FRAME.dims.z;
   uint width = FRAME.dims.x;
+  uint height = FRAME.dims.y;
   uint path = pc.batchFirst + i;
   uint target = path / spp;
-  vec2 xi = footprint_sample(target, path % spp, spp, FRAME.frame.x);
+  uint s = path % spp;
+  uint perPixel = ht_model_has_subpixel_targets(MODEL) ? 3u : 1u;
+  uint pixel = target / perPixel;
+  uint c = target % perPixel;
+  uint x = pixel % width;
+  uint y = (pixel / width) % height;
+  uint view = FRAME.views.y + pixel / (width * height);
+  // Decorrelation uses the target's index over the whole frame (all views), not within this chunk of views.
+  uint globalTarget = target + FRAME.views.y * width * height * perPixel;
+  vec2 xi = footprint_sample(globalTarget, s, spp, FRAME.frame.x, FRAME.views.z);
   vec3 origin;
   vec3 dir;
   if (MODEL == HT_MODEL_LENTICULAR) {
-    uint pixel = target / 3u;
-    lenticular_ray(FRAME.lenticular, pixel % width, pixel / width, target % 3u, xi, origin, dir);
+    lenticular_ray(FRAME.lenticular, x, y, c, xi, origin, dir);
+  } else if (MODEL == HT_MODEL_PINHOLE) {
+    pinhole_ray(FRAME.pinhole, x, y, xi, origin, dir);
+  } else if (MODEL == HT_MODEL_QUILT) {
+    quilt_ray(FRAME.quilt, x, y, view, xi, origin, dir);
+  } else if (MODEL == HT_MODEL_PROJECTOR_ARRAY) {
+    if (spp > 1u && FRAME.projectors.observer.z > 0.0f) {
+      vec2 xiAngle = footprint_sample_angle(globalTarget, s, spp, FRAME.frame.x);
+      projector_view_scattered_ray(frame_projector(view), x, y, xi, xiAngle, origin, dir);
+    } else {
+      projector_view_ray(frame_projector(view), x, y, xi, origin, dir);
+    }
+  } else if (MODEL == HT_MODEL_INTEGRAL) {
+    integral_ray(FRAME.integral, x, y, c, xi, origin, dir);
   } else {
-    pinhole_ray(FRAME.pinhole, target % width, target / width, xi, origin, dir);
+    capture_grid_ray(FRAME.captureGrid, x, y, view, xi, origin, dir);
   }
   store_ray(0u, i, HtRay(origin, 0.0f, dir, 3.0e38f));
   store_queue_path(0u, i, i);

@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // resolve: box-filters the spp samples of each target of the batch into the subpixel buffer.
-// Lenticular targets keep their own channel only (a subpixel shows one primary); pinhole targets keep RGB.
+// Subpixel targets (lenticular, integral) keep their own channel only (a subpixel shows one primary); pixel
+// targets keep RGB.
 #include "gpu/shaders/common.glsl"
 
 layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
@@ -19,7 +20,7 @@ void main() {
     atomicAdd(COUNTERS.nanCount, 1u);
     value = vec3(0.0f);
   }
-  if (MODEL == HT_MODEL_LENTICULAR) {
+  if (ht_model_has_subpixel_targets(MODEL)) {
     uint c = target % 3u;
     imageStore(subpixelBuffer, int(target), vec4(c == 0u ? value.x : (c == 1u ? value.y : value.z)));
   } else {
