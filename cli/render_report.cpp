@@ -60,7 +60,9 @@ void printBvh(std::ostream& out, const bvh::BuildReport& r) {
 }
 
 void printFrame(std::ostream& out, const gpu::RenderResult& result) {
-  out << "frame: " << result.width << "x" << result.height << "\n";
+  out << "frame: " << result.width << "x" << result.height;
+  if (result.views > 1) out << " x " << result.views << " views";
+  out << "\n";
   double stageSum = 0.0;
   for (const auto& stage : result.stages) {
     out << label(stage.name) << fixed(stage.ms, 2) << " ms\n";

@@ -22,6 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using test::ProcessResult;
 using test::runProcess;
 
@@ -139,6 +140,114 @@ TEST(CliEndToEnd, BadDeviceIndexExitsOne) {
   const ProcessResult r = holotrace({"info", "--device", "99"});
   EXPECT_EQ(r.exitCode, 1) << r.out;
   EXPECT_THAT(r.err, HasSubstr("99"));
+}
+
+// Writes a display config into `dir` and returns its path.
+fs::path writeConfig(const test::TempDirectory& dir, const std::string& name, const std::string& json) {
+  const fs::path path = dir.path() / (name + ".json");
+  std::ofstream(path) << json;
+  return path;
+}
+
+TEST(CliEndToEnd, CaptureGridWritesATaggedQuiltWithMetadataAndAMultiViewExr) {
+  test::TempDirectory dir;
+  const fs::path config = writeConfig(dir, "rig", R"({"name": "rig", "model": "capture-grid", "spp": 1,
+      "captureGrid": {"columns": 4, "rows": 2, "spacing": [0.1, 0.1], "distance": 3, "window": {"width": 2.4,
+      "height": 1.8}, "image": {"width": 32, "height": 24}}})");
+  const ProcessResult r = holotrace({"render", "--display", config.string(), "--scene", "builtin:sphere", "-o",
+                                     (dir.path() / "cap.png").string(), "--exr", (dir.path() / "cap.exr").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_THAT(r.out, HasSubstr("8 views of 32x24"));
+  EXPECT_THAT(dir.entries(), ElementsAre("cap.exr", "cap_qs4x2a1.3333333333333333.json", "cap_qs4x2a1.3333333333333333.png",
+                                         "rig.json"));
+  const ImageSize quilt = inspect(dir.path() / "cap_qs4x2a1.3333333333333333.png");
+  EXPECT_EQ(quilt.width, 128);
+  EXPECT_EQ(quilt.height, 48);
+  EXPECT_GE(quilt.distinctPixels, 2u);  // the unlit sphere (ambient only) and the background
+  auto exr = OIIO::ImageInput::open((dir.path() / "cap.exr").string());
+  ASSERT_TRUE(exr);
+  EXPECT_EQ(exr->spec().nchannels, 32);
+  EXPECT_NE(exr->spec().find_attribute("multiView"), nullptr);
+}
+
+TEST(CliEndToEnd, ProjectorArrayWritesOneImagePerProjector) {
+  test::TempDirectory dir;
+  const fs::path config = writeConfig(dir, "wall", R"({"name": "wall", "model": "projector-array", "spp": 2,
+      "projectorArray": {"screen": {"width": 160, "height": 90}, "observerDistance": 300, "observerHeight": 0,
+      "angularScattering": "auto", "image": {"width": 40, "height": 20},
+      "projectors": [{"position": [-10, 0, -180]}, {"position": [0, 0, -180]}, {"position": [10, 0, -180]}]}})");
+  const ProcessResult r = holotrace({"render", "--display", config.string(), "--scene", "builtin:sphere", "-o",
+                                     (dir.path() / "p.png").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_THAT(r.out, HasSubstr("3 views of 40x20"));
+  EXPECT_THAT(dir.entries(), ElementsAre("p_v00.png", "p_v01.png", "p_v02.png", "wall.json"));
+  EXPECT_EQ(inspect(dir.path() / "p_v01.png").width, 40);
+}
+
+TEST(CliEndToEnd, IntegralPanelRendersItsLcdImage) {
+  test::TempDirectory dir;
+  const fs::path config = writeConfig(dir, "lenslets", R"({"name": "lenslets", "model": "integral", "spp": 1,
+      "integral": {"panelWidth": 96, "panelHeight": 64, "pixelPitch": 0.1, "lensPitch": 1.0, "gap": 3.0,
+      "focalLength": 3.0, "viewerDistance": 600, "frontPlane": 600}})");
+  const ProcessResult r = holotrace({"render", "--display", config.string(), "--scene", "builtin:sphere", "-o",
+                                     (dir.path() / "lcd.png").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_THAT(r.out, HasSubstr("1 view of 96x64, 18432 targets"));  // 3 subpixel targets per pixel
+  const ImageSize lcd = inspect(dir.path() / "lcd.png");
+  EXPECT_EQ(lcd.width, 96);
+  EXPECT_EQ(lcd.height, 64);
+}
+
+TEST(CliEndToEnd, QuiltPathRendersThePortraitQuiltAtItsDefaultSize) {
+  test::TempDirectory dir;
+  const ProcessResult r = holotrace({"render", "--quilt", "--scene", "builtin:sphere", "--spp", "1", "--depth", "0",
+                                     "-o", (dir.path() / "q.png").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_THAT(r.out, HasSubstr("48 views of 420x560"));
+  const ImageSize quilt = inspect(dir.path() / "q_qs8x6a0.75.png");
+  EXPECT_EQ(quilt.width, 3360);
+  EXPECT_EQ(quilt.height, 3360);
+}
+
+TEST(CliEndToEnd, QuiltPathOfANonLenticularDisplayIsAConfigError) {
+  test::TempDirectory dir;
+  const ProcessResult r = holotrace({"render", "--quilt", "--display", "builtin:capture-8x6", "--out-dir",
+                                     dir.path().string()});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_THAT(r.err, HasSubstr("capture-grid"));
+  EXPECT_THAT(r.err, HasSubstr("--quilt"));
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+// --debug views: channel c of pixel (x, y) = the view phase of subpixel (x, y, c), from the shared model code.
+TEST(CliEndToEnd, DebugViewsWritesTheSubpixelViewPhasesWithoutTracing) {
+  test::TempDirectory dir;
+  const fs::path exr = dir.path() / "phase.exr";
+  const ProcessResult r = holotrace({"render", "--debug", "views", "--exr", exr.string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_THAT(r.out, Not(HasSubstr("device:")));
+  auto in = OIIO::ImageInput::open(exr.string());
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec spec = in->spec();
+  ASSERT_EQ(spec.width, 1536);
+  std::vector<float> pixels(std::size_t(spec.width) * spec.height * 4);
+  ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pixels.data()));
+  // Independent check of the classic phase formula (optics.md §3.1) at a few subpixels, half-float precision.
+  const DisplayConfig display = builtinDisplay("portrait");
+  const LenticularShaderValues v = lenticularShaderValues(*display.calibration);
+  for (std::uint32_t x : {0u, 700u, 1535u}) {
+    for (std::uint32_t y : {0u, 1000u, 2047u}) {
+      for (int c = 0; c < 3; ++c) {
+        const double u = (x + 0.5) / 1536.0, vv = (y + 0.5) / 2048.0;
+        const double phi = (u + c * v.subp + vv * v.tilt) * v.pitch - v.center;
+        double t = phi - std::floor(phi);
+        if (display.calibration->invView) t = 1.0 - t;
+        const float got = pixels[((2047 - y) * std::size_t(1536) + x) * 4 + c];
+        const double d = std::fabs(got - t);
+        EXPECT_LT(std::min(d, 1.0 - d), 2e-3) << x << "," << y << "," << c;
+      }
+    }
+  }
 }
 
 }  // namespace
