@@ -20,6 +20,8 @@ std::string_view displayModelName(DisplayModel model) {
     case DisplayModel::ProjectorArray: return "projector-array";
     case DisplayModel::Integral: return "integral";
     case DisplayModel::CaptureGrid: return "capture-grid";
+    case DisplayModel::Oblique: return "oblique";
+    case DisplayModel::RayTable: return "ray-table";
     case DisplayModel::Lenticular: break;
   }
   return "lenticular";
@@ -110,9 +112,11 @@ DisplayModel readModel(const JsonLocation& at, const json& root) {
   if (field->is_string() && field->get<std::string>() == "projector-array") return DisplayModel::ProjectorArray;
   if (field->is_string() && field->get<std::string>() == "integral") return DisplayModel::Integral;
   if (field->is_string() && field->get<std::string>() == "capture-grid") return DisplayModel::CaptureGrid;
+  if (field->is_string() && field->get<std::string>() == "oblique") return DisplayModel::Oblique;
+  if (field->is_string() && field->get<std::string>() == "ray-table") return DisplayModel::RayTable;
   detail::throwFieldError(at, "model", field,
-                          "expected \"projector-array\", \"integral\", \"capture-grid\", \"lenticular\" or "
-                          "\"pinhole\"");
+                          "expected \"projector-array\", \"integral\", \"capture-grid\", \"oblique\", "
+                          "\"ray-table\", \"lenticular\" or \"pinhole\"");
 }
 
 // "calibration": an embedded visual.json object, or a path to one relative to the config file.
@@ -151,6 +155,27 @@ void validateCombination(const JsonLocation& at, const json& root, const Display
     detail::throwFieldError(at, "captureGrid", detail::findField(root, "captureGrid"),
                             captureModel ? "expected a captureGrid section (required for model \"capture-grid\")"
                                          : "expected no captureGrid section unless model is \"capture-grid\"");
+  const bool obliqueModel = config.model == DisplayModel::Oblique;
+  if (obliqueModel != config.oblique.has_value())
+    detail::throwFieldError(at, "oblique", detail::findField(root, "oblique"),
+                            obliqueModel ? "expected an oblique section (required for model \"oblique\")"
+                                         : "expected no oblique section unless model is \"oblique\"");
+  const bool rayTableModel = config.model == DisplayModel::RayTable;
+  if (rayTableModel != config.rayTable.has_value())
+    detail::throwFieldError(at, "rayTable", detail::findField(root, "rayTable"),
+                            rayTableModel ? "expected a rayTable section (required for model \"ray-table\")"
+                                          : "expected no rayTable section unless model is \"ray-table\"");
+  // One size source each: an explicit oblique window replaces camera.size; a ray table is sized by rayTable.units.
+  const json* cameraSection = detail::findField(root, "camera");
+  const json* cameraSize = cameraSection ? detail::findField(*cameraSection, "size") : nullptr;
+  if (config.camera.size && config.oblique && config.oblique->windowWidth)
+    detail::throwFieldError(at.child("camera"), "size", cameraSize,
+                            "expected camera.size \"auto\" or absent when oblique.window is given (one of the two "
+                            "sets the window size)");
+  if (config.camera.size && rayTableModel)
+    detail::throwFieldError(at.child("camera"), "size", cameraSize,
+                            "expected camera.size \"auto\" or absent for model \"ray-table\" (the table is scaled "
+                            "by rayTable.units)");
   if (config.calibration && config.calibration->viewCone * config.camera.depthiness >= 180.0) {
     const json* camera = detail::findField(root, "camera");
     detail::throwFieldError(at.child("camera"), "depthiness",
@@ -173,7 +198,7 @@ DisplayConfig fromVisualJson(const json& root, const std::string& sourceName) {
 DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, const std::filesystem::path& baseDir) {
   const JsonLocation at{sourceName, ""};
   detail::rejectUnknownKeys(at, root, {"name", "description", "model", "calibration", "camera", "spp", "pinhole",
-                              "projectorArray", "integral", "captureGrid"});
+                              "projectorArray", "integral", "captureGrid", "oblique", "rayTable"});
   DisplayConfig config;
   config.sourcePath = sourceName;
   config.name = detail::optionalString(at, root, "name").value_or(std::filesystem::path(sourceName).stem().string());
@@ -194,6 +219,10 @@ DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, con
     config.integral = parseIntegral(at.child("integral"), requireObject(at, root, "integral"));
   if (detail::findField(root, "captureGrid") != nullptr)
     config.captureGrid = parseCaptureGrid(at.child("captureGrid"), requireObject(at, root, "captureGrid"));
+  if (detail::findField(root, "oblique") != nullptr)
+    config.oblique = parseOblique(at.child("oblique"), requireObject(at, root, "oblique"));
+  if (detail::findField(root, "rayTable") != nullptr)
+    config.rayTable = parseRayTable(at.child("rayTable"), requireObject(at, root, "rayTable"), baseDir);
   validateCombination(at, root, config);
   return config;
 }

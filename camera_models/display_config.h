@@ -17,12 +17,14 @@
 #include "camera_models/capture_grid_config.h"
 #include "camera_models/integral_config.h"
 #include "camera_models/looking_glass_calibration.h"
+#include "camera_models/oblique_config.h"
 #include "camera_models/projector_array_config.h"
+#include "camera_models/ray_table_config.h"
 
 namespace ht {
 
-enum class DisplayModel { Lenticular, Pinhole, ProjectorArray, Integral, CaptureGrid };
-// "lenticular" | "pinhole" | "projector-array" | "integral" | "capture-grid"
+enum class DisplayModel { Lenticular, Pinhole, ProjectorArray, Integral, CaptureGrid, Oblique, RayTable };
+// "lenticular" | "pinhole" | "projector-array" | "integral" | "capture-grid" | "oblique" | "ray-table"
 std::string_view displayModelName(DisplayModel model);
 
 // Where the display's focal rectangle sits in the scene (looking-glass-webxr camera, optics.md §4.3).
@@ -55,6 +57,8 @@ struct DisplayConfig {
   std::optional<ProjectorArrayConfig> projectorArray;  // required for (and only for) model "projector-array"
   std::optional<IntegralConfig> integral;              // required for (and only for) model "integral"
   std::optional<CaptureGridConfig> captureGrid;        // required for (and only for) model "capture-grid"
+  std::optional<ObliqueConfig> oblique;                // required for (and only for) model "oblique"
+  std::optional<RayTableConfig> rayTable;              // required for (and only for) model "ray-table"
 };
 
 // Reads our format or a raw visual.json from disk. Throws ConfigError.

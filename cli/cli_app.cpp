@@ -13,6 +13,7 @@
 #include "cli/command.h"
 #include "cli/info_command.h"
 #include "cli/raycast_command.h"
+#include "cli/rays_command.h"
 #include "cli/render_command.h"
 #include "common/error.h"
 
@@ -27,6 +28,7 @@ constexpr std::array kCommands = {
     Command{"render", "render a display frame (native interleaved panel image) to PNG/EXR", renderHelp, runRender},
     Command{"info", "list Vulkan devices, the one holotrace picks, builtin displays and scenes", infoHelp, runInfo},
     Command{"raycast", "trace a ray batch file against a scene, write the hits (binary or CSV)", raycastHelp, runRaycast},
+    Command{"rays", "write a display's per-(sub)pixel primary rays (+ view phase) as an EXR ray table", raysHelp, runRays},
 #ifdef HT_WITH_CLIENT
     Command{"client", "talk to a running holotraced: displays|load|render|stream|capture", clientHelp, runClient},
 #endif

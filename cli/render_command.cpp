@@ -15,6 +15,7 @@
 #include "cli/cli_app.h"
 #include "cli/frame_outputs.h"
 #include "cli/output_paths.h"
+#include "cli/ray_table_exr.h"
 #include "cli/render_report.h"
 #include "cli/view_phase_debug.h"
 #include "common/error.h"
@@ -117,7 +118,9 @@ int runRender(std::span<const std::string> args, std::ostream& out) {
   const auto loadStart = Clock::now();
   const Scene scene = loadScene(options.sceneSpec);
   const double loadMs = msSince(loadStart);
-  const gpu::DisplayCamera camera = makeDisplayCamera(display, scene.bounds(), options.cameraPath);
+  std::shared_ptr<const RayTable> rayTable;
+  if (display.model == DisplayModel::RayTable) rayTable = std::make_shared<RayTable>(loadDisplayRayTable(display));
+  const gpu::DisplayCamera camera = makeDisplayCamera(display, scene.bounds(), options.cameraPath, rayTable);
 
   gpu::VulkanContext context({options.deviceIndex, options.validation});
   printDevice(out, context.device());

@@ -2,6 +2,7 @@
 // panel, projector images, LCD image, capture views), or for a lenticular display its quilt cameras (the vendor
 // path, kept for comparison and for quilt capture).
 #pragma once
+#include <memory>
 #include <optional>
 
 #include "camera_models/display_config.h"
@@ -24,8 +25,10 @@ struct DisplayCamera {
   std::optional<QuiltLayout> quilt;
 };
 
-// Throws ConfigError when `path` is Quilt and the display is not lenticular.
+// Throws ConfigError when `path` is Quilt and the display is not lenticular, or when a ray-table display comes
+// without its table (the caller reads the file named by config.rayTable: cli/ray_table_exr.h).
 DisplayCamera makeDisplayCamera(const DisplayConfig& config, const Bounds3& sceneBounds,
-                                CameraPath path = CameraPath::Native);
+                                CameraPath path = CameraPath::Native,
+                                std::shared_ptr<const RayTable> rayTable = nullptr);
 
 }  // namespace ht::gpu

@@ -68,8 +68,8 @@ bool FrameDescriptors::setView(std::uint32_t binding, const DeviceBuffer& buffer
   return whole <= maxBytes;
 }
 
-bool FrameDescriptors::setUniformTexels(std::uint32_t binding, const DeviceBuffer& buffer, VkFormat format) {
-  return setView(binding, buffer, format, false);
+bool FrameDescriptors::setUniformTexels(std::uint32_t binding, const DeviceBuffer& buffer, VkFormat format, bool fresh) {
+  return setView(binding, buffer, format, fresh);
 }
 
 void FrameDescriptors::setStorageTexels(std::uint32_t binding, const DeviceBuffer& buffer, VkFormat format, bool fresh) {

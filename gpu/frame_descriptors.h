@@ -19,8 +19,8 @@ class FrameDescriptors {
   FrameDescriptors& operator=(const FrameDescriptors&) = delete;
 
   // Read-only view (uniform texel buffer). Views are clamped to maxTexelBufferElements; returns whether the
-  // whole buffer is covered (callers that cannot fall back treat false as an error).
-  bool setUniformTexels(std::uint32_t binding, const DeviceBuffer& buffer, VkFormat format);
+  // whole buffer is covered (callers that cannot fall back treat false as an error). `fresh` as below.
+  bool setUniformTexels(std::uint32_t binding, const DeviceBuffer& buffer, VkFormat format, bool fresh = false);
   // Read-write view (storage texel buffer); throws GpuError if the buffer exceeds maxTexelBufferElements.
   // `fresh`: the buffer is new even if its handle equals the previous one's (drivers reuse handles of
   // destroyed buffers), so the view must be rebuilt.

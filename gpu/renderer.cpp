@@ -117,6 +117,8 @@ struct Renderer::Impl {
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
   FrameCamera camera;
+  DeviceBuffer rayTableTexels;                     // the current ray table (2 texels per entry) or a 1-entry dummy
+  std::shared_ptr<const RayTable> boundRayTable;   // which table rayTableTexels holds
 
   Impl(VulkanContext::Impl& v, const Scene& s, const bvh::BuildOptions& o)
       : vk(v), scene(v, s, o), layout(v), descriptors(v, layout.setLayout()), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
@@ -133,6 +135,7 @@ struct Renderer::Impl {
     VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     HT_VK(vkCreateFence(vk.device, &fci, nullptr, &fence));
     bindScene();
+    bindRayTable();
   }
 
   ~Impl() {
@@ -155,6 +158,29 @@ struct Renderer::Impl {
     own.resize(10, 0u);
     own.push_back(bvhTexelsCover ? 1u : 0u);
     return own;
+  }
+
+  // Binding HT_BINDING_RAY_TABLE: the ray-table camera's entries (uploaded when the table object changes), else a
+  // dummy entry so the descriptor is valid.
+  void bindRayTable() {
+    const auto* tableCamera = std::get_if<RayTableCamera>(&camera);
+    std::shared_ptr<const RayTable> table = tableCamera ? tableCamera->table : nullptr;
+    if (rayTableTexels.size() != 0 && (!table || table == boundRayTable)) return;
+    std::vector<glm::vec4> texels(2);
+    if (table) {
+      texels.resize(std::size_t(table->width) * table->height * 2);
+      for (std::size_t i = 0; i < texels.size() / 2; ++i) {
+        texels[2 * i] = glm::vec4(table->origins[i], 0.0f);
+        texels[2 * i + 1] = glm::vec4(table->directions[i], 0.0f);
+      }
+    }
+    rayTableTexels = DeviceBuffer(vk, texels.size() * sizeof(glm::vec4), MemoryPlace::Device);
+    rayTableTexels.upload(texels.data(), texels.size() * sizeof(glm::vec4));
+    if (!descriptors.setUniformTexels(gpu_shared::HT_BINDING_RAY_TABLE, rayTableTexels, VK_FORMAT_R32G32B32A32_SFLOAT, true)) {
+      throw GpuError("ray table of " + std::to_string(texels.size() / 2) + " entries exceeds the device's texel buffers");
+    }
+    descriptors.flush();
+    boundRayTable = table;
   }
 
   FrameBlock& frameBlock() { return *static_cast<FrameBlock*>(frame.mapped()); }
@@ -283,6 +309,8 @@ FrameShape frameShape(const FrameCamera& camera) {
   static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_PROJECTOR_ARRAY, FrameCamera>, ProjectorArrayParams>);
   static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_INTEGRAL, FrameCamera>, IntegralParams>);
   static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_CAPTURE_GRID, FrameCamera>, CaptureGridParams>);
+  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_OBLIQUE, FrameCamera>, ObliqueParams>);
+  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_RAY_TABLE, FrameCamera>, RayTableCamera>);
   auto size = [](float w, float h) { return std::pair{static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)}; };
   switch (shape.model) {
     case HT_MODEL_LENTICULAR: {
@@ -316,11 +344,25 @@ FrameShape frameShape(const FrameCamera& camera) {
       shape.targetsPerPixel = 3;
       break;
     }
-    default: {
+    case HT_MODEL_CAPTURE_GRID: {
       const auto& p = std::get<CaptureGridParams>(camera);
       shape.width = static_cast<std::uint32_t>(p.grid.z);
       shape.height = static_cast<std::uint32_t>(p.grid.w);
       shape.views = static_cast<std::uint32_t>(p.grid.x) * static_cast<std::uint32_t>(p.grid.y);
+      break;
+    }
+    case HT_MODEL_OBLIQUE: {
+      const auto& p = std::get<ObliqueParams>(camera);
+      shape.width = static_cast<std::uint32_t>(p.grid.z);
+      shape.height = static_cast<std::uint32_t>(p.grid.w);
+      shape.views = static_cast<std::uint32_t>(p.grid.x) * static_cast<std::uint32_t>(p.grid.y);
+      break;
+    }
+    default: {
+      const auto& p = std::get<RayTableCamera>(camera);
+      if (!p.table) throw GpuError("ray-table camera without a table");
+      shape.width = p.table->width;
+      shape.height = p.table->height;
       break;
     }
   }
@@ -346,8 +388,11 @@ void Renderer::Impl::fillFrame(const FrameShape& shape, std::uint32_t viewFirst,
     else if constexpr (std::is_same_v<T, gpu_shared::QuiltParams>) f.quilt = p;
     else if constexpr (std::is_same_v<T, gpu_shared::ProjectorArrayParams>) f.projectors = p;
     else if constexpr (std::is_same_v<T, gpu_shared::IntegralParams>) f.integral = p;
-    else f.captureGrid = p;
+    else if constexpr (std::is_same_v<T, gpu_shared::CaptureGridParams>) f.captureGrid = p;
+    else if constexpr (std::is_same_v<T, gpu_shared::ObliqueParams>) f.oblique = p;
+    else f.rayTable = p.params;
   }, camera);
+  bindRayTable();
 }
 
 RenderResult Renderer::Impl::render(const RenderSettings& settings) {

@@ -13,8 +13,10 @@
 #include "camera_models/camera_params.h"
 #include "camera_models/capture_grid_params.h"
 #include "camera_models/integral_params.h"
+#include "camera_models/oblique_params.h"
 #include "camera_models/projector_params.h"
 #include "camera_models/quilt_params.h"
+#include "camera_models/ray_table.h"
 #include "scene/scene.h"
 
 namespace ht::gpu {
@@ -25,10 +27,16 @@ class VulkanContext;
 // (camera_models/footprint_sampling.h).
 enum class SampleFilter : std::uint32_t { Box = 0, Tent = 1, Gaussian = 2 };
 
+// A per-pixel ray table and its placement; the table is uploaded once per table object (shared_ptr identity).
+struct RayTableCamera {
+  gpu_shared::RayTableParams params{};
+  std::shared_ptr<const RayTable> table;
+};
+
 // The camera of a frame. The alternative selects the ray-generation model (specialisation constant of raygen).
 using FrameCamera = std::variant<gpu_shared::LenticularParams, gpu_shared::PinholeParams, gpu_shared::QuiltParams,
                                  gpu_shared::ProjectorArrayParams, gpu_shared::IntegralParams,
-                                 gpu_shared::CaptureGridParams>;
+                                 gpu_shared::CaptureGridParams, gpu_shared::ObliqueParams, RayTableCamera>;
 
 // What a camera renders: `views` images of width x height pixels; subpixel models trace 3 targets per pixel.
 struct FrameShape {

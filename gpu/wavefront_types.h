@@ -13,8 +13,10 @@
 #include "camera_models/camera_params.h"
 #include "camera_models/capture_grid_params.h"
 #include "camera_models/integral_params.h"
+#include "camera_models/oblique_params.h"
 #include "camera_models/projector_params.h"
 #include "camera_models/quilt_params.h"
+#include "camera_models/ray_table_params.h"
 
 HT_SHARED_BEGIN
 
@@ -41,7 +43,9 @@ HT_CONST uint HT_MODEL_QUILT = 2u;
 HT_CONST uint HT_MODEL_PROJECTOR_ARRAY = 3u;
 HT_CONST uint HT_MODEL_INTEGRAL = 4u;
 HT_CONST uint HT_MODEL_CAPTURE_GRID = 5u;
-HT_CONST uint HT_MODEL_COUNT = 6u;
+HT_CONST uint HT_MODEL_OBLIQUE = 6u;
+HT_CONST uint HT_MODEL_RAY_TABLE = 7u;
+HT_CONST uint HT_MODEL_COUNT = 8u;
 
 HT_INLINE bool ht_model_has_subpixel_targets(uint model) {
   return model == HT_MODEL_LENTICULAR || model == HT_MODEL_INTEGRAL;
@@ -94,6 +98,8 @@ struct FrameBlock {
   QuiltParams quilt;
   IntegralParams integral;
   CaptureGridParams captureGrid;
+  ObliqueParams oblique;
+  RayTableParams rayTable;
   ProjectorArrayParams projectors;
 };
 
@@ -102,7 +108,8 @@ HT_CONST uint HT_BINDING_BVH_FIRST = 0u;       // 0-3: BVH node / triangle texel
 HT_CONST uint HT_BINDING_FRAME = 4u;           // uniform buffer: FrameBlock
 HT_CONST uint HT_BINDING_STATE_FIRST = 5u;     // 5-16: per-path state, storage texel buffers
 HT_CONST uint HT_BINDING_SCENE_FIRST = 17u;    // 17-24: scene records, uniform texel buffers
-HT_CONST uint HT_BINDING_COUNT = 25u;
+HT_CONST uint HT_BINDING_RAY_TABLE = 25u;      // uniform texel buffer: ray-table entries (origin, direction)
+HT_CONST uint HT_BINDING_COUNT = 26u;
 
 // Push constants of every pass (40 B of the 128 B guaranteed). The BVH addresses sit here, not in the
 // FrameBlock, so the traversal loop reads them without an extra dependent load per node fetch.

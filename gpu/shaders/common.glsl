@@ -51,6 +51,7 @@ layout(set = 0, binding = 21) uniform samplerBuffer materialTexels;           //
 layout(set = 0, binding = 22) uniform samplerBuffer lightTexels;              // 4 texels per GpuLight
 layout(set = 0, binding = 23) uniform usamplerBuffer textureTexels;           // GpuTexture.info
 layout(set = 0, binding = 24) uniform samplerBuffer texelTexels;
+layout(set = 0, binding = 25) uniform samplerBuffer rayTableTexels;           // 2 texels per entry: origin, direction
 
 HtRay load_ray(uint q, uint i) {
   int k = int(2u * i);

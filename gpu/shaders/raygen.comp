@@ -9,9 +9,13 @@
 #include "camera_models/capture_grid_model.h"
 #include "camera_models/integral_model.h"
 #include "camera_models/lenticular_model.h"
+#include "camera_models/oblique_model.h"
 #include "camera_models/pinhole_model.h"
 #include "camera_models/projector_model.h"
 #include "camera_models/quilt_model.h"
+#define HT_RAY_TABLE_ORIGIN(i) texelFetch(rayTableTexels, int(2u * (i))).xyz
+#define HT_RAY_TABLE_DIRECTION(i) texelFetch(rayTableTexels, int(2u * (i) + 1u)).xyz
+#include "camera_models/ray_table_model.h"
 
 layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
 
@@ -61,8 +65,12 @@ void main() {
     }
   } else if (MODEL == HT_MODEL_INTEGRAL) {
     integral_ray(FRAME.integral, x, y, c, xi, origin, dir);
-  } else {
+  } else if (MODEL == HT_MODEL_CAPTURE_GRID) {
     capture_grid_ray(FRAME.captureGrid, x, y, view, xi, origin, dir);
+  } else if (MODEL == HT_MODEL_OBLIQUE) {
+    oblique_ray(FRAME.oblique, x, y, view, xi, origin, dir);
+  } else {
+    ray_table_ray(FRAME.rayTable, x, y, xi, origin, dir);
   }
   store_ray(0u, i, HtRay(origin, 0.0f, dir, 3.0e38f));
   store_queue_path(0u, i, i);

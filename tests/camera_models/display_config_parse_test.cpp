@@ -184,7 +184,7 @@ TEST(DisplayConfigParse, EmbeddedCalibrationAndAutoKeywords) {
 TEST(DisplayConfigBuiltin, NamesAndNominalValues) {
   EXPECT_EQ(builtinDisplayNames(), (std::vector<std::string>{"capture-16x16", "capture-8x6", "gen1-8.9",
                                                              "gen3-16-landscape", "go",
-                                                             "holovizio-wall-70", "integral-15-4k", "portrait"}));
+                                                             "holovizio-wall-70", "integral-15-4k", "oblique-9x9", "portrait"}));
   for (const std::string& name : builtinDisplayNames()) {
     DisplayConfig config = builtinDisplay(name);
     EXPECT_EQ(config.name, name);

@@ -9,6 +9,8 @@
 
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_params.h"
+#include "camera_models/capture_grid_setup.h"
+#include "cli/ray_table_exr.h"
 #include "process_runner.h"
 #include "temp_directory.h"
 
@@ -248,6 +250,60 @@ TEST(CliEndToEnd, DebugViewsWritesTheSubpixelViewPhasesWithoutTracing) {
       }
     }
   }
+}
+
+// `holotrace rays` writes the GPU rays of every pixel of every view; they match the double reference of the model
+// (written independently of the float code), and the file reads back as a "ray-table" display that renders and
+// reproduces the same table bit for bit.
+TEST(CliEndToEnd, RaysDumpsTheTableAndItReadsBackAsARayTableDisplay) {
+  test::TempDirectory dir;
+  const fs::path config = writeConfig(dir, "rig", R"({"name": "rig", "model": "capture-grid", "spp": 1,
+      "camera": {"target": [0, 0, 0]},
+      "captureGrid": {"columns": 3, "rows": 2, "spacing": [0.1, 0.1], "distance": 3, "window": {"width": 2.4,
+      "height": 1.8}, "image": {"width": 32, "height": 24}}})");
+  const fs::path table = dir.path() / "rig_rays.exr";
+  ProcessResult r = holotrace({"rays", "--display", config.string(), "--scene", "builtin:sphere", "-o", table.string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const RayTable rays = readRayTableExr(table);
+  ASSERT_EQ(rays.width, 192u);  // the 6 views side by side (they fit the 16384-entry limit)
+  ASSERT_EQ(rays.height, 24u);
+  const DisplayConfig display = loadDisplayConfig(config);
+  const CaptureGridReference reference(display, Bounds3{});
+  double maxAngle = 0.0, maxOrigin = 0.0;
+  for (std::uint32_t view = 0; view < 6; ++view)
+    for (std::uint32_t y = 0; y < 24; ++y)
+      for (std::uint32_t x = 0; x < 32; ++x) {
+        const std::size_t i = rays.index(view * 32 + x, y);
+        const ReferenceRay ref = reference.ray(x, y, view, glm::dvec2(0.5));
+        const glm::dvec3 d(rays.directions[i]);
+        maxAngle = std::max(maxAngle, std::atan2(glm::length(glm::cross(d, ref.dir)), glm::dot(d, ref.dir)));
+        maxOrigin = std::max(maxOrigin, glm::length(glm::dvec3(rays.origins[i]) - ref.origin));
+      }
+  EXPECT_LT(maxAngle, 2e-6);
+  EXPECT_LT(maxOrigin, 1e-6 * 3.0);
+
+  const fs::path tableDisplay = writeConfig(dir, "table", R"({"name": "table", "model": "ray-table",
+      "camera": {"target": [0, 0, 0]}, "spp": 2, "rayTable": {"file": "rig_rays.exr", "units": 1}})");
+  r = holotrace({"render", "--display", tableDisplay.string(), "--scene", "builtin:sphere", "-o",
+                 (dir.path() / "t.png").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_EQ(inspect(dir.path() / "t.png").width, 192);
+  r = holotrace({"rays", "--display", tableDisplay.string(), "--scene", "builtin:sphere", "-o",
+                 (dir.path() / "again.exr").string()});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const RayTable again = readRayTableExr(dir.path() / "again.exr");
+  EXPECT_EQ(again.origins, rays.origins);
+  EXPECT_EQ(again.directions, rays.directions);
+}
+
+TEST(CliEndToEnd, RayTableDisplayWithAMissingFileNamesTheField) {
+  test::TempDirectory dir;
+  const fs::path config = writeConfig(dir, "table", R"({"name": "table", "model": "ray-table",
+      "rayTable": {"file": "nowhere.exr"}})");
+  const ProcessResult r = holotrace({"render", "--display", config.string(), "--out-dir", dir.path().string()});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_THAT(r.err, HasSubstr("rayTable.file"));
+  EXPECT_THAT(dir.entries(), ElementsAre("table.json"));
 }
 
 }  // namespace

@@ -16,6 +16,8 @@
 #include "camera_models/integral_setup.h"
 #include "camera_models/lenticular_params.h"
 #include "camera_models/lenticular_reference.h"
+#include "camera_models/oblique_setup.h"
+#include "camera_models/ray_table.h"
 #include "camera_models/projector_setup.h"
 #include "camera_models/quilt_setup.h"
 #include "gpu/display_camera.h"
@@ -263,6 +265,49 @@ TEST_F(GpuCameraRays, FiltersWarpTheFootprintAndStayExact) {
       EXPECT_LE(maxXi, 1.5);
     }
   }
+}
+
+TEST_F(GpuCameraRays, ObliqueEveryDirection) {
+  const DisplayConfig config = builtinDisplay("oblique-9x9");
+  const ObliqueReference reference(config, bounds_);
+  const gpu_shared::ObliqueParams params = makeObliqueParams(config, bounds_);
+  const RayErrors e = measure(*renderer_, params, settings_, allViews(gpu::frameShape(params).views),
+                              test::kSanitized ? 101 : 13, viewReference(reference));
+  expectWithinBounds("oblique 9x9", e);
+}
+
+// A per-pixel table (a curved, off-centre fan of rays, the kind a measured calibration gives) interpolated over the
+// footprint: GPU vs the double reference of the interpolation.
+TEST_F(GpuCameraRays, RayTableInterpolatesLikeTheReference) {
+  auto table = std::make_shared<RayTable>();
+  table->width = 160;
+  table->height = 90;
+  for (std::uint32_t y = 0; y < table->height; ++y) {
+    for (std::uint32_t x = 0; x < table->width; ++x) {
+      const double u = (x + 0.5) / table->width - 0.5, v = (y + 0.5) / table->height - 0.5;
+      table->origins.push_back(glm::vec3(float(0.02 * u * u), float(0.01 * v), 2.0f));
+      table->directions.push_back(glm::vec3(glm::normalize(glm::dvec3(0.8 * u + 0.1 * v * v, 0.45 * v, -1.0))));
+    }
+  }
+  table->normalizeDirections();
+  table->validate("synthetic");
+  const DisplayConfig config = parseDisplayConfig(
+      R"({"name": "table", "model": "ray-table", "rayTable": {"file": "t.exr", "units": 2.5}})", "synthetic", "");
+  const RayTableReference reference(config, *table, bounds_);
+  const gpu::RayTableCamera camera{makeRayTableParams(config, *table, bounds_), table};
+  gpu::RenderSettings s = settings_;
+  s.spp = 8;
+  s.filter = gpu::SampleFilter::Tent;  // reaches into the neighbours and past the border (clamped)
+  const RayErrors e = measure(*renderer_, camera, s, {0}, 1,
+                              [&](const TargetIndex& t, glm::dvec2 xi) -> std::optional<ReferenceRay> {
+                                return reference.ray(t.x, t.y, xi);
+                              });
+  expectWithinBounds("ray table 160x90", e);
+  // spp 1: the table's own rays, bit for bit after the placement.
+  gpu::RenderSettings one = settings_;
+  one.spp = 1;
+  const auto rays = renderer_->generateRays(camera, one, 0, 160 * 90);
+  for (std::size_t i = 0; i < rays.size(); i += 97) EXPECT_EQ(rays[i].dir, table->directions[i]) << i;
 }
 
 }  // namespace
