@@ -100,7 +100,7 @@ int run(int argc, char** argv) {
   gpu::Renderer renderer(context, scene);
   const std::vector<Case> cases = {{"portrait"}, {"portrait", gpu::CameraPath::Quilt}, {"gen3-16-landscape"},
                                    {"go"}, {"holovizio-wall-70"}, {"integral-15-4k"}, {"capture-8x6"},
-                                   {"capture-16x16"}};
+                                   {"capture-16x16"}, {"oblique-9x9"}};
   for (const Case& c : cases) runCase(renderer, c, o);
   return 0;
 }
