@@ -1,85 +1,58 @@
 // load_client_main.cpp - holotrace-bench-load: N concurrent StreamFrames clients against a running holotraced.
-// Reports delivered frames/s, per-frame latency (request tick -> last chunk received, from the daemon's
-// queue_ms + render_ms plus transfer) and the daemon's VmRSS (/proc/PID/status) before and after.
-// Usage: holotrace-bench-load --socket ADDR --pid PID [--clients 8] [--seconds 10] [--fps 30]
-//                             [--display ID] [--scene SPEC] [--spp 1]
+// Reports delivered frames/s, per-frame latency (the daemon's queue_ms + render_ms), the daemon's RSS over the run
+// (sampled through Status: first / last / max after warm-up and the slope per 1000 frames, which a leak makes
+// positive), and the daemon's CPU time per frame against the same frames rendered in-process (--baseline-frames):
+// the difference is what the protocol costs. Options: bench/load_options.cpp.
 #include <grpcpp/grpcpp.h>
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <iostream>
-#include <map>
-#include <mutex>
-#include <string>
 #include <thread>
 #include <vector>
 
+#include "bench/load_inprocess.h"
+#include "bench/load_options.h"
+#include "bench/load_rss_series.h"
+#include "bench/load_stream_client.h"
 #include "holotrace/v1/holotrace.grpc.pb.h"
 
 namespace {
 
 namespace v1 = holotrace::v1;
+using ht::bench::DaemonSample;
 using Clock = std::chrono::steady_clock;
 
-std::map<std::string, std::string> parseArgs(int argc, char** argv) {
-  std::map<std::string, std::string> a = {{"--clients", "8"}, {"--seconds", "10"}, {"--fps", "30"},
-                                          {"--display", "builtin:portrait"}, {"--scene", "builtin:plain"},
-                                          {"--spp", "1"}, {"--pid", "0"}};
-  for (int i = 1; i + 1 < argc; i += 2) a[argv[i]] = argv[i + 1];
-  return a;
-}
-
-long rssKiB(const std::string& pid) {
-  std::ifstream in("/proc/" + pid + "/status");
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
-  }
-  return -1;
-}
-
-struct Totals {
-  std::mutex mutex;
-  std::vector<double> latencyMs;
-  std::uint64_t frames = 0, dropped = 0, bytes = 0;
-};
-
-void runClient(const std::string& address, const v1::StreamRequest& request, Clock::time_point end, Totals& totals) {
-  grpc::ChannelArguments args;
-  args.SetMaxReceiveMessageSize(64 << 20);
-  args.SetInt("grpc.use_local_subchannel_pool", 1);  // one connection per simulated client
-  auto stub = v1::Holotrace::NewStub(grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), args));
+v1::StatusResponse daemonStatus(v1::Holotrace::Stub& stub) {
   grpc::ClientContext context;
-  auto reader = stub->StreamFrames(&context, request);
-  v1::FramePart part;
-  std::uint64_t need = 0, got = 0;
-  double latency = 0.0;
-  while (Clock::now() < end && reader->Read(&part)) {
-    if (part.has_header()) {
-      need = part.header().total_bytes();
-      got = 0;
-      latency = part.header().queue_ms() + part.header().render_ms();
-      std::lock_guard lock(totals.mutex);
-      totals.dropped += part.header().dropped_frames();
-    } else {
-      got += part.chunk().data().size();
-    }
-    if (need > 0 && got == need) {
-      std::lock_guard lock(totals.mutex);
-      totals.latencyMs.push_back(latency);
-      ++totals.frames;
-      totals.bytes += need;
-      need = 0;
-    }
-  }
-  context.TryCancel();
-  while (reader->Read(&part)) {
-  }
-  reader->Finish();
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
+  v1::StatusResponse status;
+  const grpc::Status s = stub.Status(&context, {}, &status);
+  if (!s.ok()) throw std::runtime_error("Status: " + s.error_message());
+  return status;
+}
+
+DaemonSample sample(v1::Holotrace::Stub& stub, Clock::time_point start, const ht::bench::LoadTotals& totals) {
+  const std::uint64_t frames = totals.frames.load();
+  const v1::StatusResponse status = daemonStatus(stub);
+  return {std::chrono::duration<double>(Clock::now() - start).count(), frames, status.resident_kib(),
+          status.cpu_seconds(), status.threads()};
+}
+
+v1::StreamRequest streamRequest(v1::Holotrace::Stub& stub, const ht::bench::LoadOptions& o) {
+  grpc::ClientContext context;
+  v1::LoadSceneRequest load;
+  load.set_path(o.scene);
+  v1::SceneHandle scene;
+  const grpc::Status loaded = stub.LoadScene(&context, load, &scene);
+  if (!loaded.ok()) throw std::runtime_error("LoadScene: " + loaded.error_message());
+  v1::StreamRequest request;
+  request.mutable_render()->set_scene_id(scene.scene_id());
+  request.mutable_render()->set_display_id(o.display);
+  request.mutable_render()->set_spp(o.spp);
+  request.mutable_render()->set_format(v1::PIXEL_FORMAT_RGBA8);
+  request.set_frames_per_second(o.fps);
+  return request;
 }
 
 double percentile(std::vector<double> v, double p) {
@@ -88,53 +61,89 @@ double percentile(std::vector<double> v, double p) {
   return v[std::min(v.size() - 1, static_cast<std::size_t>(p * static_cast<double>(v.size())))];
 }
 
-}  // namespace
+void printThroughput(const ht::bench::LoadOptions& o, const ht::bench::LoadTotals& t, double elapsed) {
+  const double frames = static_cast<double>(t.frames.load());
+  std::printf(
+      "clients %d, %.1f s: %llu frames, %.2f frames/s total (%.2f per client), %.2f MB/s, %llu calls "
+      "(%llu failed), %llu dropped ticks\n",
+      o.clients, elapsed, static_cast<unsigned long long>(t.frames.load()), frames / elapsed,
+      frames / elapsed / o.clients, static_cast<double>(t.bytes) / elapsed / 1e6,
+      static_cast<unsigned long long>(t.calls.load()), static_cast<unsigned long long>(t.failedCalls),
+      static_cast<unsigned long long>(t.dropped));
+  if (!t.lastError.empty()) std::printf("last call error: %s\n", t.lastError.c_str());
+  std::printf("latency (queue + render) ms: p50 %.1f, p95 %.1f, max %.1f\n", percentile(t.latencyMs, 0.5),
+              percentile(t.latencyMs, 0.95), percentile(t.latencyMs, 1.0));
+}
 
-int main(int argc, char** argv) {
-  auto a = parseArgs(argc, argv);
-  if (!a.count("--socket")) {
-    std::cerr << "usage: holotrace-bench-load --socket ADDR --pid PID [--clients N] [--seconds S] [--fps F]"
-                 " [--display ID] [--scene SPEC] [--spp N]\n";
-    return 2;
-  }
-  auto stub = v1::Holotrace::NewStub(grpc::CreateChannel(a["--socket"], grpc::InsecureChannelCredentials()));
-  grpc::ClientContext loadContext;
-  v1::LoadSceneRequest load;
-  load.set_path(a["--scene"]);
-  v1::SceneHandle scene;
-  const grpc::Status loaded = stub->LoadScene(&loadContext, load, &scene);
-  if (!loaded.ok()) {
-    std::cerr << "LoadScene: " << loaded.error_message() << "\n";
-    return 1;
-  }
-  v1::StreamRequest request;
-  request.mutable_render()->set_scene_id(scene.scene_id());
-  request.mutable_render()->set_display_id(a["--display"]);
-  request.mutable_render()->set_spp(static_cast<std::uint32_t>(std::stoul(a["--spp"])));
-  request.mutable_render()->set_format(v1::PIXEL_FORMAT_RGBA8);
-  request.set_frames_per_second(std::stod(a["--fps"]));
+void printDaemon(const std::vector<DaemonSample>& samples, std::uint64_t frames) {
+  const DaemonSample& a = samples.front();
+  const DaemonSample& b = samples.back();
+  const auto all = ht::bench::summarizeRss(samples, 0);
+  const auto steady = ht::bench::summarizeRss(samples, frames / 10);
+  std::printf(
+      "daemon VmRSS KiB: before %llu, max %llu, end %llu; after 10%% warm-up (%zu samples): first %llu, "
+      "last %llu, max %llu, slope %+.1f KiB per 1000 frames\n",
+      static_cast<unsigned long long>(a.rssKiB), static_cast<unsigned long long>(all.maxKiB),
+      static_cast<unsigned long long>(b.rssKiB), steady.samplesUsed, static_cast<unsigned long long>(steady.firstKiB),
+      static_cast<unsigned long long>(steady.lastKiB), static_cast<unsigned long long>(steady.maxKiB),
+      steady.slopeKiBPer1000Frames);
+  std::printf("daemon threads: before %u, end %u; daemon CPU %.1f s = %.2f ms per frame\n", a.threads, b.threads,
+              b.cpuSeconds - a.cpuSeconds, 1e3 * (b.cpuSeconds - a.cpuSeconds) / std::max<double>(1, frames));
+}
 
-  const int clients = std::stoi(a["--clients"]);
-  const double seconds = std::stod(a["--seconds"]);
-  const long rssBefore = rssKiB(a["--pid"]);
-  Totals totals;
+void printBaseline(const ht::bench::InProcessRun& base, const std::vector<DaemonSample>& samples, double elapsed,
+                   std::uint64_t frames) {
+  const double baseCpuMs = 1e3 * base.cpuSeconds / static_cast<double>(base.frames);
+  const double daemonCpuMs =
+      1e3 * (samples.back().cpuSeconds - samples.front().cpuSeconds) / std::max<double>(1, frames);
+  std::printf(
+      "in-process baseline: %llu frames, %.2f frames/s, %.2f ms CPU per frame; through the daemon: "
+      "%.2f frames/s, %.2f ms CPU per frame -> protocol %+.2f ms CPU per frame (%+.0f%%)\n",
+      static_cast<unsigned long long>(base.frames), static_cast<double>(base.frames) / base.wallSeconds, baseCpuMs,
+      static_cast<double>(frames) / elapsed, daemonCpuMs, daemonCpuMs - baseCpuMs,
+      100.0 * (daemonCpuMs - baseCpuMs) / baseCpuMs);
+}
+
+int run(const ht::bench::LoadOptions& o) {
+  ht::bench::InProcessRun base;
+  if (o.baselineFrames > 0)
+    base = ht::bench::renderInProcess(o.displaysDir, o.display, o.scene, o.spp, o.baselineFrames);
+  auto stub = v1::Holotrace::NewStub(grpc::CreateChannel(o.socket, grpc::InsecureChannelCredentials()));
+  const v1::StreamRequest request = streamRequest(*stub, o);
+  ht::bench::LoadTotals totals;
   const auto start = Clock::now();
-  const auto end = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  const auto limit = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.seconds));
+  const ht::bench::LoadStop stop{o.seconds > 0 ? start + limit : Clock::time_point::max(), o.frames};
+  std::vector<DaemonSample> samples{sample(*stub, start, totals)};
   std::vector<std::thread> threads;
-  long rssPeak = rssBefore;
-  for (int i = 0; i < clients; ++i) threads.emplace_back(runClient, a["--socket"], request, end, std::ref(totals));
-  while (Clock::now() < end) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
-    rssPeak = std::max(rssPeak, rssKiB(a["--pid"]));
+  for (int i = 0; i < o.clients; ++i) {
+    threads.emplace_back(ht::bench::runStreamClient, o.socket, request, std::cref(stop), o.reconnectEvery,
+                         std::ref(totals));
+  }
+  while (!stop.reached(totals)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(o.sampleMs));
+    samples.push_back(sample(*stub, start, totals));
   }
   for (auto& t : threads) t.join();
   const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-  std::printf("clients %d, %.1f s: %llu frames, %.2f frames/s total (%.2f per client), %.1f MB/s, %llu dropped ticks\n",
-              clients, elapsed, static_cast<unsigned long long>(totals.frames), totals.frames / elapsed,
-              totals.frames / elapsed / clients, totals.bytes / elapsed / 1e6,
-              static_cast<unsigned long long>(totals.dropped));
-  std::printf("latency (queue + render) ms: p50 %.1f, p95 %.1f, max %.1f\n", percentile(totals.latencyMs, 0.5),
-              percentile(totals.latencyMs, 0.95), percentile(totals.latencyMs, 1.0));
-  std::printf("daemon VmRSS: before %ld KiB, peak %ld KiB\n", rssBefore, rssPeak);
+  samples.push_back(sample(*stub, start, totals));
+  if (!o.samplesCsv.empty()) ht::bench::writeSamplesCsv(samples, o.samplesCsv);
+  printThroughput(o, totals, elapsed);
+  printDaemon(samples, totals.frames.load());
+  if (o.baselineFrames > 0) printBaseline(base, samples, elapsed, totals.frames.load());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(ht::bench::parseLoadOptions(argc, argv));
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "holotrace-bench-load: " << e.what() << "\n" << ht::bench::kLoadUsage;
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "holotrace-bench-load: " << e.what() << "\n";
+    return 1;
+  }
 }

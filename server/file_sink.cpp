@@ -19,7 +19,8 @@ namespace {
 std::string errnoText(int err) { return std::strerror(err); }
 
 [[noreturn]] void throwWriteError(const std::string& name, int err) {
-  if (err == ENOSPC || err == EDQUOT) throw DiskFull("output disk full while writing " + name);
+  if (err == ENOSPC || err == EDQUOT) throw DiskFull("output disk full while writing " + name + ": " + errnoText(err));
+  if (err == EFBIG) throw DiskFull("file size limit reached while writing " + name + ": " + errnoText(err));
   throw IoError("cannot write " + name + ": " + errnoText(err));
 }
 
@@ -30,7 +31,7 @@ std::string tempNameFor(const std::string& name) {
 
 }  // namespace
 
-FileSink::FileSink(const std::filesystem::path& root) {
+FileSink::FileSink(const std::filesystem::path& root, FileOps ops) : ops_(std::move(ops)) {
   std::error_code ec;
   std::filesystem::create_directories(root, ec);
   rootFd_ = ::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
@@ -52,19 +53,24 @@ int FileSink::openTemp(const std::string& tempName) {
   return ::openat(rootFd_, tempName.c_str(), flags, 0640);  // kernel < 5.6; the name is one checked component
 }
 
+int FileSink::writeAll(int fd, std::span<const std::uint8_t> bytes) {
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ops_.write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return errno;
+    if (n == 0) return EIO;  // no progress and no error: do not spin
+    done += static_cast<std::size_t>(n);
+  }
+  return 0;
+}
+
 void FileSink::writeFile(const std::string& name, std::span<const std::uint8_t> bytes) {
   const std::string temp = tempNameFor(name);
   const int fd = openTemp(temp);
   if (fd < 0) throwWriteError(name, errno);
-  std::size_t done = 0;
-  int err = 0;
-  while (done < bytes.size() && err == 0) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) err = errno;
-    else done += static_cast<std::size_t>(n);
-  }
-  if (err == 0 && ::fsync(fd) != 0) err = errno;
+  int err = writeAll(fd, bytes);
+  if (err == 0 && ops_.fsync(fd) != 0) err = errno;  // NFS and quotas may report ENOSPC/EDQUOT only here
   if (::close(fd) != 0 && err == 0) err = errno;
   if (err == 0 && ::renameat(rootFd_, temp.c_str(), rootFd_, name.c_str()) != 0) err = errno;
   if (err != 0) {

@@ -3,30 +3,46 @@
 // (fallback: openat + O_NOFOLLOW on kernels without openat2, ENOSYS), written, fsynced and renamed into place
 // (docs/service.md §6 "Output confinement"; Linux include/uapi/linux/openat2.h).
 #pragma once
+#include <sys/types.h>
+#include <unistd.h>
+
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <stdexcept>
 #include <string>
 
 namespace ht::server {
 
+// The calls a FileSink makes on its open temp file (return -1 and set errno on failure, like the system calls).
+// Tests substitute them to inject what a real disk gives only when full: ENOSPC from write, EDQUOT from fsync.
+struct FileOps {
+  std::function<ssize_t(int fd, const void* data, std::size_t size)> write = ::write;
+  std::function<int(int fd)> fsync = ::fsync;
+};
+
 class FileSink {
  public:
-  explicit FileSink(const std::filesystem::path& root);  // creates the root if missing; throws IoError
+  // Creates the root if missing; throws IoError.
+  explicit FileSink(const std::filesystem::path& root, FileOps ops = {});
   ~FileSink();
   FileSink(const FileSink&) = delete;
   FileSink& operator=(const FileSink&) = delete;
 
-  // `name` must be one validated path component. Throws IoError (ENOSPC/EDQUOT -> DiskFull).
+  // `name` must be one validated path component. Throws DiskFull (ENOSPC, EDQUOT, EFBIG) or IoError; either way
+  // the temp file is removed and `name` is untouched.
   void writeFile(const std::string& name, std::span<const std::uint8_t> bytes);
 
  private:
   int openTemp(const std::string& tempName);
+  int writeAll(int fd, std::span<const std::uint8_t> bytes);  // 0 or the errno
+  FileOps ops_;
   int rootFd_ = -1;
 };
 
-// The disk (or quota) is full: the file was not written, nothing partial remains.
+// The disk or quota is full, or the file exceeds the file-size limit (EFBIG: RLIMIT_FSIZE, filesystem maximum):
+// the file was not written, nothing partial remains (-> RESOURCE_EXHAUSTED).
 class DiskFull : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

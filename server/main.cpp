@@ -1,5 +1,6 @@
 // main.cpp - holotraced --config FILE. Signals are taken synchronously with sigwait() on the main thread (blocked
-// in every thread first): SIGTERM/SIGINT -> graceful shutdown, exit 0; SIGHUP -> reload display configs.
+// in every thread first): SIGTERM/SIGINT -> graceful shutdown, exit 0; SIGHUP -> reload display configs. SIGXFSZ is
+// ignored, so a file-size limit fails one Capture instead of killing the daemon.
 #include <signal.h>
 
 #include <cstring>
@@ -28,6 +29,7 @@ sigset_t handledSignals() {
 int serve(const std::string& configPath) {
   const sigset_t signals = handledSignals();
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);  // before any thread starts: all threads inherit the mask
+  ::signal(SIGXFSZ, SIG_IGN);  // over RLIMIT_FSIZE a write fails with EFBIG (-> RESOURCE_EXHAUSTED), no crash
   ht::server::Daemon daemon(ht::server::loadDaemonConfig(configPath), std::cerr);
   daemon.start();
   std::cerr << "holotraced: ready" << std::endl;

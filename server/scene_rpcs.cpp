@@ -1,4 +1,6 @@
 // scene_rpcs.cpp - ListDisplays, GetDisplay, LoadScene, UploadScene, UpdateScene, Status.
+#include <unistd.h>
+
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -6,6 +8,7 @@
 #include "server/display_messages.h"
 #include "server/holotrace_service.h"
 #include "server/path_rules.h"
+#include "server/process_stats.h"
 #include "server/status_mapping.h"
 
 namespace ht::server {
@@ -158,6 +161,11 @@ grpc::Status HolotraceService::Status(grpc::ServerContext*, const v1::StatusRequ
     response->set_active_streams(state_.activeStreams.load());
     response->set_scenes_loaded(static_cast<std::uint32_t>(state_.scenes.contentCount()));
     response->set_version(HT_VERSION);
+    const ProcessStats self = readProcessStats(::getpid());
+    response->set_pid(static_cast<std::uint32_t>(::getpid()));
+    response->set_resident_kib(self.residentKiB);
+    response->set_cpu_seconds(self.cpuSeconds);
+    response->set_threads(self.threads);
     return grpc::Status::OK;
   });
 }

@@ -2,8 +2,10 @@
 // a small OBJ scene below its scene root and an output root, plus helpers to drive it through the C++ stubs.
 #pragma once
 #include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
 
 #include <filesystem>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -54,5 +56,34 @@ v1::RenderRequest tinyRequest(const std::string& sceneId, v1::PixelFormat format
 grpc::Status renderOne(v1::Holotrace::Stub& stub, const v1::RenderRequest& request, ReceivedFrame* frame = nullptr);
 
 bool isCompletePng(const std::filesystem::path& file);  // signature + IEND trailer
+
+// One in-process daemon per test suite (started in SetUpTestSuite), a client stub and a loaded builtin:plain scene
+// per test. Each suite deriving from it gets its own daemon (the statics are per template instance).
+template <class Suite>
+class InProcessDaemonTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    files_ = new DaemonFiles();
+    daemon_ = new Daemon(files_->config(), std::cerr);
+    daemon_->start();
+  }
+  static void TearDownTestSuite() {
+    delete daemon_;
+    delete files_;
+    daemon_ = nullptr;
+    files_ = nullptr;
+  }
+  void SetUp() override {
+    stub_ = connect(files_->socketAddress());
+    v1::SceneHandle handle;
+    ASSERT_TRUE(loadScene(*stub_, "builtin:plain", &handle).ok());
+    sceneId_ = handle.scene_id();
+  }
+
+  static inline DaemonFiles* files_ = nullptr;
+  static inline Daemon* daemon_ = nullptr;
+  std::unique_ptr<v1::Holotrace::Stub> stub_;
+  std::string sceneId_;
+};
 
 }  // namespace ht::server::test

@@ -15,32 +15,7 @@ namespace {
 using grpc::StatusCode;
 using Clock = std::chrono::steady_clock;
 
-class ServerTest : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    files_ = new DaemonFiles();
-    daemon_ = new Daemon(files_->config(), std::cerr);
-    daemon_->start();
-  }
-  static void TearDownTestSuite() {
-    delete daemon_;
-    delete files_;
-  }
-  void SetUp() override {
-    stub_ = connect(files_->socketAddress());
-    v1::SceneHandle handle;
-    ASSERT_TRUE(loadScene(*stub_, "builtin:plain", &handle).ok());
-    sceneId_ = handle.scene_id();
-  }
-
-  static DaemonFiles* files_;
-  static Daemon* daemon_;
-  std::unique_ptr<v1::Holotrace::Stub> stub_;
-  std::string sceneId_;
-};
-
-DaemonFiles* ServerTest::files_ = nullptr;
-Daemon* ServerTest::daemon_ = nullptr;
+class ServerTest : public InProcessDaemonTest<ServerTest> {};
 
 TEST_F(ServerTest, ListsBuiltinAndDirectoryDisplays) {
   grpc::ClientContext context;

@@ -1,0 +1,64 @@
+// load_inprocess.cpp - see load_inprocess.h.
+#include "bench/load_inprocess.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <vector>
+
+#include "gpu/vulkan_context.h"
+#include "server/display_registry.h"
+#include "server/frame_encoding.h"
+#include "server/frame_job.h"
+#include "server/process_stats.h"
+#include "server/scene_library.h"
+
+namespace ht::bench {
+namespace {
+
+std::vector<std::uint8_t> sceneBytes(const std::string& scene) {
+  if (scene.rfind("builtin:", 0) == 0) return {};
+  std::ifstream in(scene, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read scene " + scene);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+InProcessRun timeFrames(server::RenderWorker& worker, const server::FrameJob& base, std::uint64_t frames) {
+  InProcessRun run;
+  const double cpuBefore = server::readProcessStats(::getpid()).cpuSeconds;
+  const auto start = std::chrono::steady_clock::now();
+  server::FrameJob job = base;
+  for (std::uint64_t i = 0; i < frames; ++i) {
+    job.seed = static_cast<std::uint32_t>(i);
+    const auto frame = server::renderFrameJob(worker, "baseline", job);
+    const auto bytes = server::encodeFrame(frame, server::FrameEncoding::Rgba8Srgb);
+    run.frames += bytes.empty() ? 0 : 1;
+  }
+  run.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.cpuSeconds = server::readProcessStats(::getpid()).cpuSeconds - cpuBefore;
+  return run;
+}
+
+}  // namespace
+
+InProcessRun renderInProcess(const std::string& displaysDir, const std::string& display, const std::string& scene,
+                             std::uint32_t spp, std::uint64_t frames) {
+  gpu::VulkanContext context({-1, false});
+  server::RenderWorker worker(context, 2);
+  server::SceneLibrary scenes(worker, 5'000'000);
+  server::DisplayRegistry displays(displaysDir);
+  displays.reload(std::cerr);
+  server::FrameJob job;
+  job.display = displays.find(display);
+  job.session = scenes.open("baseline", scene, sceneBytes(scene));
+  job.spp = spp;
+  timeFrames(worker, job, 3);  // warm-up: pipelines, per-size buffers
+  InProcessRun run = timeFrames(worker, job, frames);
+  worker.stop();  // SceneLibrary releases its Renderers after the worker stopped (scene_library.h)
+  return run;
+}
+
+}  // namespace ht::bench
