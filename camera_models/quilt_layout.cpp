@@ -60,7 +60,10 @@ QuiltName parseQuiltName(std::string_view fileName) {
 }
 
 std::string formatQuiltName(std::uint32_t columns, std::uint32_t rows, double aspect) {
-  char buffer[64];
+  // Fixed notation only: the parser reads digits and dots. The longest shortest-round-trip fixed form of a double is
+  // 309 integer digits (DBL_MAX) or "0." + 323 zeros + "5" (the smallest denormal), so 400 chars always suffice;
+  // a 64-char buffer sent aspects >= 1e63 to the exponent form, which parseQuiltName refuses (found by fuzzing).
+  char buffer[400];
   const auto [end, error] = std::to_chars(buffer, buffer + sizeof(buffer), aspect, std::chars_format::fixed);
   const std::string aspectText = error == std::errc() ? std::string(buffer, end) : detail::formatNumber(aspect);
   return "_qs" + std::to_string(columns) + "x" + std::to_string(rows) + "a" + aspectText;

@@ -16,6 +16,10 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev libembree-dev libtbb-dev
   # test mesh: the Stanford bunny (69,666 triangles), /usr/share/glmark2/models/bunny.obj
   glmark2-data
+  # benchmark meshes (CGAL armadillo, refined_elephant: scripts/fetch-meshes.sh) and plots (scripts/bench.sh)
+  libcgal-demo gnuplot-nox
+  # libFuzzer targets of the parsers (tests/fuzz, scripts/fuzz.sh): clang 14 and its runtime (libFuzzer, ASan)
+  clang libclang-rt-14-dev
   # holotraced and its protocol (gRPC 1.51 + protobuf 3.21, docs/service.md §4)
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
 )

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Setup + tests: install the Debian packages, build Release (build/) and ASan+UBSan (build-asan/), and run
-# ctest on both. Exit status 0 only if both suites pass. Usage: sudo bash scripts/test.sh
+# Setup + tests: install the Debian packages, build Release (build/) and ASan+UBSan (build-asan/), run ctest on
+# both, then a short libFuzzer run (scripts/fuzz.sh, build-fuzz/). Exit status 0 only if all three pass.
+# Usage: sudo bash scripts/test.sh
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
@@ -48,6 +49,15 @@ run_suite "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
 # suites test the same code.
 run_suite "$ASAN_BUILD_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
   -DHOLOTRACE_SANITIZE=ON -DHOLOTRACE_BUILD_BENCH=OFF
+
+# libFuzzer smoke run (issue 4): clang + ASan/UBSan build of the parsers only (build-fuzz/), each target fuzzed for
+# HOLOTRACE_FUZZ_SECONDS (default 30 s) from its seed corpus; a crash, leak or timeout fails the suite.
+fuzz_start=$(date +%s)
+if ! bash scripts/fuzz.sh "${HOLOTRACE_FUZZ_SECONDS:-30}"; then
+  echo "=== test.sh: FUZZ FINDINGS (scripts/fuzz.sh)" >&2
+  status=1
+fi
+echo "=== test.sh: fuzz step took $(( $(date +%s) - fuzz_start )) s"
 
 echo "=== test.sh: $( ((status == 0)) && echo 'all tests passed' || echo 'some tests FAILED' ) in $(( $(date +%s) - start )) s"
 exit "$status"

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "accuracy_sections.h"
+#include "ci_tests_section.h"
 #include "cli/arguments.h"
 #include "common/error.h"
 #include "gpu/vulkan_context.h"
@@ -102,12 +103,7 @@ int run(int argc, char** argv) {
         "smallest barycentric < 1e-4; silhouette-graze = |cos(ray, normal)| < 1e-3; interior = neither (must be 0).\n\n"
      << ht::accuracy::report::differentialSection(context, diffRays);
   const double minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / 60.0;
-  md << "\n## Hostile input (CI tests, not re-measured here)\n\n"
-        "`tests/accuracy/hostile_input_test.cpp`: zero-area, collinear, point, NaN- and Inf-vertex triangles are "
-        "dropped and counted by the CPU build and the GPU renderer; each of the 8 ray fields set to NaN, +Inf, -Inf "
-        "misses with at most 1 traversal step (tmin = -Inf with tmax = +Inf is a valid ray); 100,000 coincident "
-        "triangles trip the traversal step limit as a GpuError. Determinism of the panel path: "
-        "`tests/accuracy/determinism_test.cpp`.\n\n## How this file was made\n\n"
+  md << "\n" << ht::accuracy::report::ciTestsSection() << "## How this file was made\n\n"
      << "Device: " << context.device().name << ". Run on " << today() << " in " << static_cast<int>(minutes * 10) / 10.0
      << " minutes:\n\n```\nscripts/accuracy-report.sh --rays-per-mesh " << raysPerMesh << " --differential-rays "
      << diffRays << "\n```\n";

@@ -1,0 +1,22 @@
+// kernel_probe.h - runs small shared C++/GLSL functions on the GPU on their own (no scene, no renderer), so tests
+// can compare the GPU build of a shared header with its C++ build bit for bit.
+#pragma once
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gpu/vulkan_context.h"
+
+namespace ht::gpu {
+
+struct OffsetRayProbeInput {
+  glm::vec3 p;  // hit point
+  glm::vec3 n;  // normal (finite), the side the new ray leaves towards
+};
+
+// ht_offset_ray(p, n) (bvh/offset_ray.h) evaluated by gpu/shaders/offset_ray_probe.comp, one result per input, in
+// order. Throws GpuError on a Vulkan failure.
+std::vector<glm::vec3> runOffsetRayProbe(VulkanContext& context, std::span<const OffsetRayProbeInput> inputs);
+
+}  // namespace ht::gpu
