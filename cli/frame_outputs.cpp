@@ -16,8 +16,6 @@ namespace ht::cli {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 std::span<const float> viewPixels(const gpu::RenderResult& frame, std::uint32_t view) {
   const std::size_t floats = std::size_t(frame.width) * frame.height * 4;
   return std::span<const float>(frame.rgba).subspan(view * floats, floats);
@@ -66,8 +64,8 @@ void writeQuilt(std::ostream& out, const fs::path& requested, const gpu::RenderR
                 const DisplayConfig& display, const gpu::DisplayCamera& camera) {
   const QuiltLayout& layout = *camera.quilt;
   const fs::path path = quiltFilePath(requested, layout);
-  const std::vector<float> quilt = assembleQuilt(frame, layout);
-  const std::string metadata = quiltMetadataJson(display, camera);
+  const std::vector<float> quilt = gpu::assembleQuilt(frame, layout);
+  const std::string metadata = gpu::quiltMetadataJson(display, camera);
   writeImageFile(path, {layout.quiltWidth, layout.quiltHeight, quilt}, ImageFormat::Png8Srgb,
                  {{"ImageDescription", metadata}});
   fs::path sidecar = path;
@@ -104,52 +102,6 @@ void writeMultiView(std::ostream& out, const fs::path& path, const gpu::RenderRe
 fs::path quiltFilePath(const fs::path& path, const QuiltLayout& layout) {
   if (path.filename().string().find("_qs") != std::string::npos) return path;
   return withSuffix(path, formatQuiltName(layout.columns, layout.rows, layout.aspect));
-}
-
-std::vector<float> assembleQuilt(const gpu::RenderResult& frame, const QuiltLayout& layout) {
-  if (frame.views != layout.views() || frame.width != layout.tileWidth || frame.height != layout.tileHeight) {
-    throw IoError("quilt layout " + std::to_string(layout.columns) + "x" + std::to_string(layout.rows) + " of " +
-                  std::to_string(layout.tileWidth) + "x" + std::to_string(layout.tileHeight) + " tiles does not match " +
-                  std::to_string(frame.views) + " views of " + std::to_string(frame.width) + "x" +
-                  std::to_string(frame.height) + " (a renderer bug)");
-  }
-  std::vector<float> quilt(std::size_t(layout.quiltWidth) * layout.quiltHeight * 4, 0.0f);
-  for (std::size_t i = 3; i < quilt.size(); i += 4) quilt[i] = 1.0f;
-  for (std::uint32_t v = 0; v < frame.views; ++v) {
-    const glm::uvec2 origin = quiltTileOrigin(layout, v);  // lower-left, y from the bottom
-    const std::span<const float> view = viewPixels(frame, v);
-    for (std::uint32_t row = 0; row < frame.height; ++row) {  // row from the top of the view
-      const std::uint32_t quiltRowFromBottom = origin.y + (frame.height - 1 - row);
-      const std::uint32_t quiltRow = layout.quiltHeight - 1 - quiltRowFromBottom;
-      const float* src = view.data() + std::size_t(row) * frame.width * 4;
-      float* dst = quilt.data() + (std::size_t(quiltRow) * layout.quiltWidth + origin.x) * 4;
-      std::copy(src, src + std::size_t(frame.width) * 4, dst);
-    }
-  }
-  return quilt;
-}
-
-std::string quiltMetadataJson(const DisplayConfig& display, const gpu::DisplayCamera& camera) {
-  const QuiltLayout& layout = *camera.quilt;
-  nlohmann::json meta;
-  meta["generator"] = "holotrace";
-  meta["display"] = display.name;
-  meta["model"] = std::string(displayModelName(display.model));
-  meta["views"] = layout.views();
-  meta["columns"] = layout.columns;
-  meta["rows"] = layout.rows;
-  meta["aspect"] = layout.aspect;
-  meta["quiltWidth"] = layout.quiltWidth;
-  meta["quiltHeight"] = layout.quiltHeight;
-  meta["tileWidth"] = layout.tileWidth;
-  meta["tileHeight"] = layout.tileHeight;
-  meta["viewOrder"] = "view 0 = bottom-left tile = leftmost (bottom) camera; left to right, then upward";
-  if (const auto* quilt = std::get_if<gpu_shared::QuiltParams>(&camera.camera)) {
-    meta["viewConeDeg"] = double(quilt->camera.w) * 180.0 / kPi;
-    meta["fovyDeg"] = display.camera.fovyDeg;
-  }
-  if (display.calibration) meta["calibration"] = display.calibration->raw;
-  return meta.dump(2);
 }
 
 void writeFrameOutputs(std::ostream& out, const OutputPaths& paths, const gpu::RenderResult& frame,

@@ -13,18 +13,12 @@
 #include "cli/view_layout.h"
 #include "gpu/display_camera.h"
 #include "gpu/renderer.h"
+#include "gpu/view_mosaic.h"
 
 namespace ht::cli {
 
 // The quilt file name: `path` unchanged if it already carries a `_qs` tag, else the tag is appended to its stem.
 std::filesystem::path quiltFilePath(const std::filesystem::path& path, const QuiltLayout& layout);
-
-// Tiles the frame's views into the quilt image (row 0 = top; view 0 in the bottom-left tile, optics.md §4.1);
-// the unused remainder of the quilt is opaque black.
-std::vector<float> assembleQuilt(const gpu::RenderResult& frame, const QuiltLayout& layout);
-
-// JSON metadata of a quilt: layout, view cone, display name, and for a lenticular display its calibration verbatim.
-std::string quiltMetadataJson(const DisplayConfig& display, const gpu::DisplayCamera& camera);
 
 void writeFrameOutputs(std::ostream& out, const OutputPaths& paths, const gpu::RenderResult& frame,
                        const DisplayConfig& display, const gpu::DisplayCamera& camera, ViewLayout layout);

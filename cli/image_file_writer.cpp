@@ -1,7 +1,10 @@
 // image_file_writer.cpp - see image_file_writer.h.
 #include "cli/image_file_writer.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+
+#include <fstream>
 
 #include <string>
 #include <vector>
@@ -85,17 +88,17 @@ void writeImageFile(const fs::path& path, const RgbaImageView& image, ImageForma
   file.commit();
 }
 
-void writeMultiViewExr(const fs::path& path, std::uint32_t width, std::uint32_t height, std::span<const float> rgba,
-                       const std::vector<std::string>& viewNames, ImageFormat format, const ImageAttributes& attributes) {
+std::vector<std::uint8_t> encodeMultiViewExr(std::uint32_t width, std::uint32_t height, std::span<const float> rgba,
+                                             const std::vector<std::string>& viewNames, ImageFormat format,
+                                             const ImageAttributes& attributes) {
   const std::size_t views = viewNames.size();
   const std::size_t viewFloats = std::size_t(width) * height * kChannels;
   if (views == 0 || width == 0 || height == 0 || rgba.size() != viewFloats * views || format == ImageFormat::Png8Srgb) {
-    throw IoError("cannot write '" + path.string() + "': " + std::to_string(views) + " views of " +
-                  std::to_string(width) + "x" + std::to_string(height) + " with " + std::to_string(rgba.size()) +
-                  " floats as " + (format == ImageFormat::Png8Srgb ? "PNG" : "EXR") +
+    throw IoError("cannot encode a multi-view EXR: " + std::to_string(views) + " views of " + std::to_string(width) +
+                  "x" + std::to_string(height) + " with " + std::to_string(rgba.size()) + " floats as " +
+                  (format == ImageFormat::Png8Srgb ? "PNG" : "EXR") +
                   ", expected EXR and views*width*height*4 floats (a renderer bug)");
   }
-  AtomicOutputFile file(path);
   const OIIO::TypeDesc type = format == ImageFormat::ExrHalf ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
   OIIO::ImageSpec spec(int(width), int(height), int(views * kChannels), type);
   spec.channelnames.clear();
@@ -118,7 +121,32 @@ void writeMultiViewExr(const fs::path& path, std::uint32_t width, std::uint32_t 
       for (int c = 0; c < kChannels; ++c) pixels[(i * views + v) * kChannels + c] = rgba[v * viewFloats + i * kChannels + c];
     }
   }
-  writeWithOiio(path, file.tempPath(), spec, OIIO::TypeDesc::FLOAT, pixels.data(), "openexr");
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput proxy(bytes);
+  auto out = OIIO::ImageOutput::create("openexr");
+  if (!out || !out->set_ioproxy(&proxy) || !out->open("views.exr", spec) ||
+      !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !out->close()) {
+    std::string detail = out ? out->geterror() : OIIO::geterror();
+    throw IoError("cannot encode a multi-view EXR: " + (detail.empty() ? std::string("unknown OpenImageIO error") : detail));
+  }
+  return {bytes.begin(), bytes.end()};
+}
+
+void writeMultiViewExr(const fs::path& path, std::uint32_t width, std::uint32_t height, std::span<const float> rgba,
+                       const std::vector<std::string>& viewNames, ImageFormat format, const ImageAttributes& attributes) {
+  std::vector<std::uint8_t> bytes;
+  try {
+    bytes = encodeMultiViewExr(width, height, rgba, viewNames, format, attributes);
+  } catch (const IoError& e) {
+    throw IoError("cannot write '" + path.string() + "': " + e.what());
+  }
+  AtomicOutputFile file(path);
+  {
+    std::ofstream stream(file.tempPath(), std::ios::binary);
+    stream.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    stream.flush();
+    if (!stream) throw IoError("cannot write '" + path.string() + "': write failed (disk full?)");
+  }
   file.commit();
 }
 

@@ -34,7 +34,11 @@ void writeImageFile(const std::filesystem::path& path, const RgbaImageView& imag
 // One OpenEXR file holding several views of the same size (OpenEXR multi-view convention, "Storing Multi-View Images
 // in OpenEXR Files", Kainz & Bogart): the `multiView` string-vector attribute lists `viewNames` (the first is the
 // default view) and view k's channels are named "<name>.R/G/B/A". `rgba` holds the views one after the other, each
-// width * height * 4 floats with row 0 = top. `format` must be ExrHalf or ExrFloat.
+// width * height * 4 floats with row 0 = top. `format` must be ExrHalf or ExrFloat. encode...() returns the file's
+// bytes (the daemon's captures), write...() writes them atomically.
+std::vector<std::uint8_t> encodeMultiViewExr(std::uint32_t width, std::uint32_t height, std::span<const float> rgba,
+                                             const std::vector<std::string>& viewNames, ImageFormat format,
+                                             const ImageAttributes& attributes = {});
 void writeMultiViewExr(const std::filesystem::path& path, std::uint32_t width, std::uint32_t height,
                        std::span<const float> rgba, const std::vector<std::string>& viewNames, ImageFormat format,
                        const ImageAttributes& attributes = {});

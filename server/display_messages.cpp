@@ -10,9 +10,10 @@ void fillDisplaySummary(const RegisteredDisplay& display, holotrace::v1::Display
   out.set_id(display.id);
   out.set_name(display.config.name);
   out.set_model(std::string(displayModelName(display.config.model)));
-  const PanelSize size = framePanelSize(display.config);
-  out.set_panel_width(size.width);
-  out.set_panel_height(size.height);
+  const gpu::FrameShape shape = displayFrameShape(display);
+  out.set_panel_width(shape.width);
+  out.set_panel_height(shape.height);
+  out.set_views(shape.views);
 }
 
 void fillDisplay(const RegisteredDisplay& display, holotrace::v1::Display& out) {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "camera_models/embedded_display_configs.h"
+#include "cli/ray_table_exr.h"
 #include "common/error.h"
 
 namespace ht::server {
@@ -22,7 +23,7 @@ void addBuiltins(std::map<std::string, std::shared_ptr<const RegisteredDisplay>>
     const std::string id = "builtin:" + std::string(embedded.name);
     try {
       map[id] = std::make_shared<const RegisteredDisplay>(
-          RegisteredDisplay{id, builtinDisplay(embedded.name), std::string(embedded.json)});
+          RegisteredDisplay{id, builtinDisplay(embedded.name), std::string(embedded.json), nullptr});
     } catch (const Error& e) {
       log << "holotraced: builtin display skipped: " << e.what() << "\n";
     }
@@ -42,8 +43,11 @@ std::size_t DisplayRegistry::reload(std::ostream& log) {
       if (entry.path().extension() != ".json" || !entry.is_regular_file()) continue;
       try {
         const std::string id = entry.path().stem().string();
-        (*map)[id] = std::make_shared<const RegisteredDisplay>(
-            RegisteredDisplay{id, loadDisplayConfig(entry.path()), readText(entry.path())});
+        RegisteredDisplay display{id, loadDisplayConfig(entry.path()), readText(entry.path()), nullptr};
+        if (display.config.model == DisplayModel::RayTable) {
+          display.rayTable = std::make_shared<const RayTable>(cli::loadDisplayRayTable(display.config));
+        }
+        (*map)[id] = std::make_shared<const RegisteredDisplay>(std::move(display));
       } catch (const Error& e) {
         log << "holotraced: display config skipped: " << e.what() << "\n";
       }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "camera_models/display_config.h"
+#include "camera_models/ray_table.h"
 
 namespace ht::server {
 
@@ -18,6 +19,7 @@ struct RegisteredDisplay {
   std::string id;
   DisplayConfig config;
   std::string sourceText;  // the config file (or embedded config) verbatim
+  std::shared_ptr<const RayTable> rayTable;  // model "ray-table": its table, read when the display is registered
 };
 
 // An unknown display id (-> NOT_FOUND).

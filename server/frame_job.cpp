@@ -1,41 +1,36 @@
-// frame_job.cpp - see frame_job.h. Same camera dispatch as `holotrace render` (cli/render_command.cpp).
+// frame_job.cpp - see frame_job.h. Same camera dispatch as `holotrace render` (gpu/display_camera.h).
 #include "server/frame_job.h"
-
-#include "camera_models/lenticular_params.h"
-#include "camera_models/pinhole_params.h"
 
 namespace ht::server {
 
-PanelSize framePanelSize(const DisplayConfig& display) {
-  if (display.model == DisplayModel::Lenticular && display.calibration) {
-    return {display.calibration->screenW, display.calibration->screenH};
-  }
-  return {display.pinhole.width.value_or(1280), display.pinhole.height.value_or(720)};
+gpu::FrameShape displayFrameShape(const RegisteredDisplay& display, gpu::CameraPath path) {
+  return gpu::makeDisplayCamera(display.config, Bounds3{}, path, display.rayTable).shape;
 }
 
 DisplayConfig displayForSession(const DisplayConfig& display, const SceneSession& session) {
   DisplayConfig config = display;
   if (session.cameraOverride.target) config.camera.target = session.cameraOverride.target;
   if (session.cameraOverride.size) config.camera.size = session.cameraOverride.size;
+  if (config.projectorArray) {
+    if (session.observerDistance) config.projectorArray->observerDistance = *session.observerDistance;
+    if (session.observerHeight) config.projectorArray->observerHeight = *session.observerHeight;
+  }
   return config;
 }
 
-gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job) {
+gpu::DisplayCamera jobCamera(const FrameJob& job) {
   const DisplayConfig config = displayForSession(job.display->config, *job.session);
+  return gpu::makeDisplayCamera(config, job.session->content->scene.bounds(), job.path, job.display->rayTable);
+}
+
+gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job) {
   gpu::RenderSettings settings;
-  settings.spp = job.spp ? job.spp : config.spp;
+  settings.spp = job.spp ? job.spp : job.display->config.spp;
   settings.seed = job.seed;
+  const gpu::DisplayCamera camera = jobCamera(job);
   gpu::RenderResult result;
   const SceneContent& content = *job.session->content;
-  worker
-      .submit(client,
-              [&](gpu::VulkanContext&) {
-                const Bounds3 bounds = content.scene.bounds();
-                result = config.model == DisplayModel::Pinhole
-                             ? content.renderer->renderPinhole(makePinholeParams(config, bounds), settings)
-                             : content.renderer->renderLenticular(makeLenticularParams(config, bounds), settings);
-              })
-      .get();
+  worker.submit(client, [&](gpu::VulkanContext&) { result = content.renderer->render(camera.camera, settings); }).get();
   return result;
 }
 

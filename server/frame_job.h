@@ -4,6 +4,8 @@
 #include <memory>
 #include <string>
 
+#include "camera_models/display_config.h"
+#include "gpu/display_camera.h"
 #include "gpu/renderer.h"
 #include "server/display_registry.h"
 #include "server/render_worker.h"
@@ -16,17 +18,18 @@ struct FrameJob {
   std::shared_ptr<const RegisteredDisplay> display;
   std::uint32_t spp = 0;  // 0 = display default
   std::uint32_t seed = 0;
+  gpu::CameraPath path = gpu::CameraPath::Native;  // RenderRequest.quilt
 };
 
-struct PanelSize {
-  std::uint32_t width = 0, height = 0;
-};
+// What a frame of `display` is (views of width x height), independent of any scene. Throws ConfigError for
+// combinations that do not exist (quilt of a non-lenticular display).
+gpu::FrameShape displayFrameShape(const RegisteredDisplay& display, gpu::CameraPath path = gpu::CameraPath::Native);
 
-// The image size a frame of `display` has (panel for lenticular, pinhole image size otherwise).
-PanelSize framePanelSize(const DisplayConfig& display);
-
-// The display with the session's UpdateScene camera placement applied.
+// The display with the session's UpdateScene camera placement and tracked observer applied.
 DisplayConfig displayForSession(const DisplayConfig& display, const SceneSession& session);
+
+// The camera a job renders (the session's display, placed against its scene).
+gpu::DisplayCamera jobCamera(const FrameJob& job);
 
 // Queues the frame for `client` and waits for it. Throws what the worker or renderer threw.
 gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job);

@@ -3,6 +3,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "camera_models/quilt_layout.h"
+#include "cli/image_file_writer.h"
+#include "gpu/view_mosaic.h"
+#include "server/frame_encoding.h"
+#include "server/frame_job.h"
 #include "server/frame_sender.h"
 #include "server/holotrace_service.h"
 #include "server/path_rules.h"
@@ -26,6 +31,7 @@ v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame
   header.set_width(frame.width);
   header.set_height(frame.height);
   header.set_format(format == v1::PIXEL_FORMAT_UNSPECIFIED ? v1::PIXEL_FORMAT_RGBA8 : format);
+  header.set_views(frame.views);
   header.set_render_ms(frame.totalMs);
   header.set_queue_ms(queueMs);
   for (const auto& stage : frame.stages) {
@@ -40,8 +46,9 @@ v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame
 bool renderAndSend(ServiceState& state, const std::string& client, const FrameJob& job, v1::PixelFormat format,
                    std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer) {
   const auto queued = Clock::now();
-  const gpu::RenderResult frame = renderFrameJob(state.worker, client, job);
+  gpu::RenderResult frame = renderFrameJob(state.worker, client, job);
   const double queueMs = std::max(0.0, msBetween(queued, Clock::now()) - frame.totalMs);
+  if (frame.views > 1 && format == v1::PIXEL_FORMAT_PNG) frame = gpu::singleImage(frame, jobCamera(job).quilt);
   const auto bytes = encodeFrame(frame, checkPixelFormat(format));
   v1::FrameHeader header = makeHeader(state.nextFrameId++, frame, format, queueMs);
   header.set_dropped_frames(dropped);
@@ -55,10 +62,54 @@ void waitForTick(ServiceState& state, grpc::ServerContext& context, Clock::time_
   }
 }
 
-std::string captureFileName(const std::string& name, std::uint32_t index, v1::CaptureFormat format) {
+std::string captureStem(const std::string& name, std::uint32_t index) {
   char suffix[32];
   std::snprintf(suffix, sizeof suffix, "_f%04u", index);
-  return name + suffix + (format == v1::CAPTURE_FORMAT_EXR ? ".exr" : ".png");
+  return name + suffix;
+}
+
+std::string viewSuffix(std::uint32_t view, std::uint32_t views) {
+  const std::size_t digits = std::max<std::size_t>(2, std::to_string(views - 1).size());
+  const std::string number = std::to_string(view);
+  return "_v" + std::string(digits - number.size(), '0') + number;
+}
+
+struct CaptureFile {
+  std::string name;
+  std::vector<std::uint8_t> bytes;
+};
+
+// The files of one captured frame (proto CaptureLayout): one image; or for a multi-view frame a multiView EXR,
+// a quilt PNG + its JSON metadata, or one PNG per view.
+std::vector<CaptureFile> captureFiles(const gpu::RenderResult& frame, const FrameJob& job, const std::string& stem,
+                                      v1::CaptureFormat format, v1::CaptureLayout layout) {
+  const bool exr = format == v1::CAPTURE_FORMAT_EXR;
+  if (frame.views == 1) return {{stem + (exr ? ".exr" : ".png"), encodeFrame(frame, exr ? FrameEncoding::ExrHalf : FrameEncoding::Png8Srgb)}};
+  const gpu::DisplayCamera camera = jobCamera(job);
+  if (exr) {
+    std::vector<std::string> names;
+    for (std::uint32_t v = 0; v < frame.views; ++v) names.push_back("view" + viewSuffix(v, frame.views).substr(2));
+    return {{stem + ".exr", cli::encodeMultiViewExr(frame.width, frame.height, frame.rgba, names, cli::ImageFormat::ExrHalf)}};
+  }
+  if (layout == v1::CAPTURE_LAYOUT_QUILT && !camera.quilt) {
+    throw BadRequest("layout", "the views of display '" + job.display->id + "' do not form a quilt; use CAPTURE_LAYOUT_VIEWS");
+  }
+  if (camera.quilt && layout != v1::CAPTURE_LAYOUT_VIEWS) {
+    const QuiltLayout& q = *camera.quilt;
+    const std::string quiltStem = stem + formatQuiltName(q.columns, q.rows, q.aspect);
+    const std::string meta = gpu::quiltMetadataJson(displayForSession(job.display->config, *job.session), camera);
+    return {{quiltStem + ".png", encodeFrame(gpu::singleImage(frame, q), FrameEncoding::Png8Srgb)},
+            {quiltStem + ".json", std::vector<std::uint8_t>(meta.begin(), meta.end())}};
+  }
+  std::vector<CaptureFile> files;
+  const std::size_t floats = std::size_t(frame.width) * frame.height * 4;
+  for (std::uint32_t v = 0; v < frame.views; ++v) {
+    gpu::RenderResult view = frame;
+    view.views = 1;
+    view.rgba.assign(frame.rgba.begin() + std::ptrdiff_t(v * floats), frame.rgba.begin() + std::ptrdiff_t((v + 1) * floats));
+    files.push_back({stem + viewSuffix(v, frame.views) + ".png", encodeFrame(view, FrameEncoding::Png8Srgb)});
+  }
+  return files;
 }
 
 }  // namespace
@@ -120,22 +171,24 @@ grpc::Status HolotraceService::Capture(grpc::ServerContext* context, const v1::C
         request->format() != v1::CAPTURE_FORMAT_EXR) {
       throw BadRequest("format", "unknown capture format");
     }
+    if (!v1::CaptureLayout_IsValid(request->layout())) throw BadRequest("layout", "unknown capture layout");
     FrameJob job = checkRenderRequest(state_, request->render());
     StreamSlot slot(state_);
     const std::string client = clientKey(*context);
-    const bool exr = request->format() == v1::CAPTURE_FORMAT_EXR;
     for (std::uint32_t i = 0; i < frames; ++i) {
       if (context->IsCancelled()) throw ClientGone("capture cancelled after " + std::to_string(i) + " files");
       if (state_.shuttingDown) throw ShuttingDown("shutting down after " + std::to_string(i) + " complete files");
       job.seed = request->render().seed() + i;
       const gpu::RenderResult frame = renderFrameJob(state_.worker, client, job);
-      const std::string file = captureFileName(request->name(), i, request->format());
-      state_.outputSink.writeFile(file, encodeFrame(frame, exr ? FrameEncoding::ExrHalf : FrameEncoding::Png8Srgb));
-      v1::CaptureProgress progress;
-      progress.set_frames_done(i + 1);
-      progress.set_frames_total(frames);
-      progress.set_file(file);
-      writer->Write(progress);  // a gone client is noticed at the next frame (IsCancelled)
+      for (const CaptureFile& file :
+           captureFiles(frame, job, captureStem(request->name(), i), request->format(), request->layout())) {
+        state_.outputSink.writeFile(file.name, file.bytes);
+        v1::CaptureProgress progress;
+        progress.set_frames_done(i + 1);
+        progress.set_frames_total(frames);
+        progress.set_file(file.name);
+        writer->Write(progress);  // a gone client is noticed at the next frame (IsCancelled)
+      }
     }
     return grpc::Status::OK;
   });

@@ -1,6 +1,7 @@
 // request_checks.cpp - see request_checks.h.
 #include "server/request_checks.h"
 
+#include "common/error.h"
 #include "server/path_rules.h"
 
 namespace ht::server {
@@ -40,11 +41,18 @@ FrameJob checkRenderRequest(ServiceState& state, const holotrace::v1::RenderRequ
   job.session = state.scenes.find(request.scene_id());
   job.spp = request.spp();
   job.seed = request.seed();
-  const PanelSize size = framePanelSize(job.display->config);
-  if (static_cast<std::uint64_t>(size.width) * size.height > limits.maxPanelPixels) {
-    throw LimitExceeded("display '" + request.display_id() + "' is " + std::to_string(size.width) + "x" +
-                        std::to_string(size.height) + " pixels (limits.max_panel_pixels = " +
-                        std::to_string(limits.maxPanelPixels) + ")");
+  job.path = request.quilt() ? gpu::CameraPath::Quilt : gpu::CameraPath::Native;
+  gpu::FrameShape shape;
+  try {
+    shape = displayFrameShape(*job.display, job.path);
+  } catch (const ConfigError& e) {
+    throw BadRequest("quilt", e.expected());
+  }
+  const std::uint64_t pixels = std::uint64_t(shape.width) * shape.height * shape.views;
+  if (pixels > limits.maxPanelPixels) {
+    throw LimitExceeded("display '" + request.display_id() + "' is " + std::to_string(shape.views) + " x " +
+                        std::to_string(shape.width) + "x" + std::to_string(shape.height) +
+                        " pixels (limits.max_panel_pixels = " + std::to_string(limits.maxPanelPixels) + ")");
   }
   return job;
 }

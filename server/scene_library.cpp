@@ -84,12 +84,15 @@ std::shared_ptr<const SceneSession> SceneLibrary::find(const std::string& id) co
   return it->second;
 }
 
-void SceneLibrary::updateCamera(const std::string& id, const CameraPlacement& placement) {
+void SceneLibrary::updateCamera(const std::string& id, const CameraPlacement& placement,
+                                std::optional<double> observerDistance, std::optional<double> observerHeight) {
   std::lock_guard lock(mutex_);
   auto it = sessions_.find(id);
   if (it == sessions_.end()) throw UnknownScene("unknown scene_id '" + id + "' (LoadScene returns one)");
   auto updated = std::make_shared<SceneSession>(*it->second);  // sessions are immutable once published
   updated->cameraOverride = placement;
+  if (observerDistance) updated->observerDistance = observerDistance;
+  if (observerHeight) updated->observerHeight = observerHeight;
   it->second = std::move(updated);
 }
 

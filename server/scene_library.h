@@ -29,6 +29,7 @@ struct SceneSession {
   std::string id;
   std::shared_ptr<SceneContent> content;
   CameraPlacement cameraOverride;  // target / size set by UpdateScene (unset = display's own)
+  std::optional<double> observerDistance, observerHeight;  // tracked HPO observer (UpdateScene)
   bool reused = false;
 };
 
@@ -48,7 +49,10 @@ class SceneLibrary {
   std::shared_ptr<const SceneSession> open(const std::string& client, const std::string& spec,
                                            std::span<const std::uint8_t> bytes);
   std::shared_ptr<const SceneSession> find(const std::string& id) const;  // throws UnknownScene
-  void updateCamera(const std::string& id, const CameraPlacement& placement);
+  // Replaces the camera override; observer values replace the tracked observer where given.
+  void updateCamera(const std::string& id, const CameraPlacement& placement,
+                    std::optional<double> observerDistance = std::nullopt,
+                    std::optional<double> observerHeight = std::nullopt);
   std::size_t contentCount() const;
 
  private:

@@ -143,8 +143,23 @@ grpc::Status HolotraceService::UpdateScene(grpc::ServerContext*, const v1::Updat
       if (!std::isfinite(request->size()) || request->size() < 0.0) throw BadRequest("size", "must be > 0");
       placement.size = request->size();
     }
-    if (!placement.target && !placement.size) throw BadRequest("target", "give a target and/or a size");
-    state_.scenes.updateCamera(request->scene_id(), placement);
+    std::optional<double> observerDistance, observerHeight;
+    if (request->has_observer_distance()) {
+      if (!std::isfinite(request->observer_distance()) || request->observer_distance() <= 0.0) {
+        throw BadRequest("observer_distance", "must be finite and > 0 (display units)");
+      }
+      observerDistance = request->observer_distance();
+    }
+    if (request->has_observer_height()) {
+      if (!std::isfinite(request->observer_height())) throw BadRequest("observer_height", "must be finite");
+      observerHeight = request->observer_height();
+    }
+    if (!placement.target && !placement.size && !observerDistance && !observerHeight) {
+      throw BadRequest("target", "give a target, a size and/or an observer position");
+    }
+    // An observer-only update keeps the camera placement of earlier updates.
+    if (!placement.target && !placement.size) placement = state_.scenes.find(request->scene_id())->cameraOverride;
+    state_.scenes.updateCamera(request->scene_id(), placement, observerDistance, observerHeight);
     return grpc::Status::OK;
   });
 }

@@ -31,7 +31,7 @@ gpu::RenderResult codedFrame(std::uint32_t views, std::uint32_t w, std::uint32_t
 TEST(FrameOutputs, QuiltPutsViewZeroBottomLeftAndKeepsRowsUpright) {
   const QuiltLayout layout = makeQuiltLayout(3, 2, 14, 9, 1.5);  // tiles 4x4, remainder 2 px right, 1 px top
   const gpu::RenderResult frame = codedFrame(6, 4, 4);
-  const std::vector<float> quilt = assembleQuilt(frame, layout);
+  const std::vector<float> quilt = gpu::assembleQuilt(frame, layout);
   ASSERT_EQ(quilt.size(), 14u * 9u * 4u);
   auto at = [&](std::uint32_t x, std::uint32_t rowFromTop, int c) { return quilt[(rowFromTop * 14 + x) * 4 + c]; };
   // Bottom-left tile = view 0: the quilt's bottom row is the view's bottom row (row 3 from its top).
@@ -50,8 +50,8 @@ TEST(FrameOutputs, QuiltPutsViewZeroBottomLeftAndKeepsRowsUpright) {
 
 TEST(FrameOutputs, QuiltLayoutMustMatchTheFrame) {
   const QuiltLayout layout = makeQuiltLayout(3, 2, 12, 8, 1.0);
-  EXPECT_THROW(assembleQuilt(codedFrame(5, 4, 4), layout), IoError);
-  EXPECT_THROW(assembleQuilt(codedFrame(6, 4, 3), layout), IoError);
+  EXPECT_THROW(gpu::assembleQuilt(codedFrame(5, 4, 4), layout), IoError);
+  EXPECT_THROW(gpu::assembleQuilt(codedFrame(6, 4, 3), layout), IoError);
 }
 
 TEST(FrameOutputs, QuiltFileNameGetsTheStandardTag) {
@@ -67,7 +67,7 @@ TEST(FrameOutputs, QuiltFileNameGetsTheStandardTag) {
 TEST(FrameOutputs, QuiltMetadataCarriesLayoutConeAndCalibrationVerbatim) {
   const DisplayConfig display = builtinDisplay("portrait");
   const gpu::DisplayCamera camera = gpu::makeDisplayCamera(display, Bounds3{}, gpu::CameraPath::Quilt);
-  const nlohmann::json meta = nlohmann::json::parse(quiltMetadataJson(display, camera));
+  const nlohmann::json meta = nlohmann::json::parse(gpu::quiltMetadataJson(display, camera));
   EXPECT_EQ(meta["views"], 48);
   EXPECT_EQ(meta["columns"], 8);
   EXPECT_EQ(meta["rows"], 6);

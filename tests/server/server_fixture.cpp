@@ -53,6 +53,14 @@ void writeText(const std::filesystem::path& file, const std::string& text) {
 
 DaemonFiles::DaemonFiles() {
   writeText(dir.path / "displays" / "tiny.json", tinyDisplayJson());
+  // Multi-view displays: a 3x2 capture grid (its views form a quilt) and a 3-projector HPO array (they do not).
+  writeText(dir.path / "displays" / "rig.json", R"({"name": "rig", "model": "capture-grid", "spp": 1,
+    "captureGrid": {"columns": 3, "rows": 2, "spacing": [0.1, 0.1], "distance": 3, "window": {"width": 2.4,
+    "height": 1.8}, "image": {"width": 24, "height": 16}}})");
+  writeText(dir.path / "displays" / "wall.json", R"({"name": "wall", "model": "projector-array", "spp": 1,
+    "projectorArray": {"screen": {"width": 160, "height": 90}, "observerDistance": 300, "observerHeight": 0,
+    "angularScattering": "auto", "image": {"width": 20, "height": 12},
+    "projectors": [{"position": [-10, 0, -180]}, {"position": [0, 0, -180]}, {"position": [10, 0, -180]}]}})");
   writeText(sceneRoot() / "cube.obj", cubeObj());
   writeText(dir.path / "secret.obj", cubeObj());  // outside the scene root
   std::filesystem::create_directories(outputRoot());

@@ -293,6 +293,88 @@ TEST_F(ServerTest, CaptureWritesOnlyCompleteFilesBeneathTheOutputRoot) {
   EXPECT_FALSE(std::filesystem::exists(files_->dir.path / "evil_f0000.png"));
 }
 
+v1::RenderRequest multiViewRequest(const std::string& sceneId, const std::string& display, v1::PixelFormat format) {
+  v1::RenderRequest request = tinyRequest(sceneId, format);
+  request.set_display_id(display);
+  return request;
+}
+
+grpc::Status captureAs(v1::Holotrace::Stub& stub, const std::string& name, const v1::RenderRequest& render,
+                       v1::CaptureFormat format, v1::CaptureLayout layout, std::vector<std::string>* files) {
+  grpc::ClientContext context;
+  v1::CaptureRequest request;
+  *request.mutable_render() = render;
+  request.set_name(name);
+  request.set_frames(1);
+  request.set_format(format);
+  request.set_layout(layout);
+  auto reader = stub.Capture(&context, request);
+  v1::CaptureProgress progress;
+  while (reader->Read(&progress)) files->push_back(progress.file());
+  return reader->Finish();
+}
+
+TEST_F(ServerTest, MultiViewFramesCarryEveryViewAndPngIsTheQuilt) {
+  ReceivedFrame frame;
+  ASSERT_TRUE(renderOne(*stub_, multiViewRequest(sceneId_, "rig", v1::PIXEL_FORMAT_RGBA8), &frame).ok());
+  EXPECT_EQ(frame.header.views(), 6u);
+  EXPECT_EQ(frame.header.width(), 24u);
+  EXPECT_EQ(frame.bytes.size(), 6u * 24 * 16 * 4);
+  ASSERT_TRUE(renderOne(*stub_, multiViewRequest(sceneId_, "rig", v1::PIXEL_FORMAT_PNG), &frame).ok());
+  EXPECT_EQ(frame.header.width(), 72u);  // the 3x2 quilt of 24x16 tiles
+  EXPECT_EQ(frame.header.height(), 32u);
+  v1::RenderRequest quilt = tinyRequest(sceneId_);
+  quilt.set_display_id("wall");
+  quilt.set_quilt(true);  // only lenticular displays have quilt cameras
+  EXPECT_EQ(renderOne(*stub_, quilt).error_code(), StatusCode::INVALID_ARGUMENT);
+}
+
+TEST_F(ServerTest, CaptureWritesQuiltPerViewAndMultiViewFiles) {
+  std::vector<std::string> files;
+  ASSERT_TRUE(captureAs(*stub_, "rigq", multiViewRequest(sceneId_, "rig", v1::PIXEL_FORMAT_RGBA8),
+                        v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_AUTO, &files).ok());
+  ASSERT_EQ(files, (std::vector<std::string>{"rigq_f0000_qs3x2a1.5.png", "rigq_f0000_qs3x2a1.5.json"}));
+  EXPECT_TRUE(isCompletePng(files_->outputRoot() / files[0]));
+  files.clear();
+  ASSERT_TRUE(captureAs(*stub_, "walls", multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8),
+                        v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_AUTO, &files).ok());
+  EXPECT_EQ(files, (std::vector<std::string>{"walls_f0000_v00.png", "walls_f0000_v01.png", "walls_f0000_v02.png"}));
+  files.clear();
+  ASSERT_TRUE(captureAs(*stub_, "wallx", multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8),
+                        v1::CAPTURE_FORMAT_EXR, v1::CAPTURE_LAYOUT_AUTO, &files).ok());
+  EXPECT_EQ(files, (std::vector<std::string>{"wallx_f0000.exr"}));
+  files.clear();
+  EXPECT_EQ(captureAs(*stub_, "wallq", multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8),
+                      v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_QUILT, &files).error_code(),
+            StatusCode::INVALID_ARGUMENT);
+  EXPECT_FALSE(std::filesystem::exists(files_->outputRoot() / "wallq_f0000.png"));
+}
+
+// The tracked observer of an HPO display (UpdateScene): moving it changes the double-perspective rays, hence the
+// frame; moving it back restores the frame exactly.
+TEST_F(ServerTest, UpdateSceneMovesTheTrackedObserver) {
+  auto frameBytes = [&] {
+    ReceivedFrame frame;
+    EXPECT_TRUE(renderOne(*stub_, multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8), &frame).ok());
+    return frame.bytes;
+  };
+  auto moveObserver = [&](double distance, double height) {
+    grpc::ClientContext context;
+    v1::UpdateSceneRequest request;
+    request.set_scene_id(sceneId_);
+    request.set_observer_distance(distance);
+    request.set_observer_height(height);
+    v1::UpdateSceneResponse response;
+    return stub_->UpdateScene(&context, request, &response);
+  };
+  const auto before = frameBytes();
+  ASSERT_TRUE(moveObserver(300, 40).ok());
+  EXPECT_NE(frameBytes(), before);
+  ASSERT_TRUE(moveObserver(300, 0).ok());
+  EXPECT_EQ(frameBytes(), before);
+  EXPECT_EQ(moveObserver(-1, 0).error_code(), StatusCode::INVALID_ARGUMENT);
+}
+
 TEST_F(ServerTest, CaptureOverAnExistingSymlinkDoesNotFollowIt) {
   // A planted symlink named like a capture output is replaced by rename(), the target is never written.
   const auto outside = files_->dir.path / "victim.png";
