@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_main.h"
 #include "bench/bench_options.h"
 #include "bench/bench_result.h"
 #include "bench/embree_tracer.h"
@@ -98,20 +99,7 @@ int runBenchmark(const BenchOptions& options) {
 }  // namespace ht::bench
 
 int main(int argc, char** argv) {
-  const std::vector<std::string> args(argv + (argc > 0 ? 1 : 0), argv + argc);
-  try {
-    std::string help;
-    const auto options = ht::bench::parseBenchOptions(args, &help);
-    if (!options) {
-      std::cout << help;
-      return 0;
-    }
-    return ht::bench::runBenchmark(*options);
-  } catch (const ht::UsageError& e) {
-    std::cerr << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "holotrace-bench-primary: error: " << e.what() << "\n";
-    return 1;
-  }
+  return ht::bench::benchMain(argc, argv, "holotrace-bench-primary",
+                              [](const std::vector<std::string>& a, std::string* help) { return ht::bench::parseBenchOptions(a, help); },
+                              [](const auto& options) { return ht::bench::runBenchmark(options); });
 }

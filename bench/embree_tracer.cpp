@@ -2,6 +2,7 @@
 #include "bench/embree_tracer.h"
 
 #include "bench/embree_ray.h"
+#include "bench/embree_handles.h"
 
 #include <embree3/rtcore.h>
 #include <pmmintrin.h>
@@ -39,14 +40,6 @@ void setEmbreeFloatMode() {
 
 }  // namespace
 
-struct EmbreeTracer::Handles {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  ~Handles() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
-  }
-};
 
 EmbreeTracer::EmbreeTracer(const Scene& scene) : handles_(std::make_unique<Handles>()) {
   handles_->device = rtcNewDevice(nullptr);

@@ -31,7 +31,16 @@ class EmbreeTracer {
   std::vector<std::uint32_t> traceOccluded(std::span<const gpu_shared::HtRay> rays, std::uint32_t width,
                                            unsigned threads, double* wallMs) const;
 
-  struct Handles;
+  // Flat batches (holotrace-bench-traversal): threads take chunks of kFlatChunk consecutive rays. Single =
+  // rtcIntersect1/rtcOccluded1 per ray; Packet8 = rtcIntersect8/rtcOccluded8 on 8 consecutive rays (embree_packets.cpp).
+  static constexpr std::size_t kFlatChunk = 256;
+  enum class Api { Single, Packet8 };
+  std::vector<gpu_shared::HtHit> traceClosestFlat(std::span<const gpu_shared::HtRay> rays, Api api, unsigned threads,
+                                                  double* wallMs) const;
+  std::vector<std::uint32_t> traceOccludedFlat(std::span<const gpu_shared::HtRay> rays, Api api, unsigned threads,
+                                               double* wallMs) const;
+
+  struct Handles;  // embree_handles.h
 
  private:
   std::unique_ptr<Handles> handles_;

@@ -1,0 +1,181 @@
+// bench_quality_main.cpp - holotrace-bench-quality: run time vs error of the direct lenticular path and the quilt
+// path per display (issue 5; method in quality_options.cpp's help text, optics.md §8 "quilt path vs direct").
+//
+// Every render is timed once (frames take seconds on lavapipe, so the run-to-run spread is small against the
+// spp steps); each camera model is warmed up first on a 96x128 copy of the display (lavapipe JIT-compiles at the
+// first dispatch).
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "bench/bench_main.h"
+#include "bench/image_metrics.h"
+#include "bench/quality_options.h"
+#include "bench/quality_points.h"
+#include "bench/quilt_interleave.h"
+#include "camera_models/display_config.h"
+#include "camera_models/lenticular_params.h"
+#include "camera_models/quilt_layout.h"
+#include "camera_models/quilt_setup.h"
+#include "common/error.h"
+#include "gpu/renderer.h"
+#include "gpu/vulkan_context.h"
+#include "scene/scene.h"
+
+namespace ht::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::uint32_t kRefSeedA = 1001, kRefSeedB = 2002;
+constexpr QuiltViewFilter kFilters[] = {QuiltViewFilter::Nearest, QuiltViewFilter::VendorLerp,
+                                        QuiltViewFilter::CentredLerp};
+
+struct Context {
+  gpu::Renderer& renderer;
+  const Scene& scene;
+  const QualityOptions& options;
+};
+
+gpu::RenderSettings settings(const QualityOptions& o, std::uint32_t spp, std::uint32_t seed) {
+  gpu::RenderSettings s;
+  s.spp = spp;
+  s.maxDepth = o.maxDepth;
+  s.seed = seed;
+  return s;
+}
+
+double stageSum(const gpu::RenderResult& r) {
+  double sum = 0.0;
+  for (const auto& stage : r.stages) sum += stage.ms;
+  return sum;
+}
+
+void scoreAgainst(QualityPoint& p, const std::vector<float>& image, const std::vector<float>& reference,
+                  const DisplayQuality& d) {
+  p.metrics = compareImages(image, reference, d.panelWidth, d.panelHeight);
+  p.psnrCorrectedDb = psnrFromMse(std::max(p.metrics.mse - d.refNoiseMse, 1e-12));
+}
+
+// Both camera models once on a small copy of the display.
+void warmUp(const Context& c, const DisplayConfig& display) {
+  DisplayConfig small = display;
+  small.calibration->screenW = 96;
+  small.calibration->screenH = 128;
+  const auto bounds = c.scene.bounds();
+  c.renderer.renderLenticular(makeLenticularParams(small, bounds), settings(c.options, 1, 0));
+  const QuiltLayout layout = defaultQuiltLayout(display);
+  const QuiltLayout tiny = makeQuiltLayout(layout.columns, layout.rows, layout.columns * 16, layout.rows * 16,
+                                           layout.aspect);
+  c.renderer.renderQuilt(makeQuiltParams(display, bounds, tiny), settings(c.options, 1, 0));
+}
+
+std::vector<float> renderReference(const Context& c, const gpu_shared::LenticularParams& params, DisplayQuality& d) {
+  const std::uint32_t half = c.options.refSpp / 2;
+  std::cout << "  reference: 2 x " << half << " spp..." << std::endl;
+  const auto a = c.renderer.renderLenticular(params, settings(c.options, half, kRefSeedA));
+  const auto b = c.renderer.renderLenticular(params, settings(c.options, half, kRefSeedB));
+  d.panelWidth = a.width;
+  d.panelHeight = a.height;
+  d.refSpp = c.options.refSpp;
+  d.refMs = a.totalMs + b.totalMs;
+  d.refNoiseMse = compareImages(a.rgba, b.rgba, a.width, a.height).mse / 4.0;
+  std::vector<float> reference(a.rgba.size());
+  for (std::size_t i = 0; i < reference.size(); ++i) reference[i] = 0.5f * (a.rgba[i] + b.rgba[i]);
+  return reference;
+}
+
+void measureDirect(const Context& c, const gpu_shared::LenticularParams& params, const std::vector<float>& reference,
+                   DisplayQuality& d) {
+  for (std::uint32_t spp : c.options.directSpp) {
+    std::cout << "  direct spp " << spp << "..." << std::endl;
+    const auto frame = c.renderer.renderLenticular(params, settings(c.options, spp, 0));
+    QualityPoint p{"direct", spp, "", "", frame.totalMs, stageSum(frame), 0.0, {}, 0.0};
+    scoreAgainst(p, frame.rgba, reference, d);
+    d.points.push_back(p);
+  }
+}
+
+void measureQuilt(const Context& c, const DisplayConfig& display, const QuiltLayout& layout,
+                  const std::vector<std::uint32_t>& sppList, const std::vector<float>& reference, DisplayQuality& d) {
+  const auto lenticular = makeLenticularParams(display, c.scene.bounds());
+  const auto params = makeQuiltParams(display, c.scene.bounds(), layout);
+  const std::string name = std::to_string(layout.columns) + "x" + std::to_string(layout.rows) + " " +
+                           std::to_string(layout.tileWidth) + "x" + std::to_string(layout.tileHeight);
+  for (std::uint32_t spp : sppList) {
+    std::cout << "  quilt " << name << " spp " << spp << "..." << std::endl;
+    const auto frame = c.renderer.renderQuilt(params, settings(c.options, spp, 0));
+    const QuiltViews views{frame.width, frame.height, frame.views, frame.rgba};
+    for (QuiltViewFilter filter : kFilters) {
+      const auto start = Clock::now();
+      const auto panel = interleaveQuilt(views, lenticular, filter);
+      const double interleaveMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+      QualityPoint p{"quilt", spp, name, std::string(quiltViewFilterName(filter)), frame.totalMs, stageSum(frame),
+                     interleaveMs, {}, 0.0};
+      scoreAgainst(p, panel, reference, d);
+      d.points.push_back(p);
+    }
+  }
+}
+
+QuiltLayout scaledLayout(const QuiltLayout& layout, double scale) {
+  const double linear = std::sqrt(scale);
+  return makeQuiltLayout(layout.columns, layout.rows, std::uint32_t(std::lround(layout.quiltWidth * linear)),
+                         std::uint32_t(std::lround(layout.quiltHeight * linear)), layout.aspect);
+}
+
+DisplayQuality measureDisplay(const Context& c, const std::string& spec) {
+  const DisplayConfig display = resolveDisplay(spec);
+  if (!display.calibration) throw UsageError("holotrace-bench-quality: " + spec + " is not a lenticular display");
+  std::cout << "holotrace-bench-quality: " << spec << std::endl;
+  warmUp(c, display);
+  const auto params = makeLenticularParams(display, c.scene.bounds());
+  DisplayQuality d;
+  d.display = spec;
+  const std::vector<float> reference = renderReference(c, params, d);
+  measureDirect(c, params, reference, d);
+  QuiltLayout layout = defaultQuiltLayout(display);
+  if (c.options.quiltSize) {
+    layout = makeQuiltLayout(layout.columns, layout.rows, c.options.quiltSize->first, c.options.quiltSize->second,
+                             layout.aspect);
+  }
+  measureQuilt(c, display, layout, c.options.quiltSpp, reference, d);
+  measureQuilt(c, display, scaledLayout(layout, c.options.quiltScale), c.options.quiltScaledSpp, reference, d);
+  return d;
+}
+
+std::string utcNow() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  return text;
+}
+
+int runBenchmark(const QualityOptions& o) {
+  gpu::VulkanContext context({o.deviceIndex, false});
+  const Scene scene = loadScene(o.scene);
+  gpu::Renderer renderer(context, scene);
+  QualityReport report;
+  report.device = context.device().name + " (" + context.device().type + ")";
+  report.scene = o.scene;
+  report.date = utcNow();
+  report.maxDepth = o.maxDepth;
+  const Context c{renderer, scene, o};
+  for (const std::string& display : o.displays) report.displays.push_back(measureDisplay(c, display));
+  printQualityReport(std::cout, report);
+  if (o.csvPath) writeQualityCsv(*o.csvPath, report);
+  if (o.summaryCsvPath) writeQualitySummaryCsv(*o.summaryCsvPath, report);
+  if (o.jsonPath) writeQualityJson(*o.jsonPath, report);
+  return 0;
+}
+
+}  // namespace
+}  // namespace ht::bench
+
+int main(int argc, char** argv) {
+  return ht::bench::benchMain(argc, argv, "holotrace-bench-quality",
+                              [](const std::vector<std::string>& a, std::string* help) { return ht::bench::parseQualityOptions(a, help); },
+                              [](const auto& options) { return ht::bench::runBenchmark(options); });
+}

@@ -1,0 +1,29 @@
+// quality_options.h - options of holotrace-bench-quality.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ht::bench {
+
+struct QualityOptions {
+  std::vector<std::string> displays{"builtin:portrait", "builtin:gen3-16-landscape"};
+  std::string scene = "builtin:plain";
+  std::uint32_t refSpp = 16;                       // reference = two independent halves of refSpp/2 each
+  std::vector<std::uint32_t> directSpp{1, 2, 4, 8};
+  std::vector<std::uint32_t> quiltSpp{1, 2};       // at the device's standard quilt
+  std::vector<std::uint32_t> quiltScaledSpp{1};    // at the scaled quilt (--quilt-scale)
+  std::optional<std::pair<std::uint32_t, std::uint32_t>> quiltSize;  // standard quilt texture size override
+  double quiltScale = 2.0;                         // pixel-count factor of the scaled quilt (tiles x sqrt(scale))
+  std::uint32_t maxDepth = 4;
+  int deviceIndex = -1;
+  std::optional<std::string> csvPath, summaryCsvPath, jsonPath;
+};
+
+// Returns nullopt after printing help (--help); throws UsageError for bad options.
+std::optional<QualityOptions> parseQualityOptions(std::span<const std::string> args, std::string* helpText);
+
+}  // namespace ht::bench

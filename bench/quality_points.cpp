@@ -1,0 +1,153 @@
+// quality_points.cpp - see quality_points.h.
+#include "bench/quality_points.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "bench/output_file.h"
+
+namespace ht::bench {
+namespace {
+
+std::string fixed(double value, int digits) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", digits, value);
+  return text;
+}
+
+std::string optionalText(const std::optional<double>& v, int digits) { return v ? fixed(*v, digits) : ""; }
+
+// The direct points, sorted by time.
+std::vector<const QualityPoint*> directCurve(const std::vector<QualityPoint>& points) {
+  std::vector<const QualityPoint*> curve;
+  for (const QualityPoint& p : points) {
+    if (p.path == "direct") curve.push_back(&p);
+  }
+  std::sort(curve.begin(), curve.end(), [](auto* a, auto* b) { return a->frameMs() < b->frameMs(); });
+  return curve;
+}
+
+// PSNR of the direct curve at time ms (log2-time interpolation), nullopt outside its time range.
+std::optional<double> psnrAtTime(const std::vector<const QualityPoint*>& curve, double ms) {
+  for (std::size_t i = 0; i + 1 < curve.size(); ++i) {
+    const double t0 = std::log2(curve[i]->frameMs()), t1 = std::log2(curve[i + 1]->frameMs());
+    const double t = std::log2(ms);
+    if (t >= t0 && t <= t1 && t1 > t0) {
+      const double w = (t - t0) / (t1 - t0);
+      return curve[i]->psnrCorrectedDb * (1 - w) + curve[i + 1]->psnrCorrectedDb * w;
+    }
+  }
+  return std::nullopt;
+}
+
+// Time at which the direct curve first reaches psnr (log2-time interpolation), nullopt if it never does.
+std::optional<double> timeAtPsnr(const std::vector<const QualityPoint*>& curve, double psnr) {
+  if (!curve.empty() && curve[0]->psnrCorrectedDb >= psnr) return curve[0]->frameMs();
+  for (std::size_t i = 0; i + 1 < curve.size(); ++i) {
+    const double p0 = curve[i]->psnrCorrectedDb, p1 = curve[i + 1]->psnrCorrectedDb;
+    if (p0 < psnr && p1 >= psnr) {
+      const double w = (psnr - p0) / (p1 - p0);
+      return std::exp2(std::log2(curve[i]->frameMs()) * (1 - w) + std::log2(curve[i + 1]->frameMs()) * w);
+    }
+  }
+  return std::nullopt;
+}
+
+nlohmann::json pointJson(const QualityPoint& p) {
+  return {{"path", p.path}, {"spp", p.spp}, {"quilt", p.quilt}, {"filter", p.filter}, {"render_ms", p.renderMs},
+          {"gpu_stage_ms", p.gpuMs}, {"interleave_cpu_ms", p.interleaveMs}, {"frame_ms", p.frameMs()},
+          {"rmse", p.metrics.rmse}, {"psnr_db", p.metrics.psnrDb}, {"psnr_corrected_db", p.psnrCorrectedDb},
+          {"ssim", p.metrics.ssim}};
+}
+
+}  // namespace
+
+std::vector<EqualComparison> DisplayQuality::compare() const {
+  const auto curve = directCurve(points);
+  std::vector<EqualComparison> out;
+  for (const QualityPoint& p : points) {
+    if (p.path != "quilt") continue;
+    EqualComparison c{&p, std::nullopt, std::nullopt};
+    if (auto psnr = psnrAtTime(curve, p.frameMs())) c.directGainDb = *psnr - p.psnrCorrectedDb;
+    if (auto ms = timeAtPsnr(curve, p.psnrCorrectedDb)) c.speedup = p.frameMs() / *ms;
+    out.push_back(c);
+  }
+  return out;
+}
+
+void printQualityReport(std::ostream& out, const QualityReport& r) {
+  out << "device: " << r.device << ", scene " << r.scene << ", depth " << r.maxDepth << "\n";
+  for (const DisplayQuality& d : r.displays) {
+    out << "\n" << d.display << " (" << d.panelWidth << "x" << d.panelHeight << "), reference spp " << d.refSpp
+        << " (" << fixed(d.refMs / 1000, 1) << " s, own noise PSNR " << fixed(psnrFromMse(d.refNoiseMse), 2)
+        << " dB)\n";
+    out << "  path    spp  quilt             filter        frame ms   RMSE     PSNR  PSNRcorr  SSIM\n";
+    for (const QualityPoint& p : d.points) {
+      char line[256];
+      std::snprintf(line, sizeof line, "  %-6s %4u  %-16s  %-12s %9.1f  %.5f  %6.2f  %6.2f  %.4f\n", p.path.c_str(),
+                    p.spp, p.quilt.c_str(), p.filter.c_str(), p.frameMs(), p.metrics.rmse, p.metrics.psnrDb,
+                    p.psnrCorrectedDb, p.metrics.ssim);
+      out << line;
+    }
+    for (const EqualComparison& c : d.compare()) {
+      out << "  vs quilt " << c.quilt->quilt << " spp " << c.quilt->spp << " " << c.quilt->filter
+          << ": direct at equal time " << (c.directGainDb ? "+" + fixed(*c.directGainDb, 2) + " dB" : "n/a (outside)")
+          << ", at equal PSNR " << (c.speedup ? fixed(*c.speedup, 2) + "x faster" : "n/a (not reached)") << "\n";
+    }
+  }
+}
+
+void writeQualityCsv(const std::string& path, const QualityReport& r) {
+  std::ostringstream csv;
+  csv << "display,path,spp,quilt,filter,render_ms,gpu_stage_ms,interleave_cpu_ms,frame_ms,rmse,psnr_db,"
+         "psnr_corrected_db,ssim\n";
+  for (const DisplayQuality& d : r.displays) {
+    for (const QualityPoint& p : d.points) {
+      csv << d.display << "," << p.path << "," << p.spp << "," << p.quilt << "," << p.filter << ","
+          << fixed(p.renderMs, 1) << "," << fixed(p.gpuMs, 1) << "," << fixed(p.interleaveMs, 1) << ","
+          << fixed(p.frameMs(), 1) << "," << fixed(p.metrics.rmse, 6) << "," << fixed(p.metrics.psnrDb, 3) << ","
+          << fixed(p.psnrCorrectedDb, 3) << "," << fixed(p.metrics.ssim, 5) << "\n";
+    }
+  }
+  writeTextFile(path, csv.str());
+}
+
+void writeQualitySummaryCsv(const std::string& path, const QualityReport& r) {
+  std::ostringstream csv;
+  csv << "display,quilt,quilt_spp,filter,quilt_frame_ms,quilt_psnr_corrected_db,direct_gain_db_at_equal_time,"
+         "direct_speedup_at_equal_psnr\n";
+  for (const DisplayQuality& d : r.displays) {
+    for (const EqualComparison& c : d.compare()) {
+      csv << d.display << "," << c.quilt->quilt << "," << c.quilt->spp << "," << c.quilt->filter << ","
+          << fixed(c.quilt->frameMs(), 1) << "," << fixed(c.quilt->psnrCorrectedDb, 3) << ","
+          << optionalText(c.directGainDb, 3) << "," << optionalText(c.speedup, 3) << "\n";
+    }
+  }
+  writeTextFile(path, csv.str());
+}
+
+void writeQualityJson(const std::string& path, const QualityReport& r) {
+  nlohmann::json displays = nlohmann::json::array();
+  for (const DisplayQuality& d : r.displays) {
+    nlohmann::json points = nlohmann::json::array(), comparisons = nlohmann::json::array();
+    for (const QualityPoint& p : d.points) points.push_back(pointJson(p));
+    for (const EqualComparison& c : d.compare()) {
+      comparisons.push_back({{"quilt", c.quilt->quilt}, {"spp", c.quilt->spp}, {"filter", c.quilt->filter},
+                             {"direct_gain_db_at_equal_time", c.directGainDb ? nlohmann::json(*c.directGainDb) : nullptr},
+                             {"direct_speedup_at_equal_psnr", c.speedup ? nlohmann::json(*c.speedup) : nullptr}});
+    }
+    displays.push_back({{"display", d.display}, {"panel", {d.panelWidth, d.panelHeight}}, {"ref_spp", d.refSpp},
+                        {"ref_ms", d.refMs}, {"ref_noise_mse", d.refNoiseMse}, {"points", points},
+                        {"comparisons", comparisons}});
+  }
+  const nlohmann::json doc = {{"benchmark", "holotrace-bench-quality"}, {"date", r.date}, {"device", r.device},
+                              {"scene", r.scene}, {"max_depth", r.maxDepth}, {"metric_space", "sRGB-encoded, clamped [0,1]"},
+                              {"displays", displays}};
+  writeTextFile(path, doc.dump(2) + "\n");
+}
+
+}  // namespace ht::bench

@@ -1,0 +1,55 @@
+// quality_points.h - the measured points of holotrace-bench-quality, the equal-time / equal-error comparison of the
+// direct path against each quilt point, and their CSV / JSON / text output.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "bench/image_metrics.h"
+
+namespace ht::bench {
+
+struct QualityPoint {
+  std::string path;     // "direct" or "quilt"
+  std::uint32_t spp = 0;
+  std::string quilt;    // quilt points: "8x6 420x560" (columns x rows, tile size); empty for direct
+  std::string filter;   // quilt points: view filter name; empty for direct
+  double renderMs = 0;  // RenderResult::totalMs (host wall time of the frame)
+  double gpuMs = 0;     // sum of RenderResult::stages
+  double interleaveMs = 0;  // CPU interleave (quilt only; reported, not in frameMs: a GPU does it in one gather pass)
+  ImageMetrics metrics;
+  double psnrCorrectedDb = 0;  // PSNR of max(MSE - reference noise, 1e-12)
+  double frameMs() const { return renderMs; }  // both paths: render wall time incl. readback
+};
+
+// Direct path vs one quilt point: PSNR gain at the quilt's time, speed-up at the quilt's PSNR (nullopt when the
+// direct curve does not reach that far; both by linear interpolation in log2(time)).
+struct EqualComparison {
+  const QualityPoint* quilt = nullptr;
+  std::optional<double> directGainDb;   // direct PSNR(corrected) at quilt time - quilt PSNR(corrected)
+  std::optional<double> speedup;        // quilt time / direct time at the quilt's PSNR(corrected)
+};
+
+struct DisplayQuality {
+  std::string display;
+  std::uint32_t panelWidth = 0, panelHeight = 0;
+  std::uint32_t refSpp = 0;
+  double refMs = 0, refNoiseMse = 0;  // refNoiseMse = MSE(half A, half B) / 4, the reference's own noise
+  std::vector<QualityPoint> points;
+  std::vector<EqualComparison> compare() const;
+};
+
+struct QualityReport {
+  std::string device, scene, date;
+  std::uint32_t maxDepth = 0;
+  std::vector<DisplayQuality> displays;
+};
+
+void printQualityReport(std::ostream& out, const QualityReport& report);
+void writeQualityCsv(const std::string& path, const QualityReport& report);
+void writeQualitySummaryCsv(const std::string& path, const QualityReport& report);
+void writeQualityJson(const std::string& path, const QualityReport& report);
+
+}  // namespace ht::bench
