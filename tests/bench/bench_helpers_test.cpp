@@ -1,0 +1,95 @@
+// The building blocks of holotrace-bench-quality and -traversal, checked against values worked out by hand: image
+// metrics of known errors, the quilt interleave picking the view the phase addresses, and Embree's tree holding every
+// triangle exactly once with bounds that contain it.
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bench/embree_bvh_build.h"
+#include "bench/image_metrics.h"
+#include "bench/quilt_interleave.h"
+#include "camera_models/display_config.h"
+#include "camera_models/lenticular_model.h"
+#include "camera_models/lenticular_params.h"
+#include "common/error.h"
+#include "scene/scene.h"
+
+namespace ht::bench {
+namespace {
+
+std::vector<float> uniformImage(std::uint32_t w, std::uint32_t h, float value) {
+  std::vector<float> rgba(std::size_t(w) * h * 4, value);
+  for (std::size_t i = 3; i < rgba.size(); i += 4) rgba[i] = 1.0f;
+  return rgba;
+}
+
+TEST(ImageMetrics, IdenticalImagesHaveZeroErrorAndUnitSsim) {
+  const std::vector<float> a = uniformImage(16, 12, 0.3f);
+  const ImageMetrics m = compareImages(a, a, 16, 12);
+  EXPECT_EQ(m.mse, 0.0);
+  EXPECT_TRUE(std::isinf(m.psnrDb));
+  EXPECT_NEAR(m.ssim, 1.0, 1e-12);
+}
+
+TEST(ImageMetrics, AKnownDisplayReferredErrorGivesItsPsnr) {
+  // Linear value whose sRGB encoding is 0.1 (IEC 61966-2-1: V = ((E + 0.055)/1.055)^2.4 above 0.04045) vs black:
+  // MSE = 0.01 on the display scale -> 20 dB.
+  const float linear = float(std::pow((0.1 + 0.055) / 1.055, 2.4));
+  const ImageMetrics m = compareImages(uniformImage(16, 12, linear), uniformImage(16, 12, 0.0f), 16, 12);
+  EXPECT_NEAR(m.mse, 0.01, 1e-6);
+  EXPECT_NEAR(m.psnrDb, 20.0, 1e-3);
+  EXPECT_THROW(compareImages(uniformImage(16, 12, 0.0f), uniformImage(16, 11, 0.0f), 16, 12), Error);
+}
+
+// Views of uniform value (i + 0.5)/N: with the nearest filter every subpixel must show the view its own phase t
+// addresses, floor(t N).
+TEST(QuiltInterleave, NearestFilterShowsTheViewThePhaseAddresses) {
+  const DisplayConfig display = builtinDisplay("portrait");
+  const gpu_shared::LenticularParams params = makeLenticularParams(display, Bounds3{});
+  const std::uint32_t n = 48, tile = 4;
+  std::vector<float> views;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::vector<float> v = uniformImage(tile, tile, (float(i) + 0.5f) / float(n));
+    views.insert(views.end(), v.begin(), v.end());
+  }
+  const std::vector<float> panel = interleaveQuilt({tile, tile, n, views}, params, QuiltViewFilter::Nearest);
+  const auto w = static_cast<std::uint32_t>(params.panel.x), h = static_cast<std::uint32_t>(params.panel.y);
+  ASSERT_EQ(panel.size(), std::size_t(w) * h * 4);
+  std::size_t wrong = 0;
+  for (std::uint32_t y = 0; y < h; y += 7) {
+    for (std::uint32_t x = 0; x < w; x += 5) {
+      for (std::uint32_t c = 0; c < 3; ++c) {
+        const float t = gpu_shared::lenticular_view_phase(params, x, y, c, glm::vec2(0.5f));
+        const std::uint32_t view = std::min(n - 1, static_cast<std::uint32_t>(t * float(n)));
+        const float got = panel[((std::size_t(h - 1 - y)) * w + x) * 4 + c];  // row 0 = top
+        if (std::fabs(got - (float(view) + 0.5f) / float(n)) > 1e-6f) ++wrong;
+      }
+    }
+  }
+  EXPECT_EQ(wrong, 0u);
+}
+
+TEST(EmbreeBvhBuild, EveryTriangleSitsInExactlyOneLeafInsideItsBounds) {
+  const Scene scene = loadScene("builtin:sphere");
+  const EmbreeBvhBuild build = buildEmbreeBvh(scene.positions, scene.triangles, 4);
+  std::vector<int> seen(scene.triangles.size(), 0);
+  for (const bvh::Bvh2Node& node : build.tree.nodes) {
+    if (!node.isLeaf()) continue;
+    EXPECT_LE(node.triCount, 4u);
+    for (std::uint32_t k = 0; k < node.triCount; ++k) {
+      const std::uint32_t t = build.tree.primIndex[node.leftFirst + k];
+      ++seen[t];
+      for (int v = 0; v < 3; ++v) {
+        const glm::vec3 p = scene.positions[scene.triangles[t][v]];
+        EXPECT_TRUE(glm::all(glm::greaterThanEqual(p, node.lo)) && glm::all(glm::lessThanEqual(p, node.hi)));
+      }
+    }
+  }
+  for (std::size_t t = 0; t < seen.size(); ++t) ASSERT_EQ(seen[t], 1) << "triangle " << t;
+  EXPECT_NEAR(build.tree.report.sahCost, bvh::sahCost(build.tree), 1e-9);
+}
+
+}  // namespace
+}  // namespace ht::bench
