@@ -6,6 +6,7 @@
 //
 // Usage: holotrace-bench-raygen [--runs N] [--targets N] [--device N]
 #include <cstdio>
+#include <functional>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -62,18 +63,31 @@ RaygenOptions parseOptions(int argc, char** argv) {
   return o;
 }
 
+// A 1920x1080 pinhole camera at 70 degrees, as a display config (no builtin display is a plain pinhole).
+DisplayConfig pinholeCamera() {
+  return parseDisplayConfig(R"({"name": "pinhole-1080p", "model": "pinhole",
+      "pinhole": {"width": 1920, "height": 1080, "fovyDeg": 70}})", "bench", "");
+}
+
+// Barrel distortion of a wide projector or camera lens (OpenCV convention; lens_distortion.h).
+constexpr LensDistortionSettings kBarrelLens{-0.22, 0.05, 0.0, 0.0008, -0.0004};
+
 struct Case {
-  std::string display;
+  std::string label;
+  std::function<DisplayConfig()> config;
   gpu::CameraPath path = gpu::CameraPath::Native;
 };
 
+Case builtinCase(const std::string& name, gpu::CameraPath path = gpu::CameraPath::Native) {
+  return {name + (path == gpu::CameraPath::Quilt ? " --quilt" : ""), [name] { return builtinDisplay(name); }, path};
+}
+
 void runCase(gpu::Renderer& renderer, const Case& c, const RaygenOptions& o) {
-  const DisplayConfig config = builtinDisplay(c.display);
+  const DisplayConfig config = c.config();
   const gpu::DisplayCamera camera = gpu::makeDisplayCamera(config, Bounds3{}, c.path);
   const std::uint64_t frameTargets = camera.shape.targets();
   const auto targets = static_cast<std::uint32_t>(std::min<std::uint64_t>(o.targets, frameTargets));
-  std::printf("%-26s %-16s", (c.display + (c.path == gpu::CameraPath::Quilt ? " --quilt" : "")).c_str(),
-              std::string(displayModelName(config.model)).c_str());
+  std::printf("%-30s %-16s", c.label.c_str(), std::string(displayModelName(config.model)).c_str());
   for (std::uint32_t spp : {1u, 4u}) {
     gpu::RenderSettings settings;
     settings.spp = spp;
@@ -98,9 +112,21 @@ int run(int argc, char** argv) {
               context.device().name.c_str(), o.targets, o.runs);
   const Scene scene = loadScene("builtin:sphere");  // raygen traces nothing; the renderer still needs a scene
   gpu::Renderer renderer(context, scene);
-  const std::vector<Case> cases = {{"portrait"}, {"portrait", gpu::CameraPath::Quilt}, {"gen3-16-landscape"},
-                                   {"go"}, {"holovizio-wall-70"}, {"integral-15-4k"}, {"capture-8x6"},
-                                   {"capture-16x16"}, {"oblique-9x9"}};
+  const std::vector<Case> cases = {
+      builtinCase("portrait"), builtinCase("portrait", gpu::CameraPath::Quilt), builtinCase("gen3-16-landscape"),
+      builtinCase("go"), builtinCase("holovizio-wall-70"),
+      {"holovizio-wall-70 + lens", [] {
+         DisplayConfig c = builtinDisplay("holovizio-wall-70");
+         c.projectorArray->lens = ProjectorArrayConfig::Lens{1.1 * c.projectorArray->projectors[0].width, {}, kBarrelLens};
+         return c;
+       }},
+      builtinCase("integral-15-4k"), builtinCase("capture-8x6"), builtinCase("capture-16x16"),
+      builtinCase("oblique-9x9"), {"pinhole-1080p", pinholeCamera},
+      {"pinhole-1080p + lens", [] {
+         DisplayConfig c = pinholeCamera();
+         c.pinhole.distortion = kBarrelLens;
+         return c;
+       }}};
   for (const Case& c : cases) runCase(renderer, c, o);
   return 0;
 }

@@ -20,10 +20,18 @@ struct LenticularParams {
   mat4 localToWorld;  // display-local frame (x right, y up, +z toward viewer, origin = focal-plane centre) -> world
 };
 
-// Pinhole camera (optics.md §9 M0).
+// Brown-Conrady lens distortion (lens_distortion.h): radial.xyz = k1, k2, k3; tangential.xy = p1, p2; all zero =
+// none (radial.w = 1 when any coefficient is set, so kernels test one float instead of five).
+struct LensDistortion {
+  vec4 radial;
+  vec4 tangential;
+};
+
+// Pinhole camera (optics.md §9 M0), optionally through a distorting lens.
 struct PinholeParams {
   mat4 cameraToWorld; // camera looks down -z, +y up
   vec4 lens;          // x tan(fovy/2), y aspect (W/H), z image width (px), w image height (px)
+  LensDistortion distortion;
 };
 
 HT_SHARED_END

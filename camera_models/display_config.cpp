@@ -87,7 +87,7 @@ CameraPlacement readCamera(const JsonLocation& at, const json& camera) {
 }
 
 PinholeSettings readPinhole(const JsonLocation& at, const json& pinhole) {
-  detail::rejectUnknownKeys(at, pinhole, {"width", "height", "fovyDeg", "eye", "lookAt", "up"});
+  detail::rejectUnknownKeys(at, pinhole, {"width", "height", "fovyDeg", "eye", "lookAt", "up", "distortion"});
   PinholeSettings settings;
   if (auto w = detail::optionalInteger(at, pinhole, "width", false, 1, kMaxImageSize))
     settings.width = static_cast<std::uint32_t>(*w);
@@ -100,6 +100,9 @@ PinholeSettings readPinhole(const JsonLocation& at, const json& pinhole) {
     if (glm::length(*up) == 0.0) detail::throwFieldError(at, "up", detail::findField(pinhole, "up"),
                                                          "expected a non-zero [x, y, z] up vector");
     settings.up = *up;
+  }
+  if (detail::findField(pinhole, "distortion") != nullptr) {
+    settings.distortion = parseLensDistortion(at.child("distortion"), requireObject(at, pinhole, "distortion"));
   }
   return settings;
 }

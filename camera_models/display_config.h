@@ -16,6 +16,7 @@
 
 #include "camera_models/capture_grid_config.h"
 #include "camera_models/integral_config.h"
+#include "camera_models/lens_settings.h"
 #include "camera_models/looking_glass_calibration.h"
 #include "camera_models/oblique_config.h"
 #include "camera_models/projector_array_config.h"
@@ -43,6 +44,7 @@ struct PinholeSettings {
   std::optional<glm::dvec3> eye;               // nullopt = "auto"
   std::optional<glm::dvec3> lookAt;            // nullopt = "auto" (target / bounds centre)
   glm::dvec3 up{0.0, 1.0, 0.0};
+  LensDistortionSettings distortion;           // "distortion": {"k1", "k2", "k3", "p1", "p2"}, each default 0
 };
 
 struct DisplayConfig {

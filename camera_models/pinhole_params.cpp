@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "camera_models/json_fields.h"
+#include "camera_models/lens_distortion_params.h"
 #include "camera_models/lenticular_params.h"
 #include "common/error.h"
 
@@ -86,8 +87,10 @@ gpu_shared::PinholeParams makePinholeParams(const DisplayConfig& config, const B
   const double fovy = camera.fovyDeg * std::numbers::pi / 180.0;
   gpu_shared::PinholeParams p{};
   p.cameraToWorld = glm::mat4(cameraToWorld);
-  p.lens = glm::vec4(glm::dvec4(std::tan(0.5 * fovy), static_cast<double>(camera.width) / camera.height,
-                                static_cast<double>(camera.width), static_cast<double>(camera.height)));
+  const double tanHalf = std::tan(0.5 * fovy), aspect = static_cast<double>(camera.width) / camera.height;
+  p.lens = glm::vec4(glm::dvec4(tanHalf, aspect, static_cast<double>(camera.width), static_cast<double>(camera.height)));
+  p.distortion = makeLensDistortion(config.pinhole.distortion, glm::dvec2(aspect * tanHalf, tanHalf), config.sourcePath,
+                                    "pinhole.distortion");
   return p;
 }
 

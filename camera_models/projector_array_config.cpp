@@ -78,6 +78,30 @@ ProjectorConfig readProjector(const JsonLocation& at, const json& object, std::o
   return projector;
 }
 
+// {"focalLength": f (px, > 0), "principalOffset": [dx, dy] (px, default [0, 0]), "distortion": {...}}.
+ProjectorArrayConfig::Lens readLens(const JsonLocation& at, const json* lens) {
+  if (!lens->is_object())
+    detail::throwFieldError(at, "", lens, "expected {\"focalLength\": f, \"principalOffset\": [dx, dy], \"distortion\": {...}}");
+  detail::rejectUnknownKeys(at, *lens, {"focalLength", "principalOffset", "distortion"});
+  ProjectorArrayConfig::Lens out;
+  out.focalLengthPx = detail::requirePositiveNumber(at, *lens, "focalLength",
+                                                    "expected the lens focal length in pixels, a finite number > 0");
+  if (const json* offset = detail::findField(*lens, "principalOffset")) {
+    const std::string expected = "expected [dx, dy] (pixels from the image centre), finite";
+    if (!offset->is_array() || offset->size() != 2) detail::throwFieldError(at, "principalOffset", offset, expected);
+    for (std::size_t i = 0; i < 2; ++i) {
+      const json& v = (*offset)[i];
+      if (!v.is_number() || !std::isfinite(v.get<double>())) detail::throwFieldError(at, "principalOffset", offset, expected);
+      out.principalOffsetPx[static_cast<int>(i)] = v.get<double>();
+    }
+  }
+  if (const json* distortion = detail::findField(*lens, "distortion")) {
+    if (!distortion->is_object()) detail::throwFieldError(at, "distortion", distortion, "expected a JSON object");
+    out.distortion = parseLensDistortion(at.child("distortion"), *distortion);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::array<double, 9> linearProjectorMapping(double screenWidth, double screenHeight, std::uint32_t width,
@@ -90,7 +114,7 @@ std::array<double, 9> linearProjectorMapping(double screenWidth, double screenHe
 
 ProjectorArrayConfig parseProjectorArray(const JsonLocation& at, const json& section) {
   detail::rejectUnknownKeys(at, section, {"screen", "observerDistance", "observerHeight", "angularScattering", "image",
-                              "projectors"});
+                              "projectors", "lens"});
   ProjectorArrayConfig config;
   const json* screen = detail::findField(section, "screen");
   if (screen == nullptr || !screen->is_object())
@@ -130,6 +154,7 @@ ProjectorArrayConfig parseProjectorArray(const JsonLocation& at, const json& sec
     const JsonLocation projectorAt = at.child("projectors[" + std::to_string(k) + "]");
     config.projectors.push_back(readProjector(projectorAt, (*projectors)[k], defaultWidth, defaultHeight));
   }
+  if (const json* lens = detail::findField(section, "lens")) config.lens = readLens(at.child("lens"), lens);
   return config;
 }
 

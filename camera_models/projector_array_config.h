@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "camera_models/lens_settings.h"
 #include "camera_models/json_fields.h"
 
 namespace ht {
@@ -36,6 +37,14 @@ struct ProjectorArrayConfig {
   // central projectors seen from the screen centre (LightFieldDisplayModel GenerateSampleModels/main.cpp).
   std::optional<double> angularScattering;
   std::vector<ProjectorConfig> projectors;       // [1, HT_MAX_PROJECTORS]
+  // "lens": the projectors' lens, all alike (a wall of one projector model): focal length (px), principal point
+  // offset from the image centre (px) and Brown-Conrady distortion; nullopt = ideal lenses.
+  struct Lens {
+    double focalLengthPx = 0.0;
+    glm::dvec2 principalOffsetPx{0.0};
+    LensDistortionSettings distortion;
+  };
+  std::optional<Lens> lens;
 };
 
 // Parses and validates the section; `at` is its location ("projectorArray"). Throws ConfigError.

@@ -12,6 +12,7 @@
 #ifndef HT_PROJECTOR_MODEL_H
 #define HT_PROJECTOR_MODEL_H
 #include "common/glsl_cpp.h"
+#include "camera_models/lens_distortion.h"
 #include "camera_models/projector_params.h"
 
 HT_SHARED_BEGIN
@@ -27,6 +28,8 @@ struct ProjectorView {
   vec4 scale;         // as ProjectorArrayParams.scale
   mat4 localToWorld;  // as ProjectorArrayParams.localToWorld
   mat4 projector;     // ProjectorArrayParams.projector[k]
+  vec4 lens;          // as ProjectorArrayParams.lens
+  LensDistortion distortion;
 };
 
 HT_INLINE ProjectorView projector_view(HT_IN(ProjectorArrayParams) p, uint view) {
@@ -35,11 +38,20 @@ HT_INLINE ProjectorView projector_view(HT_IN(ProjectorArrayParams) p, uint view)
   v.scale = p.scale;
   v.localToWorld = p.localToWorld;
   v.projector = p.projector[view];
+  v.lens = p.lens;
+  v.distortion = p.distortion;
   return v;
 }
 
-// Screen point (display units, z = 0) of projector position (px, py) in pixels (py from the bottom).
+// Screen point (display units, z = 0) of projector position (px, py) in pixels (py from the bottom). Through a
+// distorting lens the panel pixel p sits at the distorted image point: with principal point c (image centre +
+// lens.zw) and focal length f = lens.x, the ideal pixel is c + f undistort((p - c)/f) (lens_distortion.h, OpenCV's
+// camera model), and the homography maps ideal pixels, as a calibration on undistorted coordinates gives it.
 HT_INLINE vec3 projector_screen_point(HT_IN(ProjectorView) v, vec2 pixel) {
+  if (lens_has_distortion(v.distortion)) {
+    vec2 c = 0.5f * vec2(v.projector[0].w, v.projector[1].w) + vec2(v.lens.z, v.lens.w);
+    pixel = c + v.lens.x * brown_conrady_undistort(v.distortion, (pixel - c) / v.lens.x);
+  }
   mat3 h = mat3(v.projector);
   vec3 s = h * vec3(pixel.x, pixel.y, 1.0f);
   return vec3(s.x / s.z, s.y / s.z, 0.0f);

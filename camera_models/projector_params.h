@@ -3,6 +3,7 @@
 #ifndef HT_PROJECTOR_PARAMS_H
 #define HT_PROJECTOR_PARAMS_H
 #include "common/glsl_cpp.h"
+#include "camera_models/camera_params.h"  // LensDistortion
 
 HT_SHARED_BEGIN
 
@@ -13,6 +14,10 @@ struct ProjectorArrayParams {
   vec4 observer;      // x observer distance Dobs (> 0), y observer height h, z angular scattering (rad), w count N
   vec4 scale;         // x world units per display unit, yzw unused
   mat4 localToWorld;  // display-local frame (screen centre, x right, y up, +z toward the viewer) -> world, unscaled
+  // The projectors' lens (all alike): x focal length f (px), y unused, zw principal point offset from the image
+  // centre (px); distortion as in lens_distortion.h (radial.w = 0: an ideal lens, the rest unused).
+  vec4 lens;
+  LensDistortion distortion;
   // Projector k: columns 0-2, rows 0-2 = the 3x3 pixel -> screen homography H (column-major as GLSL mat3:
   // projector[k][c][r] = H[r][c]); projector[k][0].w, [1].w = image width, height (px); column 3 = position (xyz, 1).
   mat4 projector[HT_MAX_PROJECTORS];

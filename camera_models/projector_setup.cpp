@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "camera_models/lens_distortion_params.h"
 #include "common/error.h"
 
 namespace ht {
@@ -64,6 +65,17 @@ gpu_shared::ProjectorArrayParams makeProjectorArrayParams(const DisplayConfig& c
     m[2].w = 0.0f;
     m[3] = glm::vec4(glm::dvec4(projector.position, 1.0));
   }
+  if (array.lens) {
+    // The largest normalized radius any projector's image reaches, for the fold check.
+    const ProjectorArrayConfig::Lens& lens = *array.lens;
+    glm::dvec2 half(0.0);
+    for (const ProjectorConfig& projector : array.projectors) {
+      half = glm::max(half, (0.5 * glm::dvec2(projector.width, projector.height) + glm::abs(lens.principalOffsetPx)) /
+                                lens.focalLengthPx);
+    }
+    p.lens = glm::vec4(glm::dvec4(lens.focalLengthPx, 0.0, lens.principalOffsetPx.x, lens.principalOffsetPx.y));
+    p.distortion = makeLensDistortion(lens.distortion, half, config.sourcePath, "projectorArray.lens.distortion");
+  }
   return p;
 }
 
@@ -71,6 +83,12 @@ ProjectorArrayReference::ProjectorArrayReference(const DisplayConfig& config, co
     : array_(requireProjectorArray(config)), placement_(resolveProjectorPlacement(config, sceneBounds)) {}
 
 glm::dvec3 ProjectorArrayReference::screenPoint(std::uint32_t projector, glm::dvec2 pixel) const {
+  if (array_.lens && array_.lens->distortion.any()) {  // the ideal pixel behind the lens (projector_model.h)
+    const ProjectorConfig& p = array_.projectors.at(projector);
+    const glm::dvec2 c = 0.5 * glm::dvec2(p.width, p.height) + array_.lens->principalOffsetPx;
+    const double f = array_.lens->focalLengthPx;
+    pixel = c + f * undistortReference(array_.lens->distortion, (pixel - c) / f);
+  }
   const std::array<double, 9> h = projectorHomography(array_, projector);
   const double w = h[6] * pixel.x + h[7] * pixel.y + h[8];
   return {(h[0] * pixel.x + h[1] * pixel.y + h[2]) / w, (h[3] * pixel.x + h[4] * pixel.y + h[5]) / w, 0.0};

@@ -22,7 +22,7 @@ layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
 // Projector `view` assembled from single uniform members (projector_model.h ProjectorView: no 8 KiB copy).
 ProjectorView frame_projector(uint view) {
   return ProjectorView(FRAME.projectors.observer, FRAME.projectors.scale, FRAME.projectors.localToWorld,
-                       FRAME.projectors.projector[view]);
+                       FRAME.projectors.projector[view], FRAME.projectors.lens, FRAME.projectors.distortion);
 }
 
 void main() {

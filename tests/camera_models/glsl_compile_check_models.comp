@@ -7,6 +7,7 @@
 #include "camera_models/projector_model.h"
 #include "camera_models/integral_model.h"
 #include "camera_models/lens_distortion.h"
+#include "camera_models/pinhole_model.h"
 #include "camera_models/capture_grid_model.h"
 #include "camera_models/oblique_model.h"
 
@@ -23,7 +24,6 @@ layout(std430, binding = 0) readonly buffer Params {
   ProjectorArrayParams projectors;
   IntegralParams integral;
   PinholeParams pinhole;
-  LensDistortion distortion;
   CaptureGridParams captureGrid;
   ObliqueParams oblique;
   RayTableParams rayTable;
@@ -44,7 +44,7 @@ void main() {
   rays[4u * i + 3u] = vec4(dir, origin.x);
   integral_ray(integral, x, y, 0u, xi, origin, dir);
   rays[4u * i] += vec4(origin, dir.z);
-  pinhole_distorted_ray(pinhole, distortion, x, y, xi, origin, dir);
+  pinhole_ray(pinhole, x, y, xi, origin, dir);
   rays[4u * i + 1u] += vec4(dir, origin.y);
   capture_grid_ray(captureGrid, x, y, i % 48u, xi, origin, dir);
   rays[4u * i + 2u] += vec4(dir, origin.z);

@@ -14,9 +14,11 @@
 #include "camera_models/capture_grid_setup.h"
 #include "camera_models/footprint_sampling.h"
 #include "camera_models/integral_setup.h"
+#include "camera_models/lens_distortion.h"
 #include "camera_models/lenticular_params.h"
 #include "camera_models/lenticular_reference.h"
 #include "camera_models/oblique_setup.h"
+#include "camera_models/pinhole_params.h"
 #include "camera_models/ray_table.h"
 #include "camera_models/projector_setup.h"
 #include "camera_models/quilt_setup.h"
@@ -179,6 +181,25 @@ TEST_F(GpuCameraRays, ProjectorWallEveryProjector) {
   expectWithinBounds("projector wall 70", e);
 }
 
+// The same wall behind distorting projector lenses (barrel and pincushion with tangential terms, principal point off
+// centre): the kernel's float Newton inverse vs the reference's double one (lens_distortion_params.cpp).
+TEST_F(GpuCameraRays, ProjectorWallThroughDistortingLenses) {
+  for (const LensDistortionSettings lens : {LensDistortionSettings{-0.22, 0.05, 0.0, 0.0008, -0.0004},
+                                            LensDistortionSettings{0.15, 0.02, 0.001, -0.001, 0.0015}}) {
+    DisplayConfig config = builtinDisplay("holovizio-wall-70");
+    const ProjectorConfig& first = config.projectorArray->projectors[0];
+    config.projectorArray->lens = ProjectorArrayConfig::Lens{1.1 * first.width, glm::dvec2(12.0, -7.5), lens};
+    const ProjectorArrayReference reference(config, bounds_);
+    const gpu_shared::ProjectorArrayParams params = makeProjectorArrayParams(config, bounds_);
+    ASSERT_TRUE(gpu_shared::lens_has_distortion(params.distortion));
+    gpu::RenderSettings centre = settings_;
+    centre.spp = 1;
+    const RayErrors e = measure(*renderer_, params, centre, {0, 17, 35, 69}, test::kSanitized ? 71 : 9,
+                                viewReference(reference));
+    expectWithinBounds(lens.k1 < 0 ? "projector wall, barrel lenses" : "projector wall, pincushion lenses", e);
+  }
+}
+
 // Independent of the model code: a scattered ray still passes through its projector's screen point S (the rotation
 // axis is vertical through S) and keeps its vertical slope (the scattering is horizontal only, optics.md §6).
 TEST_F(GpuCameraRays, ProjectorScatteredRaysPassThroughTheScreen) {
@@ -274,6 +295,63 @@ TEST_F(GpuCameraRays, ObliqueEveryDirection) {
   const RayErrors e = measure(*renderer_, params, settings_, allViews(gpu::frameShape(params).views),
                               test::kSanitized ? 101 : 13, viewReference(reference));
   expectWithinBounds("oblique 9x9", e);
+}
+
+// Pinhole through a Brown-Conrady lens (lens_distortion.h, OpenCV form), every 3rd row and the corners. The double
+// reference does not reuse the kernel's solver: it inverts the written-out distortion with Newton steps on a
+// central-difference Jacobian, to 1e-15; the camera frame comes from resolvePinholeCamera's eye / lookAt / up.
+struct DistortedPinholeReference {
+  PinholeCamera camera;
+  LensDistortionSettings lens;
+  glm::dvec3 right, up, forward;
+  double tanHalf, aspect;
+
+  DistortedPinholeReference(const DisplayConfig& config, const Bounds3& bounds)
+      : camera(resolvePinholeCamera(config, bounds)), lens(config.pinhole.distortion) {
+    forward = glm::normalize(camera.lookAt - camera.eye);
+    right = glm::normalize(glm::cross(forward, camera.up));
+    up = glm::cross(right, forward);
+    tanHalf = std::tan(0.5 * camera.fovyDeg * 3.14159265358979323846 / 180.0);
+    aspect = double(camera.width) / camera.height;
+  }
+  glm::dvec2 distort(glm::dvec2 u) const {
+    const double r2 = u.x * u.x + u.y * u.y;
+    const double radial = 1.0 + lens.k1 * r2 + lens.k2 * r2 * r2 + lens.k3 * r2 * r2 * r2;
+    return {u.x * radial + 2.0 * lens.p1 * u.x * u.y + lens.p2 * (r2 + 2.0 * u.x * u.x),
+            u.y * radial + lens.p1 * (r2 + 2.0 * u.y * u.y) + 2.0 * lens.p2 * u.x * u.y};
+  }
+  glm::dvec2 undistort(glm::dvec2 xd) const {
+    glm::dvec2 u = xd;
+    const double h = 1e-6;
+    for (int i = 0; i < 50; ++i) {
+      const glm::dvec2 f = distort(u) - xd;
+      if (glm::length(f) < 1e-15) break;
+      const glm::dvec2 cx = (distort(u + glm::dvec2(h, 0)) - distort(u - glm::dvec2(h, 0))) / (2 * h);
+      const glm::dvec2 cy = (distort(u + glm::dvec2(0, h)) - distort(u - glm::dvec2(0, h))) / (2 * h);
+      const double det = cx.x * cy.y - cy.x * cx.y;
+      u -= glm::dvec2(cy.y * f.x - cy.x * f.y, -cx.y * f.x + cx.x * f.y) / det;
+    }
+    return u;
+  }
+  std::optional<ReferenceRay> ray(std::uint32_t x, std::uint32_t y, std::uint32_t, glm::dvec2 xi) const {
+    const glm::dvec2 xd((2.0 * (x + xi.x) / camera.width - 1.0) * aspect * tanHalf,
+                        (2.0 * (y + xi.y) / camera.height - 1.0) * tanHalf);
+    const glm::dvec2 u = undistort(xd);
+    return ReferenceRay{camera.eye, glm::normalize(right * u.x + up * u.y + forward)};
+  }
+};
+
+TEST_F(GpuCameraRays, PinholeThroughADistortingLens) {
+  for (const char* lens : {"{}", R"({"k1": -0.28, "k2": 0.07, "p1": 0.0005, "p2": -0.0003})",
+                           R"({"k1": 0.12, "k2": 0.03, "k3": 0.001, "p1": -0.001, "p2": 0.002})"}) {
+    const DisplayConfig config = parseDisplayConfig(
+        std::string(R"({"model": "pinhole", "pinhole": {"width": 640, "height": 360, "fovyDeg": 60,
+            "eye": [0.3, 0.2, 4], "lookAt": [0, 0, -5], "distortion": )") + lens + "}}", "lens", "");
+    const DistortedPinholeReference reference(config, bounds_);
+    const RayErrors e = measure(*renderer_, makePinholeParams(config, bounds_), settings_, {0},
+                                test::kSanitized ? 37 : 3, viewReference(reference));
+    expectWithinBounds(lens, e);
+  }
 }
 
 // A per-pixel table (a curved, off-centre fan of rays, the kind a measured calibration gives) interpolated over the
