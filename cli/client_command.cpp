@@ -5,6 +5,7 @@
 
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -21,7 +22,7 @@ namespace v1 = holotrace::v1;
 using Stub = v1::Holotrace::Stub;
 constexpr const char* kCommand = "holotrace client";
 
-const std::array<OptionSpec, 11> kOptions = {{
+const std::array<OptionSpec, 12> kOptions = {{
     {"--socket", "", "ADDR", "daemon address (default unix:$XDG_RUNTIME_DIR/holotrace/holotraced.sock)"},
     {"--scene", "", "SPEC", "scene below the daemon's scene root, or builtin:NAME (default builtin:showcase)"},
     {"--upload", "", "FILE", "send this local scene file's bytes instead of --scene"},
@@ -33,6 +34,8 @@ const std::array<OptionSpec, 11> kOptions = {{
     {"--frames", "", "N", "stream: stop after N frames (default 10); capture: file count (default 1)"},
     {"--name", "", "NAME", "capture: file name prefix under the daemon's output root"},
     {"--exr", "", "", "capture: linear half EXR instead of 8-bit PNG"},
+    {"--move", "", "NODE=X,Y,Z", "load/render/stream/capture: set scene node NODE's world matrix (names: `client load`) "
+                                 "to a translation by X,Y,Z (built-in objects: an offset from where they are made)"},
 }};
 
 std::string defaultSocket() {
@@ -87,6 +90,35 @@ v1::SceneHandle uploadScene(Stub& stub, const std::string& file) {
   return handle;
 }
 
+// --move NODE=X,Y,Z: the node's world matrix becomes a translation by (X, Y, Z) (UpdateScene nodes).
+void moveNode(Stub& stub, const std::string& sceneId, const std::string& spec, std::ostream& out) {
+  const auto eq = spec.rfind('=');
+  std::array<double, 3> t{};
+  bool ok = eq != std::string::npos && eq > 0;
+  std::size_t pos = eq + 1;
+  for (int k = 0; ok && k < 3; ++k) {
+    char* end = nullptr;
+    t[static_cast<std::size_t>(k)] = std::strtod(spec.c_str() + pos, &end);
+    ok = end != spec.c_str() + pos && std::isfinite(t[static_cast<std::size_t>(k)]);
+    pos = static_cast<std::size_t>(end - spec.c_str());
+    if (ok && k < 2) ok = pos < spec.size() && spec[pos++] == ',';
+  }
+  if (!ok || pos != spec.size()) {
+    throw UsageError(usageMessage(kCommand, "--move expects NODE=X,Y,Z (e.g. glass-sphere=0,0.3,0), not '" + spec + "'"));
+  }
+  grpc::ClientContext context;
+  v1::UpdateSceneRequest request;
+  request.set_scene_id(sceneId);
+  v1::NodeTransform* node = request.add_nodes();
+  node->set_node(spec.substr(0, eq));
+  for (int k = 0; k < 16; ++k) node->add_world(k % 5 == 0 ? 1.0 : 0.0);  // identity, column-major
+  for (int k = 0; k < 3; ++k) node->set_world(12 + k, t[static_cast<std::size_t>(k)]);
+  v1::UpdateSceneResponse response;
+  check(stub.UpdateScene(&context, request, &response), "UpdateScene");
+  out << "moved " << node->node() << ": world = translate(" << t[0] << ", " << t[1] << ", " << t[2] << "), BVH rebuilt in "
+      << response.rebuild_ms() << " ms, SAH " << response.sah_cost() << "\n";
+}
+
 v1::SceneHandle openScene(Stub& stub, const ParsedArguments& a, std::ostream& out) {
   v1::SceneHandle handle;
   if (auto file = a.text("--upload")) {
@@ -99,6 +131,10 @@ v1::SceneHandle openScene(Stub& stub, const ParsedArguments& a, std::ostream& ou
   }
   out << "scene " << handle.scene_id() << ": " << handle.triangles() << " triangles, BVH " << handle.bvh_build_ms()
       << " ms, SAH " << handle.sah_cost() << (handle.reused() ? " (shared)" : "") << "\n";
+  std::string nodes;
+  for (const std::string& n : handle.nodes()) nodes += (nodes.empty() ? "" : ", ") + n;
+  out << "  nodes: " << (nodes.empty() ? "none" : nodes) << "; lights: " << handle.lights() << "\n";
+  if (auto move = a.text("--move")) moveNode(stub, handle.scene_id(), *move, out);
   return handle;
 }
 

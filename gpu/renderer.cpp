@@ -120,9 +120,11 @@ struct Renderer::Impl {
   DeviceBuffer rayTableTexels;                     // the current ray table (2 texels per entry) or a 1-entry dummy
   std::shared_ptr<const RayTable> boundRayTable;   // which table rayTableTexels holds
 
+  bvh::BuildOptions buildOptions;
+
   Impl(VulkanContext::Impl& v, const Scene& s, const bvh::BuildOptions& o)
       : vk(v), scene(v, s, o), layout(v), descriptors(v, layout.setLayout()), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
-        counters(v, sizeof(GpuCounters), MemoryPlace::HostReadback) {
+        counters(v, sizeof(GpuCounters), MemoryPlace::HostReadback), buildOptions(o) {
     VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
     qi.queryCount = kQueryCapacity;
@@ -183,16 +185,28 @@ struct Renderer::Impl {
     boundRayTable = table;
   }
 
+  // A new BVH and scene records, built and uploaded before the current ones are released (a failure leaves them);
+  // pipelines, work and output buffers stay. Every frame waits for its own work, so nothing in flight reads them.
+  void replaceScene(const Scene& s) {
+    GpuScene next(vk, s, buildOptions);
+    HT_VK(vkQueueWaitIdle(vk.queue));
+    scene = std::move(next);
+    bindScene(true);
+    descriptors.flush();
+  }
+
   FrameBlock& frameBlock() { return *static_cast<FrameBlock*>(frame.mapped()); }
   GpuCounters& counterBlock() { return *static_cast<GpuCounters*>(counters.mapped()); }
 
-  // Scene records and BVH views: written once, they never change for this Renderer.
-  void bindScene() {
+  // Scene records and BVH views: written at construction and again by replaceScene (fresh views: a new buffer may
+  // reuse a destroyed one's handle value).
+  void bindScene(bool fresh = false) {
     using namespace gpu_shared;
-    bool nodes = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 0, scene.nodes, VK_FORMAT_R32G32B32A32_SFLOAT);
-    descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 1, scene.nodes, VK_FORMAT_R32G32B32A32_UINT);
-    bool tris = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 2, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_SFLOAT);
-    descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 3, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_UINT);
+    bool nodes = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 0, scene.nodes, VK_FORMAT_R32G32B32A32_SFLOAT, fresh);
+    descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 1, scene.nodes, VK_FORMAT_R32G32B32A32_UINT, fresh);
+    bool tris = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 2, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                             fresh);
+    descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 3, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_UINT, fresh);
     bvhTexelsCover = nodes && tris;  // else the trace kernels read the BVH by device address
     descriptors.setUniformBuffer(HT_BINDING_FRAME, frame);
     const std::pair<const DeviceBuffer*, VkFormat> records[] = {
@@ -201,7 +215,7 @@ struct Renderer::Impl {
         {&scene.materials, VK_FORMAT_R32G32B32A32_SFLOAT}, {&scene.lights, VK_FORMAT_R32G32B32A32_SFLOAT},
         {&scene.textures, VK_FORMAT_R32G32B32A32_UINT},   {&scene.texels, VK_FORMAT_R32G32B32A32_SFLOAT}};
     for (std::uint32_t k = 0; k < 8; ++k) {
-      if (!descriptors.setUniformTexels(HT_BINDING_SCENE_FIRST + k, *records[k].first, records[k].second)) {
+      if (!descriptors.setUniformTexels(HT_BINDING_SCENE_FIRST + k, *records[k].first, records[k].second, fresh)) {
         throw GpuError("scene too large for the device's texel buffers (" +
                        std::to_string(vk.info.maxTexelBufferElements) + " elements)");
       }
@@ -590,6 +604,7 @@ Renderer::Renderer(VulkanContext& context, const Scene& scene, const bvh::BuildO
 Renderer::~Renderer() = default;
 
 const bvh::BuildReport& Renderer::bvhReport() const { return impl_->scene.bvhReport(); }
+void Renderer::replaceScene(const Scene& scene) { impl_->replaceScene(scene); }
 const SceneFeatures& Renderer::features() const { return impl_->scene.features(); }
 
 RenderResult Renderer::render(const FrameCamera& camera, const RenderSettings& settings) {

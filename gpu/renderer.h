@@ -86,6 +86,9 @@ class Renderer {
 
   const bvh::BuildReport& bvhReport() const;
   const SceneFeatures& features() const;
+  // Rebuilds the BVH and re-uploads the scene (an edited copy: moved nodes, changed lights) with the build options
+  // given at construction; the compiled pipelines are kept, so the next frame costs no shader compilation.
+  void replaceScene(const Scene& scene);
 
   // Every view of the camera. Large view arrays are rendered in chunks of views (bounded device memory).
   RenderResult render(const FrameCamera& camera, const RenderSettings& settings);

@@ -44,6 +44,19 @@ void addRoom(Scene& scene, std::uint32_t floorMaterial, std::uint32_t wallMateri
   makeQuad(scene, {0.0f, 0.0f, -1.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 0.8f, 0.0f}, wallMaterial);   // faces +z
 }
 
+// Appends what `add` generates as the movable node `name` (holotraced UpdateScene moves it by name).
+template <class Add>
+void addNode(Scene& scene, std::string name, Add add) {
+  SceneNode node;
+  node.name = std::move(name);
+  node.firstVertex = static_cast<std::uint32_t>(scene.positions.size());
+  node.firstTriangle = static_cast<std::uint32_t>(scene.triangles.size());
+  add();
+  node.vertexCount = static_cast<std::uint32_t>(scene.positions.size()) - node.firstVertex;
+  node.triangleCount = static_cast<std::uint32_t>(scene.triangles.size()) - node.firstTriangle;
+  scene.nodes.push_back(std::move(node));
+}
+
 constexpr int kSphereSubdivisions = 4;  // 5120 triangles per sphere: smooth silhouettes at panel resolution
 
 }  // namespace
@@ -56,16 +69,25 @@ Scene makeShowcaseScene() {
   floor.baseColorTexture = checker;
   const std::uint32_t floorMat = addMaterial(s, floor);
   const std::uint32_t wallMat = addMaterial(s, diffuse("wall", {0.7f, 0.72f, 0.75f}));
-  addRoom(s, floorMat, wallMat);
+  addNode(s, "room", [&] { addRoom(s, floorMat, wallMat); });
 
   // Behind the focal plane (z < 0): a mirror sphere, and a red box carrying a green sphere.
-  makeIcosphere(s, {-0.35f, -0.35f, -0.45f}, 0.45f, kSphereSubdivisions, addMaterial(s, mirror("mirror")));
-  makeBox(s, {0.38f, -0.55f, -0.5f}, glm::vec3(0.25f), addMaterial(s, diffuse("red", {0.8f, 0.12f, 0.1f})));
-  makeIcosphere(s, {0.38f, -0.05f, -0.5f}, 0.25f, kSphereSubdivisions, addMaterial(s, diffuse("green", {0.15f, 0.7f, 0.2f})));
+  addNode(s, "mirror-sphere", [&] {
+    makeIcosphere(s, {-0.35f, -0.35f, -0.45f}, 0.45f, kSphereSubdivisions, addMaterial(s, mirror("mirror")));
+  });
+  addNode(s, "red-box", [&] {
+    makeBox(s, {0.38f, -0.55f, -0.5f}, glm::vec3(0.25f), addMaterial(s, diffuse("red", {0.8f, 0.12f, 0.1f})));
+  });
+  addNode(s, "green-sphere", [&] {
+    makeIcosphere(s, {0.38f, -0.05f, -0.5f}, 0.25f, kSphereSubdivisions, addMaterial(s, diffuse("green", {0.15f, 0.7f, 0.2f})));
+  });
   // In front of it (z > 0): a glass sphere and a small glowing sphere.
-  makeIcosphere(s, {0.28f, -0.45f, 0.45f}, 0.35f, kSphereSubdivisions, addMaterial(s, glass("glass", 1.5f)));
-  makeIcosphere(s, {-0.38f, -0.65f, 0.55f}, 0.15f, kSphereSubdivisions,
-                addMaterial(s, emitter("glow", {3.0f, 1.8f, 0.5f})));
+  addNode(s, "glass-sphere", [&] {
+    makeIcosphere(s, {0.28f, -0.45f, 0.45f}, 0.35f, kSphereSubdivisions, addMaterial(s, glass("glass", 1.5f)));
+  });
+  addNode(s, "glow-sphere", [&] {
+    makeIcosphere(s, {-0.38f, -0.65f, 0.55f}, 0.15f, kSphereSubdivisions, addMaterial(s, emitter("glow", {3.0f, 1.8f, 0.5f})));
+  });
 
   Light point;  // above and in front, so shadows fall onto the floor and the back wall
   point.type = Light::Type::Point;
@@ -86,18 +108,30 @@ Scene makeShowcaseScene() {
 Scene makePlainScene() {
   Scene s;
   s.name = "builtin:plain";
-  addRoom(s, addMaterial(s, diffuse("floor", {0.6f, 0.6f, 0.55f})), addMaterial(s, diffuse("wall", {0.45f, 0.5f, 0.6f})));
-  makeIcosphere(s, {-0.3f, -0.4f, -0.45f}, 0.4f, kSphereSubdivisions, addMaterial(s, diffuse("orange", {0.9f, 0.45f, 0.1f})));
-  makeBox(s, {0.38f, -0.55f, -0.4f}, glm::vec3(0.25f), addMaterial(s, diffuse("teal", {0.1f, 0.6f, 0.6f})));
-  makeIcosphere(s, {0.25f, -0.5f, 0.5f}, 0.3f, kSphereSubdivisions, addMaterial(s, diffuse("violet", {0.55f, 0.3f, 0.8f})));
-  makeBox(s, {-0.35f, -0.65f, 0.6f}, glm::vec3(0.15f), addMaterial(s, diffuse("yellow", {0.9f, 0.85f, 0.2f})));
+  addNode(s, "room", [&] {
+    addRoom(s, addMaterial(s, diffuse("floor", {0.6f, 0.6f, 0.55f})), addMaterial(s, diffuse("wall", {0.45f, 0.5f, 0.6f})));
+  });
+  addNode(s, "orange-sphere", [&] {
+    makeIcosphere(s, {-0.3f, -0.4f, -0.45f}, 0.4f, kSphereSubdivisions, addMaterial(s, diffuse("orange", {0.9f, 0.45f, 0.1f})));
+  });
+  addNode(s, "teal-box", [&] {
+    makeBox(s, {0.38f, -0.55f, -0.4f}, glm::vec3(0.25f), addMaterial(s, diffuse("teal", {0.1f, 0.6f, 0.6f})));
+  });
+  addNode(s, "violet-sphere", [&] {
+    makeIcosphere(s, {0.25f, -0.5f, 0.5f}, 0.3f, kSphereSubdivisions, addMaterial(s, diffuse("violet", {0.55f, 0.3f, 0.8f})));
+  });
+  addNode(s, "yellow-box", [&] {
+    makeBox(s, {-0.35f, -0.65f, 0.6f}, glm::vec3(0.15f), addMaterial(s, diffuse("yellow", {0.9f, 0.85f, 0.2f})));
+  });
   return s;
 }
 
 Scene makeSphereScene() {
   Scene s;
   s.name = "builtin:sphere";
-  makeIcosphere(s, glm::vec3(0.0f), 1.0f, 5, addMaterial(s, diffuse("sphere", glm::vec3(0.8f))));
+  addNode(s, "sphere", [&] {
+    makeIcosphere(s, glm::vec3(0.0f), 1.0f, 5, addMaterial(s, diffuse("sphere", glm::vec3(0.8f))));
+  });
   return s;
 }
 
@@ -114,8 +148,12 @@ Scene makeSphereScene() {
 Scene makeMirrorTestScene() {
   Scene s;
   s.name = "builtin:mirror-test";
-  makeQuad(s, glm::vec3(0.0f), {1.0f, 0.0f, 0.0f}, {0.0f, 3.25f, -3.25f}, addMaterial(s, mirror("mirror")));
-  makeIcosphere(s, {0.0f, 2.5f, 0.0f}, 0.75f, kSphereSubdivisions, addMaterial(s, emitter("magenta", {1.0f, 0.1f, 0.8f})));
+  addNode(s, "mirror", [&] {
+    makeQuad(s, glm::vec3(0.0f), {1.0f, 0.0f, 0.0f}, {0.0f, 3.25f, -3.25f}, addMaterial(s, mirror("mirror")));
+  });
+  addNode(s, "emitter", [&] {
+    makeIcosphere(s, {0.0f, 2.5f, 0.0f}, 0.75f, kSphereSubdivisions, addMaterial(s, emitter("magenta", {1.0f, 0.1f, 0.8f})));
+  });
   return s;
 }
 

@@ -10,6 +10,7 @@
 #include "scene/gltf_lights.h"
 #include "scene/gltf_materials.h"
 #include "scene/gltf_nodes.h"
+#include "scene/scene_edits.h"
 #include "scene/scene_limits.h"
 
 namespace ht {
@@ -22,6 +23,7 @@ struct PrimitiveGeometry {
   std::vector<glm::vec2> texcoords;  // empty: none
   std::vector<glm::uvec3> triangles;
   std::uint32_t material = 0;
+  std::uint32_t node = 0;            // index into Scene::nodes of the node instance it belongs to
 };
 
 struct LoadContext {
@@ -202,6 +204,7 @@ PrimitiveGeometry readPrimitive(LoadContext& ctx, const tinygltf::Primitive& pri
 void makeFlat(PrimitiveGeometry& g) {
   PrimitiveGeometry flat;
   flat.material = g.material;
+  flat.node = g.node;
   const bool uv = !g.texcoords.empty();
   for (const glm::uvec3& t : g.triangles) {
     const glm::vec3 a = g.positions[t.x], b = g.positions[t.y], c = g.positions[t.z];
@@ -231,6 +234,13 @@ void appendGeometry(Scene& scene, std::vector<PrimitiveGeometry>& prims, SceneLo
     if (anyNormals && g.normals.empty()) makeFlat(g);
     if (anyUv && g.texcoords.empty()) g.texcoords.assign(g.positions.size(), glm::vec2(0.0f));
     const auto base = static_cast<std::uint32_t>(scene.positions.size());
+    SceneNode& node = scene.nodes[g.node];  // a node's primitives are consecutive
+    if (node.vertexCount == 0 && node.triangleCount == 0) {
+      node.firstVertex = base;
+      node.firstTriangle = static_cast<std::uint32_t>(scene.triangles.size());
+    }
+    node.vertexCount += static_cast<std::uint32_t>(g.positions.size());
+    node.triangleCount += static_cast<std::uint32_t>(g.triangles.size());
     for (const glm::vec3& p : g.positions)
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) ++report.nonFiniteVertices;
     scene.positions.insert(scene.positions.end(), g.positions.begin(), g.positions.end());
@@ -250,6 +260,13 @@ void readNodeMeshes(LoadContext& ctx, const NodeInstance& inst, std::vector<Prim
     ctx.report.warnings.push_back("node " + std::to_string(inst.node) + ": skin ignored (bind pose loaded)");
   if (node.mesh < 0) return;
   const tinygltf::Mesh& mesh = checkedMesh(ctx, node.mesh, inst.node);
+  // One movable SceneNode per node instance with a mesh (UpdateScene names it by the glTF node name).
+  const auto record = static_cast<std::uint32_t>(ctx.scene.nodes.size());
+  SceneNode movable;
+  movable.name = node.name.empty() ? "node" + std::to_string(inst.node) : node.name;
+  if (findNode(ctx.scene, movable.name)) movable.name += "#" + std::to_string(inst.node);  // names stay unique
+  movable.world = inst.world;
+  ctx.scene.nodes.push_back(std::move(movable));
   for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
     const tinygltf::Primitive& prim = mesh.primitives[p];
     if (!isTriangleMode(prim.mode)) {
@@ -257,6 +274,7 @@ void readNodeMeshes(LoadContext& ctx, const NodeInstance& inst, std::vector<Prim
       continue;
     }
     out.push_back(readPrimitive(ctx, prim, inst.world, primitiveName(node.mesh, p)));
+    out.back().node = record;
     ++ctx.report.primitives;
   }
 }

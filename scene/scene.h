@@ -56,6 +56,16 @@ struct Light {  // KHR_lights_punctual
   float innerConeAngle = 0.0f, outerConeAngle = 0.785398f;  // radians (Spot)
 };
 
+// A named piece of the soup that can be moved after loading (holotraced UpdateScene): a glTF node instance's
+// primitives, or one object of a built-in scene. Its vertices belong to it alone (loaders copy per instance).
+struct SceneNode {
+  std::string name;                      // glTF node name ("node<i>" if unnamed), built-in object name
+  std::uint32_t firstVertex = 0, vertexCount = 0;
+  std::uint32_t firstTriangle = 0, triangleCount = 0;
+  glm::dmat4 world{1.0};                 // the world matrix the vertices are currently transformed by (identity for
+                                         // built-in objects, whose vertices are generated in world space)
+};
+
 struct SceneFeatures {
   bool lights = false, mirrors = false, glass = false, textures = false, emissive = false;
 };
@@ -70,6 +80,7 @@ struct Scene {
   std::vector<Material> materials;        // never empty after loading (a default material is added)
   std::vector<Texture> textures;
   std::vector<Light> lights;
+  std::vector<SceneNode> nodes;           // movable pieces; may be empty (OBJ/OFF meshes)
   glm::vec3 background{0.05f, 0.06f, 0.08f};  // radiance of rays that leave the scene (linear RGB)
   glm::vec3 ambient{0.15f};                   // constant ambient irradiance term applied to diffuse surfaces
 

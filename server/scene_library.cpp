@@ -42,7 +42,7 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
   worker_
       .submit(client,
               [&content](gpu::VulkanContext& context) {
-                content->renderer = std::make_unique<gpu::Renderer>(context, content->scene);
+                content->renderer = std::make_shared<gpu::Renderer>(context, content->scene);
               },
               false)
       .get();
@@ -94,6 +94,36 @@ void SceneLibrary::updateCamera(const std::string& id, const CameraPlacement& pl
   if (observerDistance) updated->observerDistance = observerDistance;
   if (observerHeight) updated->observerHeight = observerHeight;
   it->second = std::move(updated);
+}
+
+SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, const std::string& id,
+                                                const std::function<void(Scene&)>& edit) {
+  std::lock_guard editing(buildMutex_);  // one BVH build at a time, and edits of one session in order
+  const std::shared_ptr<const SceneSession> session = find(id);
+  auto content = std::make_shared<SceneContent>(*session->content);  // copies the scene, shares the Renderer
+  edit(content->scene);
+  EditResult result;
+  result.newRenderer = content->editedBy != id;
+  const auto start = std::chrono::steady_clock::now();
+  worker_
+      .submit(client,
+              [&](gpu::VulkanContext& context) {
+                if (result.newRenderer) content->renderer = std::make_shared<gpu::Renderer>(context, content->scene);
+                else content->renderer->replaceScene(content->scene);
+              },
+              false)
+      .get();
+  result.rebuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.sahCost = content->renderer->bvhReport().sahCost;
+  content->editedBy = id;
+  content->contentKey = session->content->contentKey + "@" + id;
+  std::lock_guard lock(mutex_);
+  auto it = sessions_.find(id);
+  if (it == sessions_.end()) throw UnknownScene("unknown scene_id '" + id + "' (LoadScene returns one)");
+  auto updated = std::make_shared<SceneSession>(*it->second);  // keeps camera updates made meanwhile
+  updated->content = std::move(content);
+  it->second = std::move(updated);
+  return result;
 }
 
 std::size_t SceneLibrary::contentCount() const {

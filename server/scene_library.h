@@ -3,6 +3,7 @@
 // that shares that content (and its Renderer) with other sessions loading the same bytes.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -18,11 +19,14 @@
 
 namespace ht::server {
 
+// Published contents are never modified: an edit makes a new SceneContent (EditResult below).
 struct SceneContent {
   std::string contentKey;
   Scene scene;
-  std::unique_ptr<gpu::Renderer> renderer;  // used on the render worker thread only
+  std::shared_ptr<gpu::Renderer> renderer;  // used on the render worker thread only
   double loadMs = 0.0;
+  std::string editedBy;  // "" = loaded content, shared by every session of the same bytes; else the one session
+                         // whose edits (UpdateScene nodes / lights) it carries
 };
 
 struct SceneSession {
@@ -53,6 +57,16 @@ class SceneLibrary {
   void updateCamera(const std::string& id, const CameraPlacement& placement,
                     std::optional<double> observerDistance = std::nullopt,
                     std::optional<double> observerHeight = std::nullopt);
+  // Applies `edit` to a copy of the session's scene, rebuilds its BVH on the render worker (charged to `client`) and
+  // publishes a session with the edited content; other sessions of the same bytes keep theirs. The first edit of a
+  // session gives it its own Renderer (shaders compile again at its first frame), later ones reuse it
+  // (Renderer::replaceScene). `edit` throws (SceneError) to refuse; nothing changes then. Returns the rebuild report.
+  struct EditResult {
+    double rebuildMs = 0.0;
+    double sahCost = 0.0;
+    bool newRenderer = false;
+  };
+  EditResult editScene(const std::string& client, const std::string& id, const std::function<void(Scene&)>& edit);
   std::size_t contentCount() const;
 
  private:

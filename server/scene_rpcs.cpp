@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "scene/scene_edits.h"
 #include "server/display_messages.h"
 #include "server/holotrace_service.h"
 #include "server/path_rules.h"
@@ -44,6 +45,8 @@ void fillHandle(const SceneSession& session, v1::SceneHandle& out) {
   out.set_sah_cost(session.content->renderer->bvhReport().sahCost);
   out.set_reused(session.reused);
   out.set_load_ms(session.content->loadMs);
+  for (const SceneNode& node : session.content->scene.nodes) out.add_nodes(node.name);
+  out.set_lights(static_cast<std::uint32_t>(session.content->scene.lights.size()));
 }
 
 std::string sceneExtension(const std::string& fileName) {
@@ -54,6 +57,46 @@ std::string sceneExtension(const std::string& fileName) {
     throw BadRequest("info.file_name", "'" + fileName + "' must end in .glb, .gltf, .obj or .off");
   }
   return ext;
+}
+
+struct NodeEdit {
+  std::string name;
+  glm::dmat4 world{1.0};
+};
+
+std::vector<NodeEdit> readNodeEdits(const v1::UpdateSceneRequest& request) {
+  std::vector<NodeEdit> edits;
+  for (int i = 0; i < request.nodes_size(); ++i) {
+    const v1::NodeTransform& n = request.nodes(i);
+    const std::string field = "nodes[" + std::to_string(i) + "]";
+    if (n.node().empty()) throw BadRequest(field + ".node", "name a node (SceneHandle.nodes lists them)");
+    if (n.world_size() != 16) {
+      throw BadRequest(field + ".world", "expected 16 values (a 4x4 matrix, column-major), got " +
+                                             std::to_string(n.world_size()));
+    }
+    NodeEdit edit{n.node(), glm::dmat4(1.0)};
+    for (int k = 0; k < 16; ++k) edit.world[k / 4][k % 4] = n.world(k);  // finiteness: setNodeWorldMatrix
+    edits.push_back(std::move(edit));
+  }
+  return edits;
+}
+
+std::optional<glm::dvec3> vec3If(bool present, const v1::Vec3& v) {
+  if (!present) return std::nullopt;
+  return glm::dvec3(v.x(), v.y(), v.z());
+}
+
+std::vector<std::pair<std::size_t, LightEdit>> readLightEdits(const v1::UpdateSceneRequest& request) {
+  std::vector<std::pair<std::size_t, LightEdit>> edits;
+  for (const v1::LightUpdate& l : request.lights()) {
+    LightEdit edit;
+    edit.position = vec3If(l.has_position(), l.position());
+    edit.direction = vec3If(l.has_direction(), l.direction());
+    edit.color = vec3If(l.has_color(), l.color());
+    if (l.has_intensity()) edit.intensity = l.intensity();
+    edits.emplace_back(l.index(), edit);
+  }
+  return edits;
 }
 
 }  // namespace
@@ -128,8 +171,8 @@ grpc::Status HolotraceService::UploadScene(grpc::ServerContext* context,
   });
 }
 
-grpc::Status HolotraceService::UpdateScene(grpc::ServerContext*, const v1::UpdateSceneRequest* request,
-                                           v1::UpdateSceneResponse*) {
+grpc::Status HolotraceService::UpdateScene(grpc::ServerContext* context, const v1::UpdateSceneRequest* request,
+                                           v1::UpdateSceneResponse* response) {
   return guarded([&] {
     CameraPlacement placement;
     if (request->has_target()) {
@@ -154,9 +197,22 @@ grpc::Status HolotraceService::UpdateScene(grpc::ServerContext*, const v1::Updat
       if (!std::isfinite(request->observer_height())) throw BadRequest("observer_height", "must be finite");
       observerHeight = request->observer_height();
     }
-    if (!placement.target && !placement.size && !observerDistance && !observerHeight) {
-      throw BadRequest("target", "give a target, a size and/or an observer position");
+    const bool cameraChange = placement.target || placement.size || observerDistance || observerHeight;
+    const std::vector<NodeEdit> nodes = readNodeEdits(*request);
+    const std::vector<std::pair<std::size_t, LightEdit>> lights = readLightEdits(*request);
+    if (!cameraChange && nodes.empty() && lights.empty()) {
+      throw BadRequest("target", "give a target, a size, an observer position, nodes and/or lights");
     }
+    if (!nodes.empty() || !lights.empty()) {  // first: a refused edit leaves the camera as it was too
+      const SceneLibrary::EditResult result =
+          state_.scenes.editScene(clientKey(*context), request->scene_id(), [&](Scene& scene) {
+            for (const NodeEdit& n : nodes) setNodeWorldMatrix(scene, n.name, n.world);
+            for (const auto& [index, edit] : lights) editLight(scene, index, edit);
+          });
+      response->set_rebuild_ms(result.rebuildMs);
+      response->set_sah_cost(result.sahCost);
+    }
+    if (!cameraChange) return grpc::Status::OK;
     // An observer-only update keeps the camera placement of earlier updates.
     if (!placement.target && !placement.size) placement = state_.scenes.find(request->scene_id())->cameraOverride;
     state_.scenes.updateCamera(request->scene_id(), placement, observerDistance, observerHeight);

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "gpu_test_util.h"
+#include "scene/scene_edits.h"
 
 namespace ht::test {
 namespace {
@@ -120,6 +121,33 @@ TEST(GpuImage, SameFrameTwiceIsBitIdentical) {
   ASSERT_EQ(a.rgba.size(), b2.rgba.size());
   EXPECT_EQ(std::memcmp(a.rgba.data(), b2.rgba.data(), a.rgba.size() * sizeof(float)), 0);
   EXPECT_GT(meanChannel(a, 0), 0.0);
+}
+
+// A scene edited in place (a node moved, a light changed) through replaceScene renders bit for bit what a new
+// Renderer of the edited scene renders, and not what it rendered before the edit.
+TEST(GpuImage, ReplacedSceneRendersLikeAFreshRendererOfTheEditedScene) {
+  Scene scene = loadScene("builtin:showcase");
+  gpu::Renderer renderer(sharedContext(), scene);
+  const Bounds3 b = scene.bounds();
+  auto cam = lookAt(b.center() + glm::vec3(0.0f, 0.5f, 2.0f) * glm::length(b.extent()), b.center(), 35.0f, 128, 96);
+  gpu::RenderSettings settings;
+  settings.spp = 2;
+  const gpu::RenderResult before = renderer.renderPinhole(cam, settings);
+  glm::dmat4 lifted(1.0);
+  lifted[3] = glm::dvec4(0.0, 0.35, 0.1, 1.0);
+  setNodeWorldMatrix(scene, "glass-sphere", lifted);
+  LightEdit dim;
+  dim.intensity = 2.0;
+  dim.color = glm::dvec3(0.4, 0.6, 1.0);
+  editLight(scene, 0, dim);
+  renderer.replaceScene(scene);
+  const gpu::RenderResult edited = renderer.renderPinhole(cam, settings);
+  gpu::Renderer fresh(sharedContext(), scene);
+  const gpu::RenderResult reference = fresh.renderPinhole(cam, settings);
+  ASSERT_EQ(edited.rgba.size(), reference.rgba.size());
+  EXPECT_EQ(std::memcmp(edited.rgba.data(), reference.rgba.data(), edited.rgba.size() * sizeof(float)), 0);
+  EXPECT_NE(std::memcmp(edited.rgba.data(), before.rgba.data(), edited.rgba.size() * sizeof(float)), 0);
+  EXPECT_EQ(renderer.bvhReport().sahCost, fresh.bvhReport().sahCost);
 }
 
 TEST(GpuImage, SpecialisedPipelineGivesTheSameImageAsAllFeaturesOn) {

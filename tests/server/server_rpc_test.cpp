@@ -1,5 +1,6 @@
 // server_rpc_test.cpp - holotraced end to end through the C++ stubs: displays, scene loading and upload, frames,
 // streams, capture, and misbehaving clients (each answered with the right status while others keep working).
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -160,6 +161,91 @@ TEST_F(ServerTest, UpdateSceneMovesTheCamera) {
   grpc::ClientContext bad;
   update.set_size(-1.0);
   EXPECT_EQ(stub_->UpdateScene(&bad, update, &response).error_code(), StatusCode::INVALID_ARGUMENT);
+}
+
+v1::NodeTransform translation(const std::string& node, double x, double y, double z) {
+  v1::NodeTransform t;
+  t.set_node(node);
+  for (int k = 0; k < 16; ++k) t.add_world(k % 5 == 0 ? 1.0 : 0.0);
+  t.set_world(12, x);
+  t.set_world(13, y);
+  t.set_world(14, z);
+  return t;
+}
+
+grpc::Status updateScene(v1::Holotrace::Stub& stub, const v1::UpdateSceneRequest& request,
+                         v1::UpdateSceneResponse* response = nullptr) {
+  grpc::ClientContext context;
+  v1::UpdateSceneResponse local;
+  return stub.UpdateScene(&context, request, response ? response : &local);
+}
+
+// Moving a node changes this session's frames only: a second session of the same content (one shared BVH) keeps
+// rendering the original; the handle names the nodes; refused edits change nothing.
+TEST_F(ServerTest, UpdateSceneMovesANodeForThisSessionOnly) {
+  v1::SceneHandle other;
+  ASSERT_TRUE(loadScene(*stub_, "builtin:plain", &other).ok());
+  EXPECT_TRUE(other.reused());
+  EXPECT_THAT(std::vector<std::string>(other.nodes().begin(), other.nodes().end()),
+              ::testing::ElementsAre("room", "orange-sphere", "teal-box", "violet-sphere", "yellow-box"));
+  ReceivedFrame before, otherBefore, moved, otherAfter, refused;
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_), &before).ok());
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(other.scene_id()), &otherBefore).ok());
+  ASSERT_EQ(before.bytes, otherBefore.bytes);
+
+  v1::UpdateSceneRequest request;
+  request.set_scene_id(sceneId_);
+  *request.add_nodes() = translation("violet-sphere", -0.5, 0.4, 0.0);
+  v1::UpdateSceneResponse response;
+  ASSERT_TRUE(updateScene(*stub_, request, &response).ok());
+  EXPECT_GT(response.rebuild_ms(), 0.0);
+  EXPECT_GT(response.sah_cost(), 0.0);
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_), &moved).ok());
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(other.scene_id()), &otherAfter).ok());
+  EXPECT_NE(moved.bytes, before.bytes);
+  EXPECT_EQ(otherAfter.bytes, otherBefore.bytes);
+
+  // Refused: an unknown node (named in the message), a 15-value matrix, a singular one. The frame stays `moved`.
+  v1::UpdateSceneRequest bad;
+  bad.set_scene_id(sceneId_);
+  *bad.add_nodes() = translation("violet-sphere", 0, 0, 0);
+  *bad.add_nodes() = translation("green-cube", 0, 0, 0);
+  const grpc::Status unknown = updateScene(*stub_, bad);
+  EXPECT_EQ(unknown.error_code(), StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(unknown.error_message(), ::testing::HasSubstr("'green-cube'"));
+  bad.clear_nodes();
+  *bad.add_nodes() = translation("teal-box", 0, 0, 0);
+  bad.mutable_nodes(0)->mutable_world()->RemoveLast();
+  EXPECT_EQ(updateScene(*stub_, bad).error_code(), StatusCode::INVALID_ARGUMENT);
+  bad.mutable_nodes(0)->add_world(1.0);
+  bad.mutable_nodes(0)->set_world(0, 0.0);  // x axis collapsed
+  EXPECT_EQ(updateScene(*stub_, bad).error_code(), StatusCode::INVALID_ARGUMENT);
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_), &refused).ok());
+  EXPECT_EQ(refused.bytes, moved.bytes);
+}
+
+// Lights: a dimmed, recoloured light changes the frame; an index past the scene's lights is refused.
+TEST_F(ServerTest, UpdateSceneChangesALight) {
+  v1::SceneHandle showcase;
+  ASSERT_TRUE(loadScene(*stub_, "builtin:showcase", &showcase).ok());
+  EXPECT_EQ(showcase.lights(), 2u);
+  ReceivedFrame before, after;
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(showcase.scene_id()), &before).ok());
+  v1::UpdateSceneRequest request;
+  request.set_scene_id(showcase.scene_id());
+  v1::LightUpdate* light = request.add_lights();
+  light->set_index(0);
+  light->set_intensity(1.0);
+  light->mutable_color()->set_x(0.2);
+  light->mutable_color()->set_y(0.4);
+  light->mutable_color()->set_z(1.0);
+  ASSERT_TRUE(updateScene(*stub_, request).ok());
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(showcase.scene_id()), &after).ok());
+  EXPECT_NE(after.bytes, before.bytes);
+  light->set_index(2);
+  const grpc::Status missing = updateScene(*stub_, request);
+  EXPECT_EQ(missing.error_code(), StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(missing.error_message(), ::testing::HasSubstr("light 2"));
 }
 
 TEST_F(ServerTest, StreamDeliversFramesUntilCancelledWhileOthersRender) {

@@ -1,0 +1,31 @@
+// scene_edits.h - changes to a loaded Scene without reloading it (holotraced UpdateScene): a node moved to a new
+// world matrix, a light's position, direction, colour or intensity. Each edit checks its input first and leaves the
+// scene untouched when it throws.
+#pragma once
+#include <optional>
+#include <string_view>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace ht {
+
+// Moves node `name` so that its geometry is transformed by `world` instead of its current matrix:
+// p' = W_new W_old^-1 p for positions, n' = normalize(M^-T n) for normals with M = W_new W_old^-1 (normals are
+// covectors; pbrt-v4 "Applying Transformations: Normals"), and a change of handedness (det M < 0) swaps two
+// corners of each triangle so that front faces stay counter-clockwise (glTF 2.0, Meshes). Throws SceneError for
+// an unknown name, a non-finite matrix or one whose upper 3x3 is singular.
+void setNodeWorldMatrix(Scene& scene, std::string_view name, const glm::dmat4& world);
+
+struct LightEdit {
+  std::optional<glm::dvec3> position, direction, color;  // direction: normalized here; color: linear RGB >= 0
+  std::optional<double> intensity;                       // >= 0 (candela or lux, as in glTF)
+};
+// Throws SceneError for an index out of range, non-finite values, a zero direction or negative colour/intensity.
+void editLight(Scene& scene, std::size_t index, const LightEdit& edit);
+
+// Index of node `name` in scene.nodes, or nullopt.
+std::optional<std::size_t> findNode(const Scene& scene, std::string_view name);
+
+}  // namespace ht
