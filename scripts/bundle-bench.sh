@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# bundle-bench.sh - the benchmark programs, the CLI and the shared libraries they need beyond glibc and the Vulkan
+# loader, in one folder that travels to a GPU machine (issue 5: "runnable on an NVIDIA GPU machine too"):
+#   scripts/bundle-bench.sh [DIR]          (default .bench-bundle/, git-ignored; ~50 MiB)
+# There: DIR/run holotrace-bench-traversal --meshes DIR/assets/bunny.obj ...   (sets LD_LIBRARY_PATH; the SPIR-V
+# kernels are embedded in the binaries). The Vulkan loader and the NVIDIA ICD come from the GPU machine
+# (/work/.library/device/README.md says how to bring the loader where it is missing).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+out="${1:-$root/.bench-bundle}"
+build="${BUILD_DIR:-$root/build}"
+programs=(bench/holotrace-bench-primary bench/holotrace-bench-traversal bench/holotrace-bench-raygen
+          bench/holotrace-bench-skipping bench/holotrace-bench-quality)
+for p in "${programs[@]}"; do
+  [[ -x "$build/$p" ]] || { echo "bundle-bench.sh: $build/$p missing: build first (cmake --build $build)" >&2; exit 1; }
+done
+rm -rf "$out"
+mkdir -p "$out/bin" "$out/lib" "$out/assets"
+for p in "${programs[@]}"; do cp "$build/$p" "$out/bin/"; done
+# Every resolved library except glibc's own (libc, libm, libpthread, libdl, librt, the dynamic loader) and the Vulkan
+# loader, which must be the GPU machine's to find its driver.
+for p in "$out"/bin/*; do
+  ldd "$p" | awk '$3 ~ /^\// {print $3}'
+done | sort -u | while read -r lib; do
+  case "$(basename "$lib")" in
+    libc.so*|libm.so*|libpthread.so*|libdl.so*|librt.so*|ld-linux*|libvulkan.so*) ;;
+    *) cp -L "$lib" "$out/lib/" ;;
+  esac
+done
+[[ -f /usr/share/glmark2/models/bunny.obj ]] && cp /usr/share/glmark2/models/bunny.obj "$out/assets/"
+for m in "$root"/assets/*.off; do [[ -f "$m" ]] && cp "$m" "$out/assets/"; done
+cat > "$out/run" <<'RUN'
+#!/usr/bin/env bash
+# run PROGRAM [ARGS...]: one of bin/ with the bundled libraries first on the search path.
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+prog="$1"; shift
+LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" exec "$here/bin/$prog" "$@"
+RUN
+chmod +x "$out/run"
+echo "bundle-bench.sh: $(du -sh "$out" | cut -f1) in $out ($(ls "$out/lib" | wc -l) libraries)"
