@@ -19,6 +19,7 @@
 #include "gpu/device_buffer.h"
 #include "gpu/gpu_scene.h"
 #include "gpu/pass_recorder.h"
+#include "gpu/pipeline_library.h"
 #include "gpu/vulkan_context.h"
 #include "gpu/wavefront_types.h"
 
@@ -103,12 +104,11 @@ struct OutputBuffers {
 struct Renderer::Impl {
   VulkanContext::Impl& vk;
   GpuScene scene;
-  PipelineLayout layout;
+  const PipelineLayout& layout;  // the device's (PipelineLibrary), shared with every Renderer
   FrameDescriptors descriptors;
   bool bvhTexelsCover = true;
   std::uint64_t boundWorkGeneration = 0;
   std::uint64_t boundOutputGeneration = 0;
-  std::map<std::vector<std::uint32_t>, std::unique_ptr<ComputePipeline>> pipelines;
   DeviceBuffer frame;     // FrameBlock, host visible
   DeviceBuffer counters;  // GpuCounters, host visible
   WorkBuffers work;
@@ -123,7 +123,7 @@ struct Renderer::Impl {
   bvh::BuildOptions buildOptions;
 
   Impl(VulkanContext::Impl& v, const Scene& s, const bvh::BuildOptions& o)
-      : vk(v), scene(v, s, o), layout(v), descriptors(v, layout.setLayout()), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
+      : vk(v), scene(v, s, o), layout(v.pipelines->layout()), descriptors(v, layout.setLayout()), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
         counters(v, sizeof(GpuCounters), MemoryPlace::HostReadback), buildOptions(o) {
     VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -147,12 +147,8 @@ struct Renderer::Impl {
     vkDestroyQueryPool(vk.device, queryPool, nullptr);
   }
 
-  const ComputePipeline& pipeline(ShaderId id, std::vector<std::uint32_t> spec = {}) {
-    std::vector<std::uint32_t> key = spec;
-    key.insert(key.begin(), static_cast<std::uint32_t>(id));
-    auto& slot = pipelines[key];
-    if (!slot) slot = std::make_unique<ComputePipeline>(vk, layout, id, spec);
-    return *slot;
+  const ComputePipeline& pipeline(ShaderId id, const std::vector<std::uint32_t>& spec = {}) {
+    return vk.pipelines->get(id, spec);
   }
 
   // Specialisation of the trace kernels: their own constants, then constant_id 10 = TEXEL_FETCH.

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <vector>
 
+#include "gpu/pipeline_library.h"
 #include "gpu/vulkan_impl.h"
 
 #ifdef HT_SANITIZED_BUILD
@@ -271,12 +272,14 @@ VulkanContext::VulkanContext(const Options& options) : impl_(std::make_unique<Im
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   pci.queueFamilyIndex = v.queueFamily;
   HT_VK(vkCreateCommandPool(v.device, &pci, nullptr, &v.commandPool));
+  v.pipelines = std::make_unique<PipelineLibrary>(v);
 }
 
 VulkanContext::~VulkanContext() {
   Impl& v = *impl_;
   if (v.device) {
     vkDeviceWaitIdle(v.device);
+    v.pipelines.reset();
     vkDestroyCommandPool(v.device, v.commandPool, nullptr);
     vkDestroyDevice(v.device, nullptr);
   }

@@ -3,6 +3,7 @@
 #include <vulkan/vulkan.h>
 
 #include <atomic>
+#include <memory>
 #include <string>
 
 #include "common/error.h"
@@ -14,6 +15,8 @@ namespace ht::gpu {
 void checkVk(VkResult result, const char* call);
 #define HT_VK(call) ::ht::gpu::checkVk((call), #call)
 const char* vkResultName(VkResult result);
+
+class PipelineLibrary;
 
 struct VulkanContext::Impl {
   VkInstance instance = VK_NULL_HANDLE;
@@ -27,6 +30,7 @@ struct VulkanContext::Impl {
   DeviceInfo info;
   std::atomic<uint32_t> validationMessages{0};
   std::string lastValidationMessage;
+  std::unique_ptr<PipelineLibrary> pipelines;  // created with the device, destroyed before it (vulkan_context.cpp)
 };
 
 }  // namespace ht::gpu

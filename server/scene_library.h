@@ -59,8 +59,8 @@ class SceneLibrary {
                     std::optional<double> observerHeight = std::nullopt);
   // Applies `edit` to a copy of the session's scene, rebuilds its BVH on the render worker (charged to `client`) and
   // publishes a session with the edited content; other sessions of the same bytes keep theirs. The first edit of a
-  // session gives it its own Renderer (shaders compile again at its first frame), later ones reuse it
-  // (Renderer::replaceScene). `edit` throws (SceneError) to refuse; nothing changes then. Returns the rebuild report.
+  // session gives it its own Renderer (pipelines are the device's, gpu/pipeline_library.h: nothing recompiles),
+  // later ones reuse it (Renderer::replaceScene). `edit` throws (SceneError) to refuse; nothing changes then. Returns the rebuild report.
   struct EditResult {
     double rebuildMs = 0.0;
     double sahCost = 0.0;
