@@ -21,6 +21,7 @@
 #include "camera_models/quilt_layout.h"
 #include "camera_models/quilt_setup.h"
 #include "common/error.h"
+#include "gpu/display_camera.h"
 #include "gpu/renderer.h"
 #include "gpu/vulkan_context.h"
 #include "scene/scene.h"
@@ -59,8 +60,14 @@ void scoreAgainst(QualityPoint& p, const std::vector<float>& image, const std::v
   p.psnrCorrectedDb = psnrFromMse(std::max(p.metrics.mse - d.refNoiseMse, 1e-12));
 }
 
-// Both camera models once on a small copy of the display.
-void warmUp(const Context& c, const DisplayConfig& display) {
+// The display's own camera model (and for a lenticular display the quilt cameras) once on a small copy of it.
+void warmUp(const Context& c, const DisplayConfig& display, const gpu::FrameCamera& camera) {
+  if (!display.calibration) {  // one frame of the real camera at spp 1 and depth 0: compiles every kernel it uses
+    gpu::RenderSettings s = settings(c.options, 1, 0);
+    s.maxDepth = 0;
+    c.renderer.render(camera, s);
+    return;
+  }
   DisplayConfig small = display;
   small.calibration->screenW = 96;
   small.calibration->screenH = 128;
@@ -72,26 +79,27 @@ void warmUp(const Context& c, const DisplayConfig& display) {
   c.renderer.renderQuilt(makeQuiltParams(display, bounds, tiny), settings(c.options, 1, 0));
 }
 
-std::vector<float> renderReference(const Context& c, const gpu_shared::LenticularParams& params, DisplayQuality& d) {
+// Images are compared as one width x (height * views) image: every view (projector, camera) of the frame.
+std::vector<float> renderReference(const Context& c, const gpu::FrameCamera& camera, DisplayQuality& d) {
   const std::uint32_t half = c.options.refSpp / 2;
   std::cout << "  reference: 2 x " << half << " spp..." << std::endl;
-  const auto a = c.renderer.renderLenticular(params, settings(c.options, half, kRefSeedA));
-  const auto b = c.renderer.renderLenticular(params, settings(c.options, half, kRefSeedB));
+  const auto a = c.renderer.render(camera, settings(c.options, half, kRefSeedA));
+  const auto b = c.renderer.render(camera, settings(c.options, half, kRefSeedB));
   d.panelWidth = a.width;
-  d.panelHeight = a.height;
+  d.panelHeight = a.height * a.views;
   d.refSpp = c.options.refSpp;
   d.refMs = a.totalMs + b.totalMs;
-  d.refNoiseMse = compareImages(a.rgba, b.rgba, a.width, a.height).mse / 4.0;
+  d.refNoiseMse = compareImages(a.rgba, b.rgba, d.panelWidth, d.panelHeight).mse / 4.0;
   std::vector<float> reference(a.rgba.size());
   for (std::size_t i = 0; i < reference.size(); ++i) reference[i] = 0.5f * (a.rgba[i] + b.rgba[i]);
   return reference;
 }
 
-void measureDirect(const Context& c, const gpu_shared::LenticularParams& params, const std::vector<float>& reference,
+void measureDirect(const Context& c, const gpu::FrameCamera& camera, const std::vector<float>& reference,
                    DisplayQuality& d) {
   for (std::uint32_t spp : c.options.directSpp) {
     std::cout << "  direct spp " << spp << "..." << std::endl;
-    const auto frame = c.renderer.renderLenticular(params, settings(c.options, spp, 0));
+    const auto frame = c.renderer.render(camera, settings(c.options, spp, 0));
     QualityPoint p{"direct", spp, "", "", frame.totalMs, stageSum(frame), 0.0, {}, 0.0};
     scoreAgainst(p, frame.rgba, reference, d);
     d.points.push_back(p);
@@ -128,14 +136,14 @@ QuiltLayout scaledLayout(const QuiltLayout& layout, double scale) {
 
 DisplayQuality measureDisplay(const Context& c, const std::string& spec) {
   const DisplayConfig display = resolveDisplay(spec);
-  if (!display.calibration) throw UsageError("holotrace-bench-quality: " + spec + " is not a lenticular display");
   std::cout << "holotrace-bench-quality: " << spec << std::endl;
-  warmUp(c, display);
-  const auto params = makeLenticularParams(display, c.scene.bounds());
+  const gpu::FrameCamera camera = gpu::makeDisplayCamera(display, c.scene.bounds(), gpu::CameraPath::Native).camera;
+  warmUp(c, display, camera);
   DisplayQuality d;
   d.display = spec;
-  const std::vector<float> reference = renderReference(c, params, d);
-  measureDirect(c, params, reference, d);
+  const std::vector<float> reference = renderReference(c, camera, d);
+  measureDirect(c, camera, reference, d);
+  if (!display.calibration) return d;  // projector arrays, integral panels ...: no quilt path to compare with
   QuiltLayout layout = defaultQuiltLayout(display);
   if (c.options.quiltSize) {
     layout = makeQuiltLayout(layout.columns, layout.rows, c.options.quiltSize->first, c.options.quiltSize->second,

@@ -15,7 +15,7 @@ namespace {
 const char* const kCommand = "holotrace-bench-quality";
 
 const std::array<cli::OptionSpec, 14> kSpecs = {{
-    {"--displays", "", "LIST", "comma-separated lenticular displays (default builtin:portrait,builtin:gen3-16-landscape)"},
+    {"--displays", "", "LIST", "comma-separated displays of any model (default builtin:portrait,builtin:gen3-16-landscape)"},
     {"--scene", "", "SPEC", "scene (default builtin:plain)"},
     {"--ref-spp", "", "N", "reference spp, even: two independent halves of N/2 (default 16)"},
     {"--spp", "", "LIST", "direct lenticular spp points (default 1,2,4,8)"},
@@ -32,9 +32,10 @@ const std::array<cli::OptionSpec, 14> kSpecs = {{
 }};
 
 const char* const kHelp =
-    "Run time vs error of the two lenticular paths per display, against a reference (direct path at --ref-spp):\n"
-    "  direct  Renderer::renderLenticular, every subpixel its own rays, at each --spp\n"
-    "  quilt   Renderer::renderQuilt (device default layout, and scaled by --quilt-scale) + the vendor interleave on\n"
+    "Run time vs error per display, against a reference (direct path at --ref-spp):\n"
+    "  direct  the display's own camera model (Renderer::render), every (sub)pixel its own rays, at each --spp;\n"
+    "          multi-view frames (projectors, cameras) are scored as one image of all their views\n"
+    "  quilt   lenticular displays only: Renderer::renderQuilt (device default layout, and scaled by --quilt-scale) + the vendor interleave on\n"
     "          the CPU (bench/quilt_interleave.h) with the nearest, vendor-lerp and centred-lerp view filters\n"
     "Per point: ms/frame (render wall time incl. readback; the quilt's CPU interleave is reported apart), RMSE, PSNR, SSIM on sRGB-encoded [0,1] values, and PSNR\n"
     "corrected for the reference's own noise (MSE - MSE(half A, half B)/4). Summary: at the quilt's time, how many dB\n"

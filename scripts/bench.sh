@@ -2,7 +2,8 @@
 # Rebuilds the benchmark programs and regenerates every benchmark CSV / JSON / PNG (docs/BENCHMARKS.md, issue 5):
 #   holotrace-bench-traversal  primary/shadow/diffuse/mirror Mrays/s vs Embree 1- and 8-wide, BVH quality vs rtcBuildBVH
 #   holotrace-bench-skipping   per-pass times, specialised pipeline vs forceAllFeatures
-#   holotrace-bench-quality    ms/frame vs error, direct lenticular path vs quilt path, Portrait and 16" Gen3
+#   holotrace-bench-quality    ms/frame vs error, direct lenticular path vs quilt path, Portrait and 16" Gen3; direct
+#                              path of an HPO projector array and an integral panel against a 256-spp reference
 # Usage: scripts/bench.sh [--quick] [--build-dir DIR] [--out DIR] [--help]
 #   --quick        CI smoke: tiny sizes and spp, a 384x512 test display; writes to out/bench-quick (seconds)
 #   --build-dir D  CMake build folder (default build; configured Release without the service if missing)
@@ -46,6 +47,11 @@ else
   "$bin/holotrace-bench-skipping" --csv "$out/skipping.csv" --json "$out/skipping.json" | tee "$out/skipping.txt"
   "$bin/holotrace-bench-quality" --csv "$out/quality.csv" --summary-csv "$out/quality_summary.csv" \
     --json "$out/quality.json" | tee "$out/quality.txt"
+  # The HPO projector array and the integral panel (reduced copies of the shipped ones, bench/configs/): direct path
+  # only, against a 256-spp reference.
+  "$bin/holotrace-bench-quality" --displays bench/configs/quality-hpo-14.json,bench/configs/quality-integral-960.json \
+    --ref-spp 256 --spp 1,2,4,8,16,32 --csv "$out/quality_models.csv" --json "$out/quality_models.json" \
+    | tee "$out/quality_models.txt"
 fi
 "$root/bench/plots/plot-bench.sh" "$out"
 echo "bench.sh: wrote $out in $(( $(date +%s) - start )) s"

@@ -9,17 +9,20 @@ dir="${1:?usage: plot-bench.sh DIR}"
 [[ -f "$dir/quality.csv" && -f "$dir/traversal_throughput.csv" ]] || { echo "plot-bench.sh: CSVs missing in $dir" >&2; exit 1; }
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
 
-# --- ms/frame vs PSNR, one PNG per display -------------------------------------------------------------------------
-for display in $(awk -F, 'NR > 1 { print $1 }' "$dir/quality.csv" | sort -u); do
+# --- ms/frame vs PSNR, one PNG per display (quality.csv: lenticular displays; quality_models.csv, if present: the
+# projector-array and integral displays, direct path only) ------------------------------------------------------------
+for csv in "$dir/quality.csv" "$dir/quality_models.csv"; do
+[[ -f "$csv" ]] || continue
+for display in $(awk -F, 'NR > 1 { print $1 }' "$csv" | sort -u); do
   slug="$(basename "$display" .json | sed 's/^builtin://; s/[^A-Za-z0-9_-]/_/g')"
-  awk -F, -v d="$display" '$1 == d && $2 == "direct" { print $9, $12, $3 }' "$dir/quality.csv" | sort -g > "$tmp/direct"
+  awk -F, -v d="$display" '$1 == d && $2 == "direct" { print $9, $12, $3 }' "$csv" | sort -g > "$tmp/direct"
   plots="'$tmp/direct' using 1:2 with linespoints lw 2 pt 7 title 'direct (per-subpixel rays)', \
          '' using 1:2:(sprintf('%d spp', \$3)) with labels offset 0,1 notitle"
   n=0
-  for key in $(awk -F, -v d="$display" '$1 == d && $2 == "quilt" { gsub(/ /, "_", $4); print $4 "|" $5 }' "$dir/quality.csv" | sort -u); do
+  for key in $(awk -F, -v d="$display" '$1 == d && $2 == "quilt" { gsub(/ /, "_", $4); print $4 "|" $5 }' "$csv" | sort -u); do
     quilt="${key%%|*}"; filter="${key##*|}"; n=$((n + 1))
     awk -F, -v d="$display" -v q="${quilt//_/ }" -v f="$filter" '$1 == d && $2 == "quilt" && $4 == q && $5 == f { print $9, $12, $3 }' \
-      "$dir/quality.csv" | sort -g > "$tmp/quilt$n"
+      "$csv" | sort -g > "$tmp/quilt$n"
     plots="$plots, '$tmp/quilt$n' using 1:2 with linespoints pt $((n + 3)) title 'quilt ${quilt//_/ } $filter'"
   done
   gnuplot <<GP
@@ -33,6 +36,7 @@ set grid
 set key top left box opaque
 plot $plots
 GP
+done
 done
 
 # --- Mrays/s ours vs Embree per mesh and ray set ----------------------------------------------------------------------
