@@ -93,6 +93,11 @@ void fillTree(TreeFigures& fig, const bvh::Bvh2& tree, const Scene& scene, const
   for (const RaySet& set : sets) {
     fig.costs.push_back(countTraversalCost(tree, scene.positions, scene.triangles, everyNth(set.rays, o.costStride),
                                            set.query == RayQuery::Occluded, o.threads));
+    // The middle 1/costStride of the set, contiguous: consecutive rays are the kernel's SIMD lanes.
+    const std::size_t block = set.rays.size() / std::max<std::size_t>(o.costStride, 1) / 8 * 8;
+    const std::span<const gpu_shared::HtRay> middle(set.rays.data() + (set.rays.size() - block) / 2, block);
+    fig.lanes.push_back(countTraversalCost(tree, scene.positions, scene.triangles, middle,
+                                           set.query == RayQuery::Occluded, o.threads));
   }
 }
 

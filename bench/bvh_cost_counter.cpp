@@ -50,7 +50,8 @@ struct Counter {
     return false;
   }
 
-  void trace(const HtRay& ray) {
+  // Returns the ray's loop iterations.
+  std::uint64_t trace(const HtRay& ray) {
     const SlabRay sr{ray.origin, 1.0f / ray.dir, ray.tmin};
     const gpu_shared::HtWatertightRay wr = gpu_shared::ht_make_watertight_ray(ray.origin, ray.dir, ray.tmin);
     float tmax = ray.tmax;
@@ -58,8 +59,9 @@ struct Counter {
     std::uint32_t stack[128];
     std::uint32_t sp = 0, cur = 0;
     cost.rays++;
-    if (boxEntry(sr, tree.nodes[0], tmax) == std::numeric_limits<float>::infinity()) return;
-    for (;;) {
+    std::uint64_t steps = 1;  // the root box test
+    if (boxEntry(sr, tree.nodes[0], tmax) == std::numeric_limits<float>::infinity()) return steps;
+    for (;; ++steps) {
       const bvh::Bvh2Node& node = tree.nodes[cur];
       if (node.isLeaf()) {
         if (testLeaf(node, wr, tmax, hit)) break;
@@ -81,6 +83,7 @@ struct Counter {
       cur = stack[--sp];
     }
     if (hit) cost.hits++;
+    return steps;
   }
 };
 
@@ -89,6 +92,8 @@ void accumulate(std::atomic<std::uint64_t>* sums, const TraversalCost& c) {
   sums[1] += c.nodeVisits;
   sums[2] += c.triangleTests;
   sums[3] += c.hits;
+  sums[4] += c.steps;
+  sums[5] += c.lockstep8;
 }
 
 }  // namespace
@@ -96,14 +101,31 @@ void accumulate(std::atomic<std::uint64_t>* sums, const TraversalCost& c) {
 TraversalCost countTraversalCost(const bvh::Bvh2& tree, std::span<const glm::vec3> positions,
                                  std::span<const glm::uvec3> triangles, std::span<const HtRay> rays, bool anyHit,
                                  unsigned threads) {
-  std::atomic<std::uint64_t> sums[4] = {0, 0, 0, 0};
+  std::atomic<std::uint64_t> sums[6] = {0, 0, 0, 0, 0, 0};
   if (tree.nodes.empty()) return {};
+  static_assert(kChunk % 8 == 0, "lane groups must not straddle chunks");
   forEachChunkParallel(rays.size(), kChunk, threads, [&](std::size_t begin, std::size_t end) {
     Counter counter{tree, positions, triangles, anyHit, {}};
-    for (std::size_t i = begin; i < end; ++i) counter.trace(rays[i]);
+    std::uint64_t groupMax = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint64_t steps = counter.trace(rays[i]);
+      counter.cost.steps += steps;
+      groupMax = std::max(groupMax, steps);
+      if ((i - begin) % 8 == 7 || i + 1 == end) {
+        counter.cost.lockstep8 += 8 * groupMax;
+        groupMax = 0;
+      }
+    }
     accumulate(sums, counter.cost);
   });
-  return {sums[0].load(), sums[1].load(), sums[2].load(), sums[3].load()};
+  TraversalCost total;
+  total.rays = sums[0].load();
+  total.nodeVisits = sums[1].load();
+  total.triangleTests = sums[2].load();
+  total.hits = sums[3].load();
+  total.steps = sums[4].load();
+  total.lockstep8 = sums[5].load();
+  return total;
 }
 
 }  // namespace ht::bench

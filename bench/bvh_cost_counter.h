@@ -17,6 +17,11 @@ struct TraversalCost {
   std::uint64_t nodeVisits = 0;     // inner nodes whose two child boxes were tested
   std::uint64_t triangleTests = 0;  // ray-triangle tests
   std::uint64_t hits = 0;
+  // Loop iterations (one inner node or one leaf each), and the same in lockstep groups of 8 consecutive rays: a group
+  // of SIMD lanes runs as long as its longest ray (lavapipe's 8-wide invocations), 8 x max(iterations) per group.
+  std::uint64_t steps = 0;
+  std::uint64_t lockstep8 = 0;
+  double laneEfficiency() const { return lockstep8 ? double(steps) / double(lockstep8) : 0.0; }
   double nodesPerRay() const { return rays ? double(nodeVisits) / double(rays) : 0.0; }
   double trianglesPerRay() const { return rays ? double(triangleTests) / double(rays) : 0.0; }
   // C_trav * nodes + C_int * triangles per ray, C_trav = C_int = 1 (the SAH cost's units).

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <sstream>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -71,7 +72,7 @@ void printTraversalReport(std::ostream& out, const TraversalReport& r) {
       out << "  cost/ray " << m.sets[i].set << ": ours " << fixed(a.nodesPerRay(), 2) << " nodes + "
           << fixed(a.trianglesPerRay(), 2) << " tris = " << fixed(a.costPerRay(), 2) << ", Embree tree "
           << fixed(b.nodesPerRay(), 2) << " + " << fixed(b.trianglesPerRay(), 2) << " = " << fixed(b.costPerRay(), 2)
-          << "\n";
+          << "; SIMD-8 lane efficiency (our tree) " << fixed(m.ours.lanes[i].laneEfficiency(), 3) << "\n";
     }
   }
 }
@@ -82,7 +83,7 @@ void writeTraversalCsv(const std::string& prefix, const TraversalReport& r) {
         "hit_miss_flips_e1,hit_miss_flips_e8,gpu_max_steps\n";
   bvh << "mesh,triangles,ours_build_ms,ours_sah,ours_nodes,ours_depth,embree_build_ms,embree_sah,embree_nodes,"
          "embree_depth,sah_ratio\n";
-  cost << "mesh,set,tree,nodes_per_ray,triangles_per_ray,cost_per_ray\n";
+  cost << "mesh,set,tree,nodes_per_ray,triangles_per_ray,cost_per_ray,steps_per_ray,lane_efficiency_8\n";
   for (const MeshResult& m : r.meshes) {
     for (std::size_t i = 0; i < m.sets.size(); ++i) {
       const SetThroughput& s = m.sets[i];
@@ -91,9 +92,12 @@ void writeTraversalCsv(const std::string& prefix, const TraversalReport& r) {
          << fixed(mrays(s.embree8, s.rays), 3) << "," << fixed(median(s.ratio1), 4) << ","
          << fixed(median(s.ratio8), 4) << "," << s.vsEmbree1.hitMissFlips << "," << s.vsEmbree8.hitMissFlips << ","
          << s.gpuMaxSteps << "\n";
-      for (const auto& [tree, c] : {std::pair{"ours", m.ours.costs[i]}, std::pair{"embree", m.embree.costs[i]}}) {
+      for (const auto& [tree, c, lanes] : {std::tuple{"ours", m.ours.costs[i], m.ours.lanes[i]},
+                                           std::tuple{"embree", m.embree.costs[i], m.embree.lanes[i]}}) {
         cost << m.mesh << "," << s.set << "," << tree << "," << fixed(c.nodesPerRay(), 3) << ","
-             << fixed(c.trianglesPerRay(), 3) << "," << fixed(c.costPerRay(), 3) << "\n";
+             << fixed(c.trianglesPerRay(), 3) << "," << fixed(c.costPerRay(), 3) << ","
+             << fixed(lanes.rays ? double(lanes.steps) / double(lanes.rays) : 0.0, 3) << ","
+             << fixed(lanes.laneEfficiency(), 4) << "\n";
       }
     }
     bvh << m.mesh << "," << m.triangles << "," << fixed(m.ours.buildMs.medianMs(), 2) << ","

@@ -25,6 +25,7 @@ struct TreeFigures {
   double sahCost = 0.0;
   std::uint32_t nodes = 0, leaves = 0, maxDepth = 0;
   std::vector<TraversalCost> costs;  // one per ray set, same order as MeshResult::sets
+  std::vector<TraversalCost> lanes;  // the same counted on a contiguous block of each set (lane groups as dispatched)
 };
 
 struct MeshResult {
