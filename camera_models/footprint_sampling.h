@@ -74,8 +74,11 @@ HT_INLINE vec2 footprint_warp(vec2 u, uint filterKind) {
 // Footprint position of sample s (of spp) of `target`.
 HT_INLINE vec2 footprint_sample(uint target, uint s, uint spp, uint seed, uint filterKind) {
   if (spp == 1u) return vec2(0.5f);
-  // (1/g, 1/g^2) * 2^32 with g = 1.32471795724474602596 (plastic number, g^3 = g + 1)
-  vec2 u = fract(footprint_shift(target, seed, 0u) + footprint_lattice(s, uvec2(0xC13FA9A9u, 0x91E10DA6u)));
+  // (1/g, 1/g^2) * 2^32 with g = 1.32471795724474602596 (plastic number, g^3 = g + 1). Two R2 points lie 0.245
+  // apart in x (mod 1), so spp 2 uses the 2-point rank-1 lattice (1/2, 1/2) instead: one sample in each half of the
+  // footprint on both axes (for a lenticular subpixel, each half of its view-phase width).
+  uvec2 alpha = spp == 2u ? uvec2(0x80000000u, 0x80000000u) : uvec2(0xC13FA9A9u, 0x91E10DA6u);
+  vec2 u = fract(footprint_shift(target, seed, 0u) + footprint_lattice(s, alpha));
   return footprint_warp(u, filterKind);
 }
 
