@@ -12,9 +12,4 @@ const ComputePipeline& PipelineLibrary::get(ShaderId shader, const std::vector<s
   return *slot;
 }
 
-std::size_t PipelineLibrary::size() const {
-  std::lock_guard lock(mutex_);
-  return pipelines_.size();
-}
-
 }  // namespace ht::gpu

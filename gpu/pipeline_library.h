@@ -23,12 +23,11 @@ class PipelineLibrary {
   // The pipeline of `shader` with `specialization`, compiled at its first request (thread-safe). Pipelines are
   // immutable, so command buffers of any Renderer may bind them at once.
   const ComputePipeline& get(ShaderId shader, const std::vector<std::uint32_t>& specialization);
-  std::size_t size() const;
 
  private:
   VulkanContext::Impl& vk_;
   PipelineLayout layout_;
-  mutable std::mutex mutex_;
+  std::mutex mutex_;
   std::map<std::vector<std::uint32_t>, std::unique_ptr<ComputePipeline>> pipelines_;
 };
 

@@ -2,6 +2,8 @@
 #include "scene/gltf_loader.h"
 
 #include <cmath>
+#include <string>
+#include <unordered_set>
 #include <utility>
 
 #include "common/error.h"
@@ -10,7 +12,6 @@
 #include "scene/gltf_lights.h"
 #include "scene/gltf_materials.h"
 #include "scene/gltf_nodes.h"
-#include "scene/scene_edits.h"
 #include "scene/scene_limits.h"
 
 namespace ht {
@@ -32,6 +33,7 @@ struct LoadContext {
   SceneLoadReport& report;
   Scene& scene;
   int defaultMaterial = -1;  // created on first use by a primitive without material
+  std::unordered_set<std::string> nodeNames;  // Scene::nodes names so far (kept unique; files may repeat names)
 };
 
 bool isTriangleMode(int mode) {
@@ -264,7 +266,10 @@ void readNodeMeshes(LoadContext& ctx, const NodeInstance& inst, std::vector<Prim
   const auto record = static_cast<std::uint32_t>(ctx.scene.nodes.size());
   SceneNode movable;
   movable.name = node.name.empty() ? "node" + std::to_string(inst.node) : node.name;
-  if (findNode(ctx.scene, movable.name)) movable.name += "#" + std::to_string(inst.node);  // names stay unique
+  if (!ctx.nodeNames.insert(movable.name).second) {  // a repeated name gets its node index
+    movable.name += "#" + std::to_string(inst.node);
+    ctx.nodeNames.insert(movable.name);
+  }
   movable.world = inst.world;
   ctx.scene.nodes.push_back(std::move(movable));
   for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
