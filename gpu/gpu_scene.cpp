@@ -2,8 +2,10 @@
 #include "gpu/gpu_scene.h"
 
 #include <cmath>
+#include <string>
 #include <vector>
 
+#include "common/error.h"
 #include "gpu/wavefront_types.h"
 
 namespace ht::gpu {
@@ -100,6 +102,15 @@ GpuScene::GpuScene(VulkanContext::Impl& vk, const Scene& scene, const bvh::Build
   textureCount_ = static_cast<std::uint32_t>(directory.size());
   textures = uploadVector(vk, directory);
   texels = uploadVector(vk, texelData);
+}
+
+void GpuScene::updateLights(const Scene& scene) {
+  const std::vector<gpu_shared::GpuLight> lightData = packLights(scene);
+  if (lightData.size() != lightCount_) {
+    throw GpuError("updateLights: the scene has " + std::to_string(lightData.size()) + " lights, the device scene " +
+                   std::to_string(lightCount_) + " (a changed light count needs Renderer::replaceScene)");
+  }
+  lights.upload(lightData.data(), sizeof(gpu_shared::GpuLight) * lightData.size());
 }
 
 }  // namespace ht::gpu

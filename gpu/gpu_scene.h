@@ -21,6 +21,9 @@ class GpuScene {
   glm::vec3 background() const { return background_; }
   glm::vec3 ambient() const { return ambient_; }
 
+  // Replaces the light records with `scene`'s (same count as at construction, else GpuError).
+  void updateLights(const Scene& scene);
+
   DeviceBuffer nodes, bvhTriangles, vertices, normals, texcoords, triangles, materials, lights, textures, texels;
   bool hasNormals = false, hasTexcoords = false;
 

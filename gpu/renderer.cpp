@@ -187,22 +187,27 @@ struct Renderer::Impl {
     GpuScene next(vk, s, buildOptions);
     HT_VK(vkQueueWaitIdle(vk.queue));
     scene = std::move(next);
-    bindScene(true);
+    bindScene();
     descriptors.flush();
+  }
+
+  // New light values (same count) into the bound light buffer: no BVH build, no descriptor change.
+  void updateLights(const Scene& s) {
+    HT_VK(vkQueueWaitIdle(vk.queue));
+    scene.updateLights(s);
   }
 
   FrameBlock& frameBlock() { return *static_cast<FrameBlock*>(frame.mapped()); }
   GpuCounters& counterBlock() { return *static_cast<GpuCounters*>(counters.mapped()); }
 
-  // Scene records and BVH views: written at construction and again by replaceScene (fresh views: a new buffer may
-  // reuse a destroyed one's handle value).
-  void bindScene(bool fresh = false) {
+  // Scene records and BVH views: written at construction and again by replaceScene, whose new buffers were created
+  // while the bound ones still existed, so their handles differ and every view is rebuilt.
+  void bindScene() {
     using namespace gpu_shared;
-    bool nodes = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 0, scene.nodes, VK_FORMAT_R32G32B32A32_SFLOAT, fresh);
-    descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 1, scene.nodes, VK_FORMAT_R32G32B32A32_UINT, fresh);
-    bool tris = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 2, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                             fresh);
-    descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 3, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_UINT, fresh);
+    bool nodes = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 0, scene.nodes, VK_FORMAT_R32G32B32A32_SFLOAT);
+    descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 1, scene.nodes, VK_FORMAT_R32G32B32A32_UINT);
+    bool tris = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 2, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_SFLOAT);
+    descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 3, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_UINT);
     bvhTexelsCover = nodes && tris;  // else the trace kernels read the BVH by device address
     descriptors.setUniformBuffer(HT_BINDING_FRAME, frame);
     const std::pair<const DeviceBuffer*, VkFormat> records[] = {
@@ -211,7 +216,7 @@ struct Renderer::Impl {
         {&scene.materials, VK_FORMAT_R32G32B32A32_SFLOAT}, {&scene.lights, VK_FORMAT_R32G32B32A32_SFLOAT},
         {&scene.textures, VK_FORMAT_R32G32B32A32_UINT},   {&scene.texels, VK_FORMAT_R32G32B32A32_SFLOAT}};
     for (std::uint32_t k = 0; k < 8; ++k) {
-      if (!descriptors.setUniformTexels(HT_BINDING_SCENE_FIRST + k, *records[k].first, records[k].second, fresh)) {
+      if (!descriptors.setUniformTexels(HT_BINDING_SCENE_FIRST + k, *records[k].first, records[k].second)) {
         throw GpuError("scene too large for the device's texel buffers (" +
                        std::to_string(vk.info.maxTexelBufferElements) + " elements)");
       }
@@ -601,6 +606,7 @@ Renderer::~Renderer() = default;
 
 const bvh::BuildReport& Renderer::bvhReport() const { return impl_->scene.bvhReport(); }
 void Renderer::replaceScene(const Scene& scene) { impl_->replaceScene(scene); }
+void Renderer::updateLights(const Scene& scene) { impl_->updateLights(scene); }
 const SceneFeatures& Renderer::features() const { return impl_->scene.features(); }
 
 RenderResult Renderer::render(const FrameCamera& camera, const RenderSettings& settings) {

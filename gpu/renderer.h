@@ -89,6 +89,9 @@ class Renderer {
   // Rebuilds the BVH and re-uploads the scene (an edited copy: moved nodes, changed lights) with the build options
   // given at construction; the compiled pipelines are kept, so the next frame costs no shader compilation.
   void replaceScene(const Scene& scene);
+  // Re-uploads only the lights of `scene`, which must be this Renderer's scene with edited light values (same light
+  // count; throws GpuError otherwise): a light edit needs no BVH.
+  void updateLights(const Scene& scene);
 
   // Every view of the camera. Large view arrays are rendered in chunks of views (bounded device memory).
   RenderResult render(const FrameCamera& camera, const RenderSettings& settings);

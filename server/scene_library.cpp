@@ -96,27 +96,30 @@ void SceneLibrary::updateCamera(const std::string& id, const CameraPlacement& pl
   it->second = std::move(updated);
 }
 
-SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, const std::string& id,
+SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, const std::string& id, bool movesGeometry,
                                                 const std::function<void(Scene&)>& edit) {
   std::lock_guard editing(buildMutex_);  // one BVH build at a time, and edits of one session in order
   const std::shared_ptr<const SceneSession> session = find(id);
   auto content = std::make_shared<SceneContent>(*session->content);  // copies the scene, shares the Renderer
   edit(content->scene);
-  EditResult result;
-  result.newRenderer = content->editedBy != id;
+  const bool newRenderer = content->editedBy != id;
   const auto start = std::chrono::steady_clock::now();
   worker_
       .submit(client,
               [&](gpu::VulkanContext& context) {
-                if (result.newRenderer) content->renderer = std::make_shared<gpu::Renderer>(context, content->scene);
-                else content->renderer->replaceScene(content->scene);
+                if (newRenderer) content->renderer = std::make_shared<gpu::Renderer>(context, content->scene);
+                else if (movesGeometry) content->renderer->replaceScene(content->scene);
+                else content->renderer->updateLights(content->scene);
               },
               false)
       .get();
-  result.rebuildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  EditResult result;
+  result.updateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   result.sahCost = content->renderer->bvhReport().sahCost;
-  content->editedBy = id;
-  content->contentKey = session->content->contentKey + "@" + id;
+  if (newRenderer) {
+    content->editedBy = id;
+    content->contentKey += "@" + id;
+  }
   std::lock_guard lock(mutex_);
   auto it = sessions_.find(id);
   if (it == sessions_.end()) throw UnknownScene("unknown scene_id '" + id + "' (LoadScene returns one)");

@@ -57,16 +57,17 @@ class SceneLibrary {
   void updateCamera(const std::string& id, const CameraPlacement& placement,
                     std::optional<double> observerDistance = std::nullopt,
                     std::optional<double> observerHeight = std::nullopt);
-  // Applies `edit` to a copy of the session's scene, rebuilds its BVH on the render worker (charged to `client`) and
-  // publishes a session with the edited content; other sessions of the same bytes keep theirs. The first edit of a
-  // session gives it its own Renderer (pipelines are the device's, gpu/pipeline_library.h: nothing recompiles),
-  // later ones reuse it (Renderer::replaceScene). `edit` throws (SceneError) to refuse; nothing changes then. Returns the rebuild report.
+  // Applies `edit` to a copy of the session's scene, updates the device copy on the render worker (charged to
+  // `client`) and publishes a session with the edited content; other sessions of the same bytes keep theirs. The
+  // first edit of a session gives it its own Renderer (pipelines are the device's, gpu/pipeline_library.h: nothing
+  // recompiles); later ones reuse it: Renderer::replaceScene (new BVH) when `movesGeometry`, else only the lights are
+  // re-uploaded (Renderer::updateLights). `edit` throws (SceneError) to refuse; nothing changes then.
   struct EditResult {
-    double rebuildMs = 0.0;
+    double updateMs = 0.0;  // the device update: Renderer, BVH rebuild or light upload
     double sahCost = 0.0;
-    bool newRenderer = false;
   };
-  EditResult editScene(const std::string& client, const std::string& id, const std::function<void(Scene&)>& edit);
+  EditResult editScene(const std::string& client, const std::string& id, bool movesGeometry,
+                       const std::function<void(Scene&)>& edit);
   std::size_t contentCount() const;
 
  private:

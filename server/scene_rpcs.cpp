@@ -205,11 +205,11 @@ grpc::Status HolotraceService::UpdateScene(grpc::ServerContext* context, const v
     }
     if (!nodes.empty() || !lights.empty()) {  // first: a refused edit leaves the camera as it was too
       const SceneLibrary::EditResult result =
-          state_.scenes.editScene(clientKey(*context), request->scene_id(), [&](Scene& scene) {
+          state_.scenes.editScene(clientKey(*context), request->scene_id(), !nodes.empty(), [&](Scene& scene) {
             for (const NodeEdit& n : nodes) setNodeWorldMatrix(scene, n.name, n.world);
             for (const auto& [index, edit] : lights) editLight(scene, index, edit);
           });
-      response->set_rebuild_ms(result.rebuildMs);
+      response->set_rebuild_ms(result.updateMs);
       response->set_sah_cost(result.sahCost);
     }
     if (!cameraChange) return grpc::Status::OK;

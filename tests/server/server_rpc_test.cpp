@@ -242,6 +242,12 @@ TEST_F(ServerTest, UpdateSceneChangesALight) {
   ASSERT_TRUE(updateScene(*stub_, request).ok());
   ASSERT_TRUE(renderOne(*stub_, tinyRequest(showcase.scene_id()), &after).ok());
   EXPECT_NE(after.bytes, before.bytes);
+  // A second light-only edit of the session re-uploads the lights into its renderer (no BVH rebuild).
+  ReceivedFrame brighter;
+  light->set_intensity(8.0);
+  ASSERT_TRUE(updateScene(*stub_, request).ok());
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(showcase.scene_id()), &brighter).ok());
+  EXPECT_NE(brighter.bytes, after.bytes);
   light->set_index(2);
   const grpc::Status missing = updateScene(*stub_, request);
   EXPECT_EQ(missing.error_code(), StatusCode::INVALID_ARGUMENT);
