@@ -128,70 +128,75 @@ TEST(GpuImage, SameFrameTwiceIsBitIdentical) {
   EXPECT_GT(meanChannel(a, 0), 0.0);
 }
 
+// builtin:showcase rendered by one Renderer before and after an in-place scene edit, and by a fresh Renderer of the
+// edited scene: `update` edits `scene` and brings `renderer` up to date.
+struct EditedShowcase {
+  Scene scene = loadScene("builtin:showcase");
+  gpu::Renderer renderer{sharedContext(), scene};
+  gpu_shared::PinholeParams cam;
+  gpu::RenderSettings settings;
+  gpu::RenderResult before;
+
+  EditedShowcase() {
+    const Bounds3 b = scene.bounds();
+    cam = lookAt(b.center() + glm::vec3(0.0f, 0.5f, 2.0f) * glm::length(b.extent()), b.center(), 35.0f, 128, 96);
+    settings.spp = 2;
+    before = renderer.renderPinhole(cam, settings);
+  }
+  // The edited frame equals the fresh Renderer's bit for bit and differs from the one before the edit.
+  void expectRendersLikeAFreshRenderer(gpu::Renderer& fresh) {
+    const gpu::RenderResult edited = renderer.renderPinhole(cam, settings);
+    const gpu::RenderResult reference = fresh.renderPinhole(cam, settings);
+    ASSERT_EQ(edited.rgba.size(), reference.rgba.size());
+    EXPECT_EQ(std::memcmp(edited.rgba.data(), reference.rgba.data(), edited.rgba.size() * sizeof(float)), 0);
+    EXPECT_NE(std::memcmp(edited.rgba.data(), before.rgba.data(), edited.rgba.size() * sizeof(float)), 0);
+  }
+};
+
 // A scene edited in place (a node moved, a light changed) through replaceScene renders bit for bit what a new
 // Renderer of the edited scene renders, and not what it rendered before the edit.
 TEST(GpuImage, ReplacedSceneRendersLikeAFreshRendererOfTheEditedScene) {
-  Scene scene = loadScene("builtin:showcase");
-  gpu::Renderer renderer(sharedContext(), scene);
-  const Bounds3 b = scene.bounds();
-  auto cam = lookAt(b.center() + glm::vec3(0.0f, 0.5f, 2.0f) * glm::length(b.extent()), b.center(), 35.0f, 128, 96);
-  gpu::RenderSettings settings;
-  settings.spp = 2;
-  const gpu::RenderResult before = renderer.renderPinhole(cam, settings);
+  EditedShowcase e;
   glm::dmat4 lifted(1.0);
   lifted[3] = glm::dvec4(0.0, 0.35, 0.1, 1.0);
-  setNodeWorldMatrix(scene, "glass-sphere", lifted);
+  setNodeWorldMatrix(e.scene, "glass-sphere", lifted);
   LightEdit dim;
   dim.intensity = 2.0;
   dim.color = glm::dvec3(0.4, 0.6, 1.0);
-  editLight(scene, 0, dim);
-  renderer.replaceScene(scene);
-  const gpu::RenderResult edited = renderer.renderPinhole(cam, settings);
-  gpu::Renderer fresh(sharedContext(), scene);
-  const gpu::RenderResult reference = fresh.renderPinhole(cam, settings);
-  ASSERT_EQ(edited.rgba.size(), reference.rgba.size());
-  EXPECT_EQ(std::memcmp(edited.rgba.data(), reference.rgba.data(), edited.rgba.size() * sizeof(float)), 0);
-  EXPECT_NE(std::memcmp(edited.rgba.data(), before.rgba.data(), edited.rgba.size() * sizeof(float)), 0);
-  EXPECT_EQ(renderer.bvhReport().sahCost, fresh.bvhReport().sahCost);
+  editLight(e.scene, 0, dim);
+  e.renderer.replaceScene(e.scene);
+  gpu::Renderer fresh(sharedContext(), e.scene);
+  e.expectRendersLikeAFreshRenderer(fresh);
+  EXPECT_EQ(e.renderer.bvhReport().sahCost, fresh.bvhReport().sahCost);
 }
 
 // A light-only edit re-uploads the light buffer and keeps the BVH: the frame equals a fresh Renderer's of the edited
 // scene, bit for bit; a changed light count is refused (it needs replaceScene).
 TEST(GpuImage, UpdatedLightsRenderLikeAFreshRendererOfTheEditedScene) {
-  Scene scene = loadScene("builtin:showcase");
-  gpu::Renderer renderer(sharedContext(), scene);
-  const Bounds3 b = scene.bounds();
-  auto cam = lookAt(b.center() + glm::vec3(0.0f, 0.5f, 2.0f) * glm::length(b.extent()), b.center(), 35.0f, 128, 96);
-  gpu::RenderSettings settings;
-  settings.spp = 2;
-  const gpu::RenderResult before = renderer.renderPinhole(cam, settings);
+  EditedShowcase e;
   LightEdit move;
   move.position = glm::dvec3(-0.8, 1.2, 0.9);
   move.color = glm::dvec3(1.0, 0.5, 0.2);
-  editLight(scene, 0, move);
-  renderer.updateLights(scene);
-  const gpu::RenderResult edited = renderer.renderPinhole(cam, settings);
-  gpu::Renderer fresh(sharedContext(), scene);
-  const gpu::RenderResult reference = fresh.renderPinhole(cam, settings);
-  ASSERT_EQ(edited.rgba.size(), reference.rgba.size());
-  EXPECT_EQ(std::memcmp(edited.rgba.data(), reference.rgba.data(), edited.rgba.size() * sizeof(float)), 0);
-  EXPECT_NE(std::memcmp(edited.rgba.data(), before.rgba.data(), edited.rgba.size() * sizeof(float)), 0);
+  editLight(e.scene, 0, move);
+  e.renderer.updateLights(e.scene);
+  gpu::Renderer fresh(sharedContext(), e.scene);
+  e.expectRendersLikeAFreshRenderer(fresh);
   // What skipping the BVH saves (printed, not asserted: timings): median of 5 of each.
   std::vector<double> lightsMs, replaceMs;
   for (int run = 0; run < 5; ++run) {
     auto t0 = std::chrono::steady_clock::now();
-    renderer.updateLights(scene);
+    e.renderer.updateLights(e.scene);
     lightsMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     t0 = std::chrono::steady_clock::now();
-    renderer.replaceScene(scene);
+    e.renderer.replaceScene(e.scene);
     replaceMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   }
   std::sort(lightsMs.begin(), lightsMs.end());
   std::sort(replaceMs.begin(), replaceMs.end());
   std::printf("[ light edit ] %zu triangles: updateLights %.3f ms, replaceScene %.3f ms (medians of 5)\n",
-              scene.triangleCount(), lightsMs[2], replaceMs[2]);
-  scene.lights.pop_back();
-  EXPECT_THROW(renderer.updateLights(scene), ht::GpuError);
+              e.scene.triangleCount(), lightsMs[2], replaceMs[2]);
+  e.scene.lights.pop_back();
+  EXPECT_THROW(e.renderer.updateLights(e.scene), ht::GpuError);
 }
 
 TEST(GpuImage, SpecialisedPipelineGivesTheSameImageAsAllFeaturesOn) {
