@@ -65,6 +65,7 @@ void warmUp(const Context& c, const DisplayConfig& display, const gpu::FrameCame
   if (!display.calibration) {  // one frame of the real camera at spp 1 and depth 0: compiles every kernel it uses
     gpu::RenderSettings s = settings(c.options, 1, 0);
     s.maxDepth = 0;
+    s.refineSpp = 2;  // the refinement kernels too
     c.renderer.render(camera, s);
     return;
   }
@@ -72,7 +73,10 @@ void warmUp(const Context& c, const DisplayConfig& display, const gpu::FrameCame
   small.calibration->screenW = 96;
   small.calibration->screenH = 128;
   const auto bounds = c.scene.bounds();
-  c.renderer.renderLenticular(makeLenticularParams(small, bounds), settings(c.options, 1, 0));
+  gpu::RenderSettings refined = settings(c.options, 1, 0);
+  refined.refineSpp = 2;  // compiles the refinement kernels too
+  refined.refineContrast = 0.0f;
+  c.renderer.renderLenticular(makeLenticularParams(small, bounds), refined);
   const QuiltLayout layout = defaultQuiltLayout(display);
   const QuiltLayout tiny = makeQuiltLayout(layout.columns, layout.rows, layout.columns * 16, layout.rows * 16,
                                            layout.aspect);
@@ -100,7 +104,30 @@ void measureDirect(const Context& c, const gpu::FrameCamera& camera, const std::
   for (std::uint32_t spp : c.options.directSpp) {
     std::cout << "  direct spp " << spp << "..." << std::endl;
     const auto frame = c.renderer.render(camera, settings(c.options, spp, 0));
+    std::cout << "   ";
+    for (const auto& stage : frame.stages) std::cout << " " << stage.name << " " << std::lround(stage.ms);
+    std::cout << " ms" << std::endl;
     QualityPoint p{"direct", spp, "", "", frame.totalMs, stageSum(frame), 0.0, {}, 0.0};
+    scoreAgainst(p, frame.rgba, reference, d);
+    d.points.push_back(p);
+  }
+}
+
+void measureAdaptive(const Context& c, const gpu::FrameCamera& camera, const std::vector<float>& reference,
+                     DisplayQuality& d) {
+  for (const AdaptivePoint& a : c.options.adaptive) {
+    std::cout << "  adaptive spp " << a.baseSpp << " + " << a.refineSpp << " at contrast >= " << a.contrast << "..."
+              << std::endl;
+    gpu::RenderSettings s = settings(c.options, a.baseSpp, 0);
+    s.refineSpp = a.refineSpp;
+    s.refineContrast = a.contrast;
+    const auto frame = c.renderer.render(camera, s);
+    std::cout << "   ";
+    for (const auto& stage : frame.stages) std::cout << " " << stage.name << " " << std::lround(stage.ms);
+    std::cout << " ms" << std::endl;
+    const double targets = double(gpu::frameShape(camera).targets());
+    QualityPoint p{"adaptive", a.baseSpp, "", "", frame.totalMs, stageSum(frame), 0.0, {}, 0.0,
+                   a.refineSpp, a.contrast, double(frame.refinedTargets) / targets};
     scoreAgainst(p, frame.rgba, reference, d);
     d.points.push_back(p);
   }
@@ -143,6 +170,7 @@ DisplayQuality measureDisplay(const Context& c, const std::string& spec) {
   d.display = spec;
   const std::vector<float> reference = renderReference(c, camera, d);
   measureDirect(c, camera, reference, d);
+  measureAdaptive(c, camera, reference, d);
   if (!display.calibration) return d;  // projector arrays, integral panels ...: no quilt path to compare with
   QuiltLayout layout = defaultQuiltLayout(display);
   if (c.options.quiltSize) {

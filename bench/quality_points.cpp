@@ -31,6 +31,26 @@ std::vector<const QualityPoint*> directCurve(const std::vector<QualityPoint>& po
   return curve;
 }
 
+// Pareto front of the adaptive points and the direct points at their base spp, sorted by time: each point is better
+// than every faster one.
+std::vector<const QualityPoint*> adaptiveCurve(const std::vector<QualityPoint>& points) {
+  std::vector<const QualityPoint*> candidates;
+  for (const QualityPoint& p : points) {
+    if (p.path == "adaptive") candidates.push_back(&p);
+  }
+  if (candidates.empty()) return candidates;
+  for (const QualityPoint& p : points) {
+    const bool isBase = std::any_of(candidates.begin(), candidates.end(), [&](auto* a) { return a->spp == p.spp; });
+    if (p.path == "direct" && isBase) candidates.push_back(&p);
+  }
+  std::sort(candidates.begin(), candidates.end(), [](auto* a, auto* b) { return a->frameMs() < b->frameMs(); });
+  std::vector<const QualityPoint*> front;
+  for (const QualityPoint* p : candidates) {
+    if (front.empty() || p->psnrCorrectedDb > front.back()->psnrCorrectedDb) front.push_back(p);
+  }
+  return front;
+}
+
 // PSNR of the direct curve at time ms (log2-time interpolation), nullopt outside its time range.
 std::optional<double> psnrAtTime(const std::vector<const QualityPoint*>& curve, double ms) {
   for (std::size_t i = 0; i + 1 < curve.size(); ++i) {
@@ -61,19 +81,23 @@ nlohmann::json pointJson(const QualityPoint& p) {
   return {{"path", p.path}, {"spp", p.spp}, {"quilt", p.quilt}, {"filter", p.filter}, {"render_ms", p.renderMs},
           {"gpu_stage_ms", p.gpuMs}, {"interleave_cpu_ms", p.interleaveMs}, {"frame_ms", p.frameMs()},
           {"rmse", p.metrics.rmse}, {"psnr_db", p.metrics.psnrDb}, {"psnr_corrected_db", p.psnrCorrectedDb},
-          {"ssim", p.metrics.ssim}};
+          {"ssim", p.metrics.ssim}, {"refine_spp", p.refineSpp}, {"refine_contrast", p.refineContrast},
+          {"refined_fraction", p.refinedFraction}};
 }
 
 }  // namespace
 
 std::vector<EqualComparison> DisplayQuality::compare() const {
   const auto curve = directCurve(points);
+  const auto adaptive = adaptiveCurve(points);
   std::vector<EqualComparison> out;
   for (const QualityPoint& p : points) {
     if (p.path != "quilt") continue;
-    EqualComparison c{&p, std::nullopt, std::nullopt};
+    EqualComparison c{&p, std::nullopt, std::nullopt, std::nullopt, std::nullopt};
     if (auto psnr = psnrAtTime(curve, p.frameMs())) c.directGainDb = *psnr - p.psnrCorrectedDb;
     if (auto ms = timeAtPsnr(curve, p.psnrCorrectedDb)) c.speedup = p.frameMs() / *ms;
+    if (auto psnr = psnrAtTime(adaptive, p.frameMs())) c.adaptiveGainDb = *psnr - p.psnrCorrectedDb;
+    if (auto ms = timeAtPsnr(adaptive, p.psnrCorrectedDb)) c.adaptiveSpeedup = p.frameMs() / *ms;
     out.push_back(c);
   }
   return out;
@@ -85,18 +109,25 @@ void printQualityReport(std::ostream& out, const QualityReport& r) {
     out << "\n" << d.display << " (" << d.panelWidth << "x" << d.panelHeight << "), reference spp " << d.refSpp
         << " (" << fixed(d.refMs / 1000, 1) << " s, own noise PSNR " << fixed(psnrFromMse(d.refNoiseMse), 2)
         << " dB)\n";
-    out << "  path    spp  quilt             filter        frame ms   RMSE     PSNR  PSNRcorr  SSIM\n";
+    out << "  path      spp  quilt / refinement          filter        frame ms   RMSE     PSNR  PSNRcorr  SSIM\n";
     for (const QualityPoint& p : d.points) {
       char line[256];
-      std::snprintf(line, sizeof line, "  %-6s %4u  %-16s  %-12s %9.1f  %.5f  %6.2f  %6.2f  %.4f\n", p.path.c_str(),
-                    p.spp, p.quilt.c_str(), p.filter.c_str(), p.frameMs(), p.metrics.rmse, p.metrics.psnrDb,
+      const std::string variant = p.path == "adaptive" ? "refine " + std::to_string(p.refineSpp) + " >= " +
+                                                           fixed(p.refineContrast, 3) + " (" +
+                                                           fixed(100.0 * p.refinedFraction, 1) + " %)"
+                                                     : p.quilt;
+      std::snprintf(line, sizeof line, "  %-8s %4u  %-26s  %-12s %9.1f  %.5f  %6.2f  %6.2f  %.4f\n", p.path.c_str(),
+                    p.spp, variant.c_str(), p.filter.c_str(), p.frameMs(), p.metrics.rmse, p.metrics.psnrDb,
                     p.psnrCorrectedDb, p.metrics.ssim);
       out << line;
     }
     for (const EqualComparison& c : d.compare()) {
       out << "  vs quilt " << c.quilt->quilt << " spp " << c.quilt->spp << " " << c.quilt->filter
           << ": direct at equal time " << (c.directGainDb ? "+" + fixed(*c.directGainDb, 2) + " dB" : "n/a (outside)")
-          << ", at equal PSNR " << (c.speedup ? fixed(*c.speedup, 2) + "x faster" : "n/a (not reached)") << "\n";
+          << ", at equal PSNR " << (c.speedup ? fixed(*c.speedup, 2) + "x faster" : "n/a (not reached)")
+          << "; adaptive at equal time "
+          << (c.adaptiveGainDb ? fixed(*c.adaptiveGainDb, 2) + " dB" : "n/a (outside)") << ", at equal PSNR "
+          << (c.adaptiveSpeedup ? fixed(*c.adaptiveSpeedup, 2) + "x faster" : "n/a (not reached)") << "\n";
     }
   }
 }
@@ -104,13 +135,14 @@ void printQualityReport(std::ostream& out, const QualityReport& r) {
 void writeQualityCsv(const std::string& path, const QualityReport& r) {
   std::ostringstream csv;
   csv << "display,path,spp,quilt,filter,render_ms,gpu_stage_ms,interleave_cpu_ms,frame_ms,rmse,psnr_db,"
-         "psnr_corrected_db,ssim\n";
+         "psnr_corrected_db,ssim,refine_spp,refine_contrast,refined_fraction\n";
   for (const DisplayQuality& d : r.displays) {
     for (const QualityPoint& p : d.points) {
       csv << d.display << "," << p.path << "," << p.spp << "," << p.quilt << "," << p.filter << ","
           << fixed(p.renderMs, 1) << "," << fixed(p.gpuMs, 1) << "," << fixed(p.interleaveMs, 1) << ","
           << fixed(p.frameMs(), 1) << "," << fixed(p.metrics.rmse, 6) << "," << fixed(p.metrics.psnrDb, 3) << ","
-          << fixed(p.psnrCorrectedDb, 3) << "," << fixed(p.metrics.ssim, 5) << "\n";
+          << fixed(p.psnrCorrectedDb, 3) << "," << fixed(p.metrics.ssim, 5) << "," << p.refineSpp << ","
+          << fixed(p.refineContrast, 4) << "," << fixed(p.refinedFraction, 5) << "\n";
     }
   }
   writeTextFile(path, csv.str());
@@ -119,12 +151,13 @@ void writeQualityCsv(const std::string& path, const QualityReport& r) {
 void writeQualitySummaryCsv(const std::string& path, const QualityReport& r) {
   std::ostringstream csv;
   csv << "display,quilt,quilt_spp,filter,quilt_frame_ms,quilt_psnr_corrected_db,direct_gain_db_at_equal_time,"
-         "direct_speedup_at_equal_psnr\n";
+         "direct_speedup_at_equal_psnr,adaptive_gain_db_at_equal_time,adaptive_speedup_at_equal_psnr\n";
   for (const DisplayQuality& d : r.displays) {
     for (const EqualComparison& c : d.compare()) {
       csv << d.display << "," << c.quilt->quilt << "," << c.quilt->spp << "," << c.quilt->filter << ","
           << fixed(c.quilt->frameMs(), 1) << "," << fixed(c.quilt->psnrCorrectedDb, 3) << ","
-          << optionalText(c.directGainDb, 3) << "," << optionalText(c.speedup, 3) << "\n";
+          << optionalText(c.directGainDb, 3) << "," << optionalText(c.speedup, 3) << ","
+          << optionalText(c.adaptiveGainDb, 3) << "," << optionalText(c.adaptiveSpeedup, 3) << "\n";
     }
   }
   writeTextFile(path, csv.str());
@@ -138,7 +171,9 @@ void writeQualityJson(const std::string& path, const QualityReport& r) {
     for (const EqualComparison& c : d.compare()) {
       comparisons.push_back({{"quilt", c.quilt->quilt}, {"spp", c.quilt->spp}, {"filter", c.quilt->filter},
                              {"direct_gain_db_at_equal_time", c.directGainDb ? nlohmann::json(*c.directGainDb) : nullptr},
-                             {"direct_speedup_at_equal_psnr", c.speedup ? nlohmann::json(*c.speedup) : nullptr}});
+                             {"direct_speedup_at_equal_psnr", c.speedup ? nlohmann::json(*c.speedup) : nullptr},
+                             {"adaptive_gain_db_at_equal_time", c.adaptiveGainDb ? nlohmann::json(*c.adaptiveGainDb) : nullptr},
+                             {"adaptive_speedup_at_equal_psnr", c.adaptiveSpeedup ? nlohmann::json(*c.adaptiveSpeedup) : nullptr}});
     }
     displays.push_back({{"display", d.display}, {"panel", {d.panelWidth, d.panelHeight}}, {"ref_spp", d.refSpp},
                         {"ref_ms", d.refMs}, {"ref_noise_mse", d.refNoiseMse}, {"points", points},

@@ -12,7 +12,7 @@
 namespace ht::bench {
 
 struct QualityPoint {
-  std::string path;     // "direct" or "quilt"
+  std::string path;     // "direct", "adaptive" or "quilt"
   std::uint32_t spp = 0;
   std::string quilt;    // quilt points: "8x6 420x560" (columns x rows, tile size); empty for direct
   std::string filter;   // quilt points: view filter name; empty for direct
@@ -21,15 +21,22 @@ struct QualityPoint {
   double interleaveMs = 0;  // CPU interleave (quilt only; reported, not in frameMs: a GPU does it in one gather pass)
   ImageMetrics metrics;
   double psnrCorrectedDb = 0;  // PSNR of max(MSE - reference noise, 1e-12)
+  std::uint32_t refineSpp = 0;   // adaptive points: spp of the refined targets
+  double refineContrast = 0;     // adaptive points: contrast threshold
+  double refinedFraction = 0;    // adaptive points: refined targets / all targets
   double frameMs() const { return renderMs; }  // both paths: render wall time incl. readback
 };
 
-// Direct path vs one quilt point: PSNR gain at the quilt's time, speed-up at the quilt's PSNR (nullopt when the
-// direct curve does not reach that far; both by linear interpolation in log2(time)).
+// Direct and adaptive paths vs one quilt point: PSNR gain at the quilt's time, speed-up at the quilt's PSNR (nullopt
+// when the curve does not reach that far; both by linear interpolation in log2(time)). The adaptive curve is the
+// Pareto front (faster points first, each better than every faster one) of the adaptive points and the direct
+// points at their base spp.
 struct EqualComparison {
   const QualityPoint* quilt = nullptr;
   std::optional<double> directGainDb;   // direct PSNR(corrected) at quilt time - quilt PSNR(corrected)
   std::optional<double> speedup;        // quilt time / direct time at the quilt's PSNR(corrected)
+  std::optional<double> adaptiveGainDb;
+  std::optional<double> adaptiveSpeedup;
 };
 
 struct DisplayQuality {

@@ -23,6 +23,13 @@ std::string valueHint(const OptionSpec& spec) {
   return spec.name + (spec.alias.empty() ? "" : " (" + spec.alias + ")") + " <" + spec.valueName + ">";
 }
 
+// Shortest decimal text of a bound ("0.25", "16").
+std::string formatNumber(double v) {
+  char buffer[32];
+  auto [end, ec] = std::to_chars(buffer, buffer + sizeof(buffer), v);
+  return ec == std::errc() ? std::string(buffer, end) : std::to_string(v);
+}
+
 }  // namespace
 
 std::string usageMessage(const std::string& command, const std::string& problem) {
@@ -57,6 +64,20 @@ std::optional<std::uint32_t> ParsedArguments::unsignedValue(const std::string& n
                                                 std::to_string(lo) + ", " + std::to_string(hi) + "]"));
   }
   return static_cast<std::uint32_t>(parsed);
+}
+
+std::optional<double> ParsedArguments::numberValue(const std::string& name, double lo, double hi) const {
+  auto value = text(name);
+  if (!value) return std::nullopt;
+  double parsed = 0.0;
+  const char* first = value->data();
+  const char* last = first + value->size();
+  auto [end, ec] = std::from_chars(first, last, parsed);
+  if (value->empty() || ec != std::errc() || end != last || !(parsed >= lo && parsed <= hi)) {
+    throw UsageError(usageMessage(command_, "option '" + name + "' = '" + *value + "': expected a number in [" +
+                                                formatNumber(lo) + ", " + formatNumber(hi) + "]"));
+  }
+  return parsed;
 }
 
 ParsedArguments parseArguments(const std::string& command, std::span<const OptionSpec> specs,

@@ -35,6 +35,8 @@ class ParsedArguments {
   std::string textOr(const std::string& name, const std::string& fallback) const;
   // An unsigned integer within [lo, hi]; throws UsageError naming option, value and range otherwise.
   std::optional<std::uint32_t> unsignedValue(const std::string& name, std::uint32_t lo, std::uint32_t hi) const;
+  // A finite decimal number within [lo, hi]; throws UsageError naming option, value and range otherwise.
+  std::optional<double> numberValue(const std::string& name, double lo, double hi) const;
 
   const std::string& command() const { return command_; }
 

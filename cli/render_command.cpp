@@ -40,6 +40,8 @@ gpu::RenderSettings makeSettings(const RenderOptions& options, const DisplayConf
   settings.forceAllFeatures = options.noSpecialize;
   settings.seed = options.seed;
   settings.filter = options.filter;
+  settings.refineSpp = options.refineSpp;
+  settings.refineContrast = options.refineContrast;
   if (isatty(STDERR_FILENO)) {  // a progress line on a terminal only; logs and pipes get the final report
     settings.progress = [](double done) { std::fprintf(stderr, "\rrender %5.1f %%", 100.0 * done); };
   }
@@ -73,7 +75,9 @@ gpu::RenderResult renderAndReport(std::ostream& out, gpu::Renderer& renderer, co
   out << "render: " << shape.views << (shape.views == 1 ? " view" : " views") << " of " << shape.width << "x"
       << shape.height << ", " << shape.targets() << " targets, spp " << settings.spp << ", filter "
       << filterName(settings.filter) << ", depth " << settings.maxDepth << ", seed " << settings.seed
-      << (settings.forceAllFeatures ? ", all features forced on" : "") << "\n";
+      << (settings.forceAllFeatures ? ", all features forced on" : "");
+  if (settings.refineSpp > 0) out << ", refine at spp " << settings.refineSpp << " from contrast " << settings.refineContrast;
+  out << "\n";
   gpu::RenderResult frame = renderer.render(camera.camera, settings);
   if (settings.progress) std::fprintf(stderr, "\r");
   printFrame(out, frame);

@@ -17,10 +17,12 @@ constexpr std::uint32_t kMaxSpp = 4096;  // same bound as the display config's s
 constexpr std::uint32_t kMaxDepth = 32;  // Renderer limit (gpu/renderer.cpp)
 constexpr std::uint32_t kMaxDevice = 255;
 
-const std::array<OptionSpec, 15> kSpecs = {{
+const std::array<OptionSpec, 17> kSpecs = {{
     {"--display", "", "SPEC", "display: config.json, visual.json or builtin:NAME (default builtin:portrait)"},
     {"--scene", "", "SPEC", "scene: .gltf, .glb, .obj, .off or builtin:NAME (default builtin:showcase)"},
     {"--spp", "", "N", "samples per subpixel (lenticular, integral) or pixel (other models), 1-4096 (default: the config's spp)"},
+    {"--refine-spp", "", "N", "adaptive refinement: trace targets of high contrast again at N spp, 0-4096 (default 0 = off)"},
+    {"--refine-contrast", "", "X", "sRGB step to a neighbour that marks a target for refinement, 0-1 (default 0.08)"},
     {"--filter", "", "NAME", "reconstruction filter over each footprint: box, tent or gaussian (default box)"},
     {"--quilt", "", "", "lenticular displays: render the vendor quilt views instead of per-subpixel rays"},
     {"--layout", "", "NAME", "multi-view frames in -o: auto, quilt or views (default auto: quilt if the views form one)"},
@@ -60,6 +62,11 @@ RenderOptions parseRenderOptions(std::span<const std::string> args) {
   options.sceneSpec = parsed.textOr("--scene", options.sceneSpec);
   options.spp = parsed.unsignedValue("--spp", 1, kMaxSpp);
   options.maxDepth = parsed.unsignedValue("--depth", 0, kMaxDepth);
+  options.refineSpp = parsed.unsignedValue("--refine-spp", 0, kMaxSpp).value_or(0);
+  options.refineContrast = static_cast<float>(parsed.numberValue("--refine-contrast", 0.0, 1.0).value_or(options.refineContrast));
+  if (parsed.has("--refine-contrast") && options.refineSpp == 0) {
+    throw UsageError(usageMessage(kCommand, "option '--refine-contrast' needs '--refine-spp N' (N > 0) to take effect"));
+  }
   if (parsed.has("--output")) options.png = checkedOutputPath(parsed, "--output", ".png");
   if (parsed.has("--exr")) options.exr = checkedOutputPath(parsed, "--exr", ".exr");
   options.outDir = parsed.textOr("--out-dir", options.outDir.string());
@@ -102,7 +109,8 @@ std::string renderHelp() {
          "  holotrace render --display visual.json --scene bunny.obj --exr frame.exr\n"
          "  holotrace render --display builtin:portrait --quilt -o out/portrait.png   (-> portrait_qs8x6a0.75.png)\n"
          "  holotrace render --display builtin:holovizio-wall-70 --spp 2 -o out/wall.png   (-> wall_v00.png ...)\n"
-         "  holotrace render --display builtin:portrait --debug views -o phase.png\n";
+         "  holotrace render --display builtin:portrait --debug views -o phase.png\n"
+         "  holotrace render --spp 1 --refine-spp 8 --refine-contrast 0.08   (8 spp where the 1-spp frame has edges)\n";
 }
 
 }  // namespace ht::cli

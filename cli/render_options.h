@@ -17,6 +17,8 @@ struct RenderOptions {
   std::string sceneSpec = "builtin:showcase";    // .gltf/.glb/.obj or builtin:NAME
   std::optional<std::uint32_t> spp;              // unset: the display config's spp
   std::optional<std::uint32_t> maxDepth;         // unset: RenderSettings default
+  std::uint32_t refineSpp = 0;                   // --refine-spp: adaptive refinement off by default
+  float refineContrast = gpu::RenderSettings{}.refineContrast;
   std::optional<std::filesystem::path> png;      // -o
   std::optional<std::filesystem::path> exr;      // --exr
   std::filesystem::path outDir = "out";          // where default-named outputs go

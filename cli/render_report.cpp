@@ -72,6 +72,7 @@ void printFrame(std::ostream& out, const gpu::RenderResult& result) {
       << label("frame wall") << fixed(result.totalMs, 2) << " ms\n"
       << label("rays") << result.raysTraced << " traced, " << fixed(mraysPerSecond(result.raysTraced, result.totalMs), 2)
       << " Mrays/s (frame wall time), max " << result.maxTraversalSteps << " traversal steps/ray\n";
+  if (result.refinedTargets > 0) out << label("refined") << result.refinedTargets << " targets traced again\n";
 }
 
 }  // namespace ht::cli

@@ -12,7 +12,7 @@
 
 namespace ht::gpu {
 
-enum class ShaderId { Raygen, TraceClosest, TraceAny, Shade, Prepare, GatherDirect, Resolve, Interleave };
+enum class ShaderId { Raygen, TraceClosest, TraceAny, Shade, Prepare, GatherDirect, Resolve, Interleave, RefineSelect };
 
 std::span<const std::uint32_t> embeddedSpirv(ShaderId id);
 const char* shaderName(ShaderId id);

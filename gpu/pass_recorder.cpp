@@ -13,6 +13,7 @@ const char* stageName(Stage stage) {
     case Stage::Shadow: return "shadow";
     case Stage::Queues: return "queues";
     case Stage::Resolve: return "resolve";
+    case Stage::Refine: return "refine";
     case Stage::Interleave: return "interleave";
     case Stage::Count: break;
   }
@@ -47,9 +48,14 @@ void PassRecorder::end() {
 
 void PassRecorder::dispatch(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, std::uint32_t groups,
                             Stage stage) {
-  if (groups == 0) return;
+  dispatch(pipeline, pc, glm::uvec3(groups, 1u, 1u), stage);
+}
+
+void PassRecorder::dispatch(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, glm::uvec3 groups,
+                            Stage stage) {
+  if (groups.x == 0 || groups.y == 0 || groups.z == 0) return;
   begin(pipeline, pc, stage);
-  vkCmdDispatch(cmd_, groups, 1, 1);
+  vkCmdDispatch(cmd_, groups.x, groups.y, groups.z);
   end();
 }
 

@@ -12,7 +12,7 @@
 
 namespace ht::gpu {
 
-enum class Stage : std::uint32_t { Raygen, Trace, Shade, Shadow, Queues, Resolve, Interleave, Count };
+enum class Stage : std::uint32_t { Raygen, Trace, Shade, Shadow, Queues, Resolve, Refine, Interleave, Count };
 const char* stageName(Stage stage);
 
 class PassRecorder {
@@ -22,6 +22,8 @@ class PassRecorder {
                std::uint32_t queryCapacity);
 
   void dispatch(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, std::uint32_t groups, Stage stage);
+  // A grid of groups.x x groups.y x groups.z workgroups.
+  void dispatch(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, glm::uvec3 groups, Stage stage);
   void dispatchIndirect(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, VkBuffer args,
                         VkDeviceSize offset, Stage stage);
   // Adds the elapsed GPU time of every recorded pass to `ms` (by stage); call after the submit finished.

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <tuple>
@@ -45,6 +46,8 @@ constexpr std::uint32_t kMaxSpp = 4096;
 constexpr std::uint32_t kMaxDepth = 32;
 constexpr std::uint64_t kMaxChunkPixels = 8ull << 20;  // pixels of all views rendered by one chunk (output buffers)
 constexpr std::uint32_t kMaxImageSide = 32768;
+
+using StageTimes = std::array<double, static_cast<size_t>(Stage::Count)>;
 
 std::uint32_t groupsFor(std::uint64_t n) { return static_cast<std::uint32_t>((n + HT_WORKGROUP_SIZE - 1) / HT_WORKGROUP_SIZE); }
 
@@ -117,6 +120,7 @@ struct Renderer::Impl {
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
   FrameCamera camera;
+  DeviceBuffer refineBuffer;  // adaptive refinement: per-workgroup counts, then the target list (host visible)
   DeviceBuffer rayTableTexels;                     // the current ray table (2 texels per entry) or a 1-entry dummy
   std::shared_ptr<const RayTable> boundRayTable;   // which table rayTableTexels holds
 
@@ -239,6 +243,7 @@ struct Renderer::Impl {
     const bool freshOutputs = boundOutputGeneration != outputs.generation;
     boundOutputGeneration = outputs.generation;
     descriptors.setStorageTexels(b + 10, outputs.subpixels, VK_FORMAT_R32_SFLOAT, freshOutputs);
+    descriptors.setUniformTexels(HT_BINDING_SUBPIXEL_TEXELS, outputs.subpixels, VK_FORMAT_R32_SFLOAT, freshOutputs);
     descriptors.setStorageTexels(b + 11, outputs.image, VK_FORMAT_R32G32B32A32_SFLOAT, freshOutputs);
     descriptors.flush();
   }
@@ -283,8 +288,12 @@ struct Renderer::Impl {
   void fillFrame(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount, const RenderSettings& settings);
   RenderResult render(const RenderSettings& settings);
   void renderChunk(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
-                   const RenderSettings& settings, std::array<double, static_cast<size_t>(Stage::Count)>& stageMs,
-                   RenderResult& result);
+                   const RenderSettings& settings, StageTimes& stageMs, RenderResult& result);
+  // Traces paths [0, totalPaths) of `spp` samples per target in batches of perBatch (a multiple of spp) and resolves
+  // them into the subpixel buffer (listed targets while FrameBlock.refineInfo.w == 1).
+  void tracePaths(const FrameShape& shape, std::uint32_t spp, std::uint64_t totalPaths, std::uint64_t perBatch,
+                  const RenderSettings& settings, StageTimes& stageMs, const std::function<void(double)>& progress);
+  std::uint64_t selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast, StageTimes& stageMs);
   std::vector<gpu_shared::HtRay> generateRays(const RenderSettings& settings, std::uint64_t firstTarget,
                                               std::uint32_t targetCount, TraceStats* stats);
   std::vector<gpu_shared::HtHit> traceBatch(std::span<const gpu_shared::HtRay> rays, bool occlusion, TraceStats* stats);
@@ -296,6 +305,13 @@ void checkSettings(const RenderSettings& settings) {
   if (settings.spp < 1 || settings.spp > kMaxSpp) throw GpuError("spp " + std::to_string(settings.spp) + " out of range [1, 4096]");
   if (settings.maxDepth > kMaxDepth) throw GpuError("depth " + std::to_string(settings.maxDepth) + " out of range [0, 32]");
   if (static_cast<std::uint32_t>(settings.filter) > 2) throw GpuError("unknown sample filter");
+  if (settings.refineSpp > kMaxSpp) {
+    throw GpuError("refinement spp " + std::to_string(settings.refineSpp) + " out of range [0, 4096]");
+  }
+  if (!(settings.refineContrast >= 0.0f) || !std::isfinite(settings.refineContrast)) {
+    throw GpuError("refinement contrast " + std::to_string(settings.refineContrast) +
+                   " must be a finite number >= 0 (0 refines every target, above 1 none)");
+  }
 }
 
 void checkShape(const FrameShape& shape, std::uint32_t spp) {
@@ -414,7 +430,7 @@ RenderResult Renderer::Impl::render(const RenderSettings& settings) {
   auto t0 = std::chrono::steady_clock::now();
   checkSettings(settings);
   const FrameShape shape = frameShape(camera);
-  checkShape(shape, settings.spp);
+  checkShape(shape, std::max(settings.spp, settings.refineSpp));
   RenderResult result;
   result.width = shape.width;
   result.height = shape.height;
@@ -441,6 +457,7 @@ RenderResult Renderer::Impl::render(const RenderSettings& settings) {
   for (size_t s = 0; s < stageMs.size(); ++s) {
     auto stage = static_cast<Stage>(s);
     if (stage == Stage::Shadow && !lights) continue;
+    if (stage == Stage::Refine && settings.refineSpp == 0) continue;
     result.stages.push_back({stageName(stage), stageMs[s]});
   }
   result.stages.push_back({"readback", readbackMs});
@@ -449,25 +466,57 @@ RenderResult Renderer::Impl::render(const RenderSettings& settings) {
 }
 
 void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
-                                 const RenderSettings& settings,
-                                 std::array<double, static_cast<size_t>(Stage::Count)>& stageMs, RenderResult& result) {
+                                 const RenderSettings& settings, StageTimes& stageMs, RenderResult& result) {
   const std::uint64_t targets = static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
-  const std::uint64_t totalPaths = targets * settings.spp;
-  const SceneFeatures& feat = scene.features();
-  const bool all = settings.forceAllFeatures;
-  const bool lights = scene.lightCount() > 0 && (feat.lights || all);
-  const bool mirror = feat.mirrors || all, glass = feat.glass || all, textures = (feat.textures && scene.textureCount() > 0) || all;
-  const std::uint32_t depthPasses = (mirror || glass) ? settings.maxDepth + 1 : 1;
-
   // Batch size: whole targets, bounded by the path-state memory budget.
+  const std::uint32_t maxSpp = std::max(settings.spp, settings.refineSpp);
   std::uint64_t perBatch = std::min<std::uint64_t>(kMaxPathsPerBatch, kWorkMemoryBudget / WorkBuffers::bytesPerPath(scene.lightCount()));
-  perBatch = std::max<std::uint64_t>(settings.spp, perBatch / settings.spp * settings.spp);
-  perBatch = std::min(perBatch, totalPaths);
+  perBatch = std::max<std::uint64_t>(maxSpp, perBatch / maxSpp * maxSpp);
+  perBatch = std::min(perBatch, targets * maxSpp);
   work.ensure(vk, static_cast<std::uint32_t>(perBatch), scene.lightCount());
   outputs.ensure(vk, shape.width, shape.height * viewCount);
   bindState();
   fillFrame(shape, viewFirst, viewCount, settings);
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));
+
+  const double share = settings.refineSpp > 0 ? 0.8 : 1.0;  // progress: the refinement takes the rest
+  tracePaths(shape, settings.spp, targets * settings.spp, perBatch, settings, stageMs, [&](double done) {
+    if (settings.progress) settings.progress(done * share);
+  });
+  if (settings.refineSpp > 0) {
+    const std::uint64_t refined = selectRefinedTargets(shape, targets, settings.refineContrast, stageMs);
+    result.refinedTargets += refined;
+    if (refined > 0) {
+      FrameBlock& f = frameBlock();
+      f.dims.z = settings.refineSpp;
+      f.refineInfo.w = 1u;
+      const std::uint64_t refineBatch = std::min(perBatch / settings.refineSpp * settings.refineSpp, refined * settings.refineSpp);
+      tracePaths(shape, settings.refineSpp, refined * settings.refineSpp, refineBatch, settings, stageMs, [&](double done) {
+        if (settings.progress) settings.progress(share + done * (1.0 - share));
+      });
+    }
+  }
+  const ComputePipeline& interleave = pipeline(ShaderId::Interleave);
+  beginCommands();
+  PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+  rec.dispatch(interleave, passConstants(0, 0, 0, 0), groupsFor(static_cast<std::uint64_t>(shape.width) * shape.height * viewCount),
+               Stage::Interleave);
+  submitAndWait();
+  rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+  const GpuCounters& c = counterBlock();
+  result.raysTraced += c.raysTraced;
+  result.maxTraversalSteps = std::max(result.maxTraversalSteps, c.maxSteps);
+  result.nonFiniteSamples += c.nanCount;
+}
+
+void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std::uint64_t totalPaths,
+                                std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
+                                const std::function<void(double)>& progress) {
+  const SceneFeatures& feat = scene.features();
+  const bool all = settings.forceAllFeatures;
+  const bool lights = scene.lightCount() > 0 && (feat.lights || all);
+  const bool mirror = feat.mirrors || all, glass = feat.glass || all, textures = (feat.textures && scene.textureCount() > 0) || all;
+  const std::uint32_t depthPasses = (mirror || glass) ? settings.maxDepth + 1 : 1;
 
   const ComputePipeline& raygen = pipeline(ShaderId::Raygen, {shape.model});
   const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest, traceSpec({}));
@@ -477,7 +526,6 @@ void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirs
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
   const ComputePipeline& gather = pipeline(ShaderId::GatherDirect);
   const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {shape.model});
-  const ComputePipeline& interleave = pipeline(ShaderId::Interleave);
 
   const VkBuffer args = counters.handle();
   bool first = true;
@@ -513,22 +561,54 @@ void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirs
       }
       rec.dispatch(endDepth, pc, 1, Stage::Queues);
     }
-    rec.dispatch(resolve, passConstants(batchFirst, count, 0, 0), groupsFor(count / settings.spp), Stage::Resolve);
+    rec.dispatch(resolve, passConstants(batchFirst, count, 0, 0), groupsFor(count / spp), Stage::Resolve);
     submitAndWait();
     rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
     checkCounters("render");
-    if (settings.progress) settings.progress(static_cast<double>(begin + count) / static_cast<double>(totalPaths));
+    progress(static_cast<double>(begin + count) / static_cast<double>(totalPaths));
   }
-  beginCommands();
-  PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
-  rec.dispatch(interleave, passConstants(0, 0, 0, 0), groupsFor(static_cast<std::uint64_t>(shape.width) * shape.height * viewCount),
-               Stage::Interleave);
-  submitAndWait();
-  rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
-  const GpuCounters& c = counterBlock();
-  result.raysTraced += c.raysTraced;
-  result.maxTraversalSteps = std::max(result.maxTraversalSteps, c.maxSteps);
-  result.nonFiniteSamples += c.nanCount;
+}
+
+// Lists the chunk's targets to refine (refine_select.comp) in target order; returns how many. Two passes around a
+// host-side exclusive scan of one count per subgroup, so the list, and with it the frame, is the same whatever order
+// the device runs the workgroups in.
+std::uint64_t Renderer::Impl::selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast,
+                                                   StageTimes& stageMs) {
+  const glm::uvec3 grid(groupsFor(std::uint64_t{shape.width} * shape.targetsPerPixel), shape.height,
+                        static_cast<std::uint32_t>(targets / (std::uint64_t{shape.width} * shape.height * shape.targetsPerPixel)));
+  const std::uint32_t subgroup = std::clamp(vk.info.subgroupSize, 1u, HT_WORKGROUP_SIZE);
+  const std::uint64_t slots = std::uint64_t{grid.x} * grid.y * grid.z * ((HT_WORKGROUP_SIZE + subgroup - 1) / subgroup);
+  const std::uint64_t listFirst = slots + 1 + slots * subgroup;
+  if (listFirst + targets >= (1ull << 32)) throw GpuError("too many targets for adaptive refinement in one chunk");
+  const VkDeviceSize bytes = (listFirst + targets) * sizeof(std::uint32_t);
+  if (refineBuffer.size() < bytes) refineBuffer = DeviceBuffer(vk, bytes, MemoryPlace::HostReadback);
+  FrameBlock& f = frameBlock();
+  f.refine = refineBuffer.address();
+  f.refineInfo = glm::uvec4(glm::floatBitsToUint(contrast), static_cast<std::uint32_t>(listFirst), subgroup, 0u);
+
+  auto run = [&](std::uint32_t mode, glm::uvec3 groups, std::uint32_t count) {
+    beginCommands();
+    PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+    rec.dispatch(pipeline(ShaderId::RefineSelect, {shape.model, mode}), passConstants(0, count, 0, 0), groups,
+                 Stage::Refine);
+    submitAndWait();
+    rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+  };
+  run(0, grid, 0);
+  if (counterBlock().subgroupSize != subgroup) {
+    throw GpuError("adaptive refinement: the device ran subgroups of " + std::to_string(counterBlock().subgroupSize) +
+                   " invocations, not the " + std::to_string(subgroup) + " it reports; render without --refine-spp");
+  }
+  auto* counts = static_cast<std::uint32_t*>(refineBuffer.mapped());
+  std::uint64_t total = 0;
+  for (std::uint64_t s = 0; s < slots; ++s) {  // exclusive scan in place, the total after the last slot
+    const std::uint32_t n = counts[s];
+    counts[s] = static_cast<std::uint32_t>(total);
+    total += n;
+  }
+  counts[slots] = static_cast<std::uint32_t>(total);
+  if (total > 0) run(1, glm::uvec3(groupsFor(slots), 1u, 1u), static_cast<std::uint32_t>(slots));
+  return total;
 }
 
 std::vector<gpu_shared::HtRay> Renderer::Impl::generateRays(const RenderSettings& settings, std::uint64_t firstTarget,

@@ -53,6 +53,11 @@ struct RenderSettings {
   std::uint32_t maxDepth = 4;     // specular bounces (mirror/glass) after the primary hit
   bool forceAllFeatures = false;  // disable scene specialisation (benchmark of the skipping)
   std::uint32_t seed = 0;         // decorrelates sample patterns; same seed -> bit-identical frame
+  // Adaptive refinement (gpu/adaptive_refinement.h): after the frame at `spp`, every target whose sRGB value differs
+  // from a same-channel neighbour pixel by >= refineContrast is traced again at refineSpp samples, and that estimate
+  // replaces the first. refineSpp 0 = off; refineContrast 0 refines every target, > 1 none.
+  std::uint32_t refineSpp = 0;
+  float refineContrast = 0.08f;
   std::function<void(double fractionDone)> progress;  // called after each batch of paths (optional)
 };
 
@@ -70,6 +75,7 @@ struct RenderResult {
   std::uint64_t raysTraced = 0;       // closest-hit + any-hit rays
   std::uint32_t maxTraversalSteps = 0;
   std::uint32_t nonFiniteSamples = 0; // targets whose value was NaN/Inf and was written as 0 (should be 0)
+  std::uint64_t refinedTargets = 0;   // targets traced again by adaptive refinement (RenderSettings::refineSpp)
 };
 
 struct TraceStats {

@@ -76,7 +76,7 @@ struct GpuCounters {
   uint maxSteps;           // largest traversal step count seen
   uint raysTraced;         // closest + any rays traced in this frame
   uint nanCount;           // non-finite radiance values clamped to 0 (must stay 0)
-  uint pad;
+  uint subgroupSize;       // written by refine_select: the subgroup size its dispatch ran with
   uvec4 dispatch[3];       // indirect dispatch args: [0] queue 0, [1] queue 1, [2] shadow queue (xyz, w unused)
 };
 
@@ -85,11 +85,14 @@ struct GpuCounters {
 // gpu/shaders/common.glsl for why); only the atomic counters and the BVH fallback are reached by address.
 struct FrameBlock {
   uint64_t counters;       // GpuCounters (device address)
-  uint64_t pad0;
+  uint64_t refine;         // adaptive refinement: slot counts, staging, the refined targets (device address)
   uvec4 dims;              // x = image width, y = image height (one view), z = spp, w = number of targets
   uvec4 views;             // x = views in this frame, y = index of its first view, z = filter (HT_FILTER_*), w unused
   uvec4 scene;             // x = light count, y = texture count, z = step limit, w = max depth
   uvec4 frame;             // x = seed; yzw unused (per-dispatch values travel in PassConstants)
+  uvec4 refineInfo;        // adaptive refinement (refine_select.comp): x = contrast threshold (float bits), y = first
+                           // entry of the target list in `refine`, z = subgroup size the slots assume,
+                           // w = 1 while the listed targets are traced
   uvec4 flags;             // x = scene has vertex normals, y = scene has texcoords
   vec4 background;         // rgb radiance of escaped rays
   vec4 ambient;            // rgb ambient irradiance on diffuse surfaces
@@ -109,7 +112,8 @@ HT_CONST uint HT_BINDING_FRAME = 4u;           // uniform buffer: FrameBlock
 HT_CONST uint HT_BINDING_STATE_FIRST = 5u;     // 5-16: per-path state, storage texel buffers
 HT_CONST uint HT_BINDING_SCENE_FIRST = 17u;    // 17-24: scene records, uniform texel buffers
 HT_CONST uint HT_BINDING_RAY_TABLE = 25u;      // uniform texel buffer: ray-table entries (origin, direction)
-HT_CONST uint HT_BINDING_COUNT = 26u;
+HT_CONST uint HT_BINDING_SUBPIXEL_TEXELS = 26u; // uniform texel buffer: read-only view of the subpixel buffer
+HT_CONST uint HT_BINDING_COUNT = 27u;
 
 // Push constants of every pass (40 B of the 128 B guaranteed). The BVH addresses sit here, not in the
 // FrameBlock, so the traversal loop reads them without an extra dependent load per node fetch.

@@ -22,6 +22,7 @@ layout(local_size_x = HT_WORKGROUP_SIZE) in;
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer NodeRef { GpuBvhNode n[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Vec4Ref { vec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer CountersRef { GpuCounters c; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer UintRef { uint v[]; };
 
 layout(push_constant, std430) uniform PushBlock { PassConstants pc; };
 
@@ -52,6 +53,7 @@ layout(set = 0, binding = 22) uniform samplerBuffer lightTexels;              //
 layout(set = 0, binding = 23) uniform usamplerBuffer textureTexels;           // GpuTexture.info
 layout(set = 0, binding = 24) uniform samplerBuffer texelTexels;
 layout(set = 0, binding = 25) uniform samplerBuffer rayTableTexels;           // 2 texels per entry: origin, direction
+layout(set = 0, binding = 26) uniform samplerBuffer subpixelTexels;           // subpixelBuffer, read through texel fetches
 
 HtRay load_ray(uint q, uint i) {
   int k = int(2u * i);

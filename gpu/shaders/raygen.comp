@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// raygen: one invocation per path (target x sample). Writes the primary ray of the path into ray queue 0
+// raygen: one invocation per path (target x sample, or listed target x sample when refining). Writes the primary ray of the path into ray queue 0
 // and initialises its radiance and throughput. Targets count pixels x, then rows y (from the bottom, optics.md §0),
 // then views; subpixel models (lenticular, integral) have 3 targets per pixel (target = 3*pixel + c).
 // The MODEL specialisation constant removes every other model's code.
@@ -37,7 +37,9 @@ void main() {
   uint width = FRAME.dims.x;
   uint height = FRAME.dims.y;
   uint path = pc.batchFirst + i;
-  uint target = path / spp;
+  // While refined targets are traced (adaptive_refinement.h), path p is sample p % spp of the (p / spp)-th listed
+  // target; its samples are those of a frame rendered at this spp.
+  uint target = FRAME.refineInfo.w == 1u ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + path / spp] : path / spp;
   uint s = path % spp;
   uint perPixel = ht_model_has_subpixel_targets(MODEL) ? 3u : 1u;
   uint pixel = target / perPixel;

@@ -11,7 +11,8 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   uint spp = FRAME.dims.z;
   if (i >= pc.batchCount / spp) return;
-  uint target = pc.batchFirst / spp + i;
+  uint entry = pc.batchFirst / spp + i;
+  uint target = FRAME.refineInfo.w == 1u ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;  // refining: listed
   vec3 sum = vec3(0.0f);
   for (uint s = 0u; s < spp; ++s) sum += imageLoad(radianceBuffer, int(i * spp + s)).xyz;
   vec3 value = sum / float(spp);

@@ -9,6 +9,7 @@
 
 #include "bench/embree_bvh_build.h"
 #include "bench/image_metrics.h"
+#include "bench/quality_points.h"
 #include "bench/quilt_interleave.h"
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_model.h"
@@ -69,6 +70,38 @@ TEST(QuiltInterleave, NearestFilterShowsTheViewThePhaseAddresses) {
     }
   }
   EXPECT_EQ(wrong, 0u);
+}
+
+QualityPoint point(const char* path, std::uint32_t spp, double ms, double psnr, std::uint32_t refineSpp = 0) {
+  QualityPoint p;
+  p.path = path;
+  p.spp = spp;
+  p.renderMs = ms;
+  p.psnrCorrectedDb = psnr;
+  p.refineSpp = refineSpp;
+  return p;
+}
+
+// Equal-time / equal-PSNR comparisons worked by hand: the direct curve (1 s, 40 dB) -> (2 s, 44 dB); the adaptive
+// curve starts at the direct point of its base spp and keeps only points better than every faster one, here
+// (1 s, 40) -> (1.5 s, 45); the (1.8 s, 44) point is dominated and skipped.
+TEST(QualityComparison, DirectAndAdaptiveCurvesAgainstAQuiltPoint) {
+  DisplayQuality d;
+  d.points = {point("direct", 1, 1000, 40), point("direct", 2, 2000, 44), point("adaptive", 1, 1800, 44, 4),
+              point("adaptive", 1, 1500, 45, 8), point("quilt", 1, std::sqrt(2.0) * 1000, 41)};
+  const auto comparisons = d.compare();
+  ASSERT_EQ(comparisons.size(), 1u);
+  const EqualComparison& c = comparisons[0];
+  ASSERT_TRUE(c.directGainDb && c.speedup && c.adaptiveGainDb && c.adaptiveSpeedup);
+  EXPECT_NEAR(*c.directGainDb, 42.0 - 41.0, 1e-9);  // half way in log2 time
+  EXPECT_NEAR(*c.speedup, std::sqrt(2.0) / std::exp2(0.25), 1e-9);  // 41 dB a quarter of the way
+  const double w = 0.5 / std::log2(1.5);  // sqrt 2 s between 1 s and 1.5 s in log2 time
+  EXPECT_NEAR(*c.adaptiveGainDb, 40.0 + 5.0 * w - 41.0, 1e-9);
+  EXPECT_NEAR(*c.adaptiveSpeedup, std::sqrt(2.0) / std::exp2(std::log2(1.5) * 0.2), 1e-9);
+  d.points.pop_back();
+  d.points.push_back(point("quilt", 1, 3000, 41));  // slower than every adaptive point: no equal-time figure
+  EXPECT_FALSE(d.compare()[0].adaptiveGainDb.has_value());
+  EXPECT_FALSE(d.compare()[0].directGainDb.has_value());
 }
 
 TEST(EmbreeBvhBuild, EveryTriangleSitsInExactlyOneLeafInsideItsBounds) {

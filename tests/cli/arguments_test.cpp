@@ -66,6 +66,26 @@ TEST(CliArguments, InvalidNumbersNameOptionValueAndRange) {
   EXPECT_THAT(usageErrorOf({"--spp=-3"}), HasSubstr("'-3'"));
 }
 
+TEST(CliArguments, DecimalNumbersAreCheckedLikeIntegers) {
+  EXPECT_DOUBLE_EQ(*parse({"--name", "0.08"}).numberValue("--name", 0.0, 1.0), 0.08);
+  EXPECT_DOUBLE_EQ(*parse({"--name=1"}).numberValue("--name", 0.0, 1.0), 1.0);
+  EXPECT_FALSE(parse({}).numberValue("--name", 0.0, 1.0).has_value());
+  auto errorOf = [](std::vector<std::string> args) {
+    try {
+      parse(args).numberValue("--name", 0.0, 1.0);
+    } catch (const UsageError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no UsageError)");
+  };
+  EXPECT_EQ(errorOf({"--name", "1.5"}),
+            "holotrace test: option '--name' = '1.5': expected a number in [0, 1] (see holotrace test --help)");
+  for (const char* bad : {"nan", "inf", "0.1x", "0x1p-3", "1e400"}) {
+    EXPECT_THAT(errorOf({"--name", bad}), HasSubstr("expected a number in [0, 1]")) << bad;
+  }
+  EXPECT_THAT(errorOf({"--name=-0.1"}), HasSubstr("'-0.1': expected a number in [0, 1]"));
+}
+
 TEST(CliArguments, RepeatedPositionalAndValuedFlagsAreErrors) {
   EXPECT_THAT(usageErrorOf({"--spp", "1", "--spp", "2"}), HasSubstr("given twice"));
   EXPECT_THAT(usageErrorOf({"stray"}), HasSubstr("unexpected argument 'stray'"));

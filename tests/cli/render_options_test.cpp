@@ -45,6 +45,17 @@ TEST(CliRenderOptions, EveryOptionIsRead) {
   EXPECT_TRUE(o.noSpecialize);
 }
 
+TEST(CliRenderOptions, AdaptiveRefinementIsOffUnlessAsked) {
+  EXPECT_EQ(parse({}).refineSpp, 0u);
+  const RenderOptions o = parse({"--spp", "1", "--refine-spp", "8", "--refine-contrast", "0.05"});
+  EXPECT_EQ(o.refineSpp, 8u);
+  EXPECT_FLOAT_EQ(o.refineContrast, 0.05f);
+  EXPECT_FLOAT_EQ(parse({"--refine-spp", "4"}).refineContrast, gpu::RenderSettings{}.refineContrast);
+  EXPECT_THROW(parse({"--refine-contrast", "0.05"}), UsageError);  // a threshold without refinement does nothing
+  EXPECT_THROW(parse({"--refine-spp", "4", "--refine-contrast", "1.5"}), UsageError);
+  EXPECT_THROW(parse({"--refine-spp", "4097"}), UsageError);
+}
+
 TEST(CliRenderOptions, OutOfRangeValuesThrowUsageError) {
   EXPECT_THROW(parse({"--spp", "4097"}), UsageError);
   EXPECT_THROW(parse({"--depth", "33"}), UsageError);

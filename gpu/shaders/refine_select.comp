@@ -1,0 +1,73 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// refine_select: lists the targets of the chunk whose contrast (gpu/adaptive_refinement.h) reaches the threshold
+// FRAME.refineInfo.x (float bits), in target order whatever order the workgroups run in, so that a refined frame
+// stays bit-identical from run to run. Stream compaction by per-subgroup counts and an exclusive scan (Harris,
+// Sengupta & Owens, "Parallel prefix sum (scan) with CUDA", GPU Gems 3 ch. 39), one slot per subgroup and no
+// workgroup barrier (lavapipe's barriers switch coroutines: twice the time of this pass). Buffer FRAME.refine:
+//   [0, slots]                     per-slot counts, then (host) their exclusive scan with the total at [slots]
+//   [slots + 1, + slots * S)       staging: slot s keeps its selected targets at (s * S + rank), S = refineInfo.z
+//   [refineInfo.y, + targets)      the list
+//   MODE 0, one invocation per target on a grid (targets of a row) x rows x views: select, count and stage
+//           (slot = linear workgroup * gl_NumSubgroups + subgroup; rows of 64-target groups keep the target order);
+//   MODE 1, one invocation per slot, after the host scan: move the slot's staged targets to list[scan[s] + rank].
+#include "gpu/shaders/common.glsl"
+#extension GL_KHR_shader_subgroup_ballot : require
+#include "gpu/adaptive_refinement.h"
+
+layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
+layout(constant_id = 1) const uint MODE = 0u;
+
+// Texel fetches, not image loads: lavapipe gathers all lanes of a fetch at once (gpu/shaders/bvh_access.glsl).
+float channel(uint pixel, uint c) { return texelFetch(subpixelTexels, int(3u * pixel + c)).x; }
+
+// Contrast of target (x, c) of row y of view `view` (MODE 0 runs one invocation per target on a grid of rows x views:
+// no integer division by the image size, which the CPU driver cannot vectorise).
+float target_contrast(uint x, uint c, uint y, uint view) {
+  uint width = FRAME.dims.x;
+  uint height = FRAME.dims.y;
+  uint pixel = (view * height + y) * width + x;
+  uint left = x > 0u ? pixel - 1u : pixel;
+  uint right = x + 1u < width ? pixel + 1u : pixel;
+  uint below = y > 0u ? pixel - width : pixel;
+  uint above = y + 1u < height ? pixel + width : pixel;
+  float contrast = 0.0f;
+  for (uint k = 0u; k < 3u; ++k) {
+    uint channelIndex = ht_model_has_subpixel_targets(MODEL) ? c : k;
+    contrast = max(contrast, ht_refine_contrast(channel(pixel, channelIndex), channel(left, channelIndex),
+                                                channel(right, channelIndex), channel(below, channelIndex),
+                                                channel(above, channelIndex)));
+    if (ht_model_has_subpixel_targets(MODEL)) break;  // a subpixel target shows one channel
+  }
+  return contrast;
+}
+
+void main() {
+  UintRef refine = UintRef(FRAME.refine);
+  uint stride = FRAME.refineInfo.z;
+  if (MODE == 0u) {
+    uint perPixel = ht_model_has_subpixel_targets(MODEL) ? 3u : 1u;
+    uint rowTargets = FRAME.dims.x * perPixel;
+    uint xt = gl_GlobalInvocationID.x;  // target within the row
+    uint row = gl_GlobalInvocationID.z * FRAME.dims.y + gl_GlobalInvocationID.y;
+    uint target = row * rowTargets + xt;
+    uint group = (gl_WorkGroupID.z * gl_NumWorkGroups.y + gl_WorkGroupID.y) * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    uint slots = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z * gl_NumSubgroups;
+    uint slot = group * gl_NumSubgroups + gl_SubgroupID;
+    bool selected = xt < rowTargets &&
+                    target_contrast(xt / perPixel, xt % perPixel, gl_GlobalInvocationID.y, gl_GlobalInvocationID.z) >=
+                        uintBitsToFloat(FRAME.refineInfo.x);
+    uvec4 ballot = subgroupBallot(selected);
+    if (selected) refine.v[slots + 1u + slot * stride + subgroupBallotExclusiveBitCount(ballot)] = target;
+    if (subgroupElect()) refine.v[slot] = subgroupBallotBitCount(ballot);
+    if (group == 0u && gl_LocalInvocationIndex == 0u) COUNTERS.subgroupSize = gl_SubgroupSize;  // checked by the host
+  } else {
+    uint slot = gl_GlobalInvocationID.x;
+    uint slots = pc.batchCount;
+    if (slot >= slots) return;
+    uint first = refine.v[slot];
+    uint count = refine.v[slot + 1u] - first;
+    uint staging = slots + 1u + slot * stride;
+    for (uint k = 0u; k < count; ++k) refine.v[FRAME.refineInfo.y + first + k] = refine.v[staging + k];
+  }
+}
