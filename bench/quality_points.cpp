@@ -31,18 +31,15 @@ std::vector<const QualityPoint*> directCurve(const std::vector<QualityPoint>& po
   return curve;
 }
 
-// Pareto front of the adaptive points and the direct points at their base spp, sorted by time: each point is better
-// than every faster one.
+// Pareto front of the adaptive and the direct points, sorted by time: each point is better than every faster one. A
+// direct frame at N spp is the adaptive path refining every target (threshold 0), so the direct points belong to the
+// same family; empty when there is no adaptive point.
 std::vector<const QualityPoint*> adaptiveCurve(const std::vector<QualityPoint>& points) {
   std::vector<const QualityPoint*> candidates;
   for (const QualityPoint& p : points) {
-    if (p.path == "adaptive") candidates.push_back(&p);
+    if (p.path == "adaptive" || p.path == "direct") candidates.push_back(&p);
   }
-  if (candidates.empty()) return candidates;
-  for (const QualityPoint& p : points) {
-    const bool isBase = std::any_of(candidates.begin(), candidates.end(), [&](auto* a) { return a->spp == p.spp; });
-    if (p.path == "direct" && isBase) candidates.push_back(&p);
-  }
+  if (std::none_of(candidates.begin(), candidates.end(), [](auto* p) { return p->path == "adaptive"; })) return {};
   std::sort(candidates.begin(), candidates.end(), [](auto* a, auto* b) { return a->frameMs() < b->frameMs(); });
   std::vector<const QualityPoint*> front;
   for (const QualityPoint* p : candidates) {

@@ -29,8 +29,8 @@ struct QualityPoint {
 
 // Direct and adaptive paths vs one quilt point: PSNR gain at the quilt's time, speed-up at the quilt's PSNR (nullopt
 // when the curve does not reach that far; both by linear interpolation in log2(time)). The adaptive curve is the
-// Pareto front (faster points first, each better than every faster one) of the adaptive points and the direct
-// points at their base spp.
+// Pareto front (faster points first, each better than every faster one) of the adaptive and the direct points (a
+// direct frame is the adaptive path refining every target).
 struct EqualComparison {
   const QualityPoint* quilt = nullptr;
   std::optional<double> directGainDb;   // direct PSNR(corrected) at quilt time - quilt PSNR(corrected)

@@ -22,13 +22,15 @@ namespace v1 = holotrace::v1;
 using Stub = v1::Holotrace::Stub;
 constexpr const char* kCommand = "holotrace client";
 
-const std::array<OptionSpec, 12> kOptions = {{
+const std::array<OptionSpec, 14> kOptions = {{
     {"--socket", "", "ADDR", "daemon address (default unix:$XDG_RUNTIME_DIR/holotrace/holotraced.sock)"},
     {"--scene", "", "SPEC", "scene below the daemon's scene root, or builtin:NAME (default builtin:showcase)"},
     {"--upload", "", "FILE", "send this local scene file's bytes instead of --scene"},
     {"--display", "", "ID", "display id from `client displays` (default builtin:portrait)"},
     {"--format", "", "FMT", "rgba8 | rgba16f | png (render/stream; default png for render)"},
     {"--spp", "", "N", "samples per subpixel (default: the display's)"},
+    {"--refine-spp", "", "N", "adaptive refinement: high-contrast subpixels again at N spp (default 0 = off)"},
+    {"--refine-contrast", "", "X", "sRGB step to a neighbour that triggers refinement, 0-1 (default 0.08)"},
     {"--out", "-o", "FILE", "render: write the frame bytes here"},
     {"--fps", "", "N", "stream: requested frames per second (default 10)"},
     {"--frames", "", "N", "stream: stop after N frames (default 10); capture: file count (default 1)"},
@@ -152,6 +154,8 @@ v1::RenderRequest renderRequest(const ParsedArguments& a, const std::string& sce
   request.set_display_id(a.textOr("--display", "builtin:portrait"));
   request.set_format(pixelFormat(a, format));
   request.set_spp(a.unsignedValue("--spp", 1, 4096).value_or(0));
+  request.set_refine_spp(a.unsignedValue("--refine-spp", 0, 4096).value_or(0));
+  request.set_refine_contrast(static_cast<float>(a.numberValue("--refine-contrast", 0.0, 1.0).value_or(0.0)));
   return request;
 }
 

@@ -27,6 +27,8 @@ gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client
   gpu::RenderSettings settings;
   settings.spp = job.spp ? job.spp : job.display->config.spp;
   settings.seed = job.seed;
+  settings.refineSpp = job.refineSpp;
+  settings.refineContrast = job.refineContrast;
   const gpu::DisplayCamera camera = jobCamera(job);
   gpu::RenderResult result;
   const SceneContent& content = *job.session->content;

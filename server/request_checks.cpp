@@ -35,12 +35,22 @@ FrameJob checkRenderRequest(ServiceState& state, const holotrace::v1::RenderRequ
     throw BadRequest("render.spp", std::to_string(request.spp()) + " exceeds limits.max_spp = " +
                                        std::to_string(limits.maxSpp));
   }
+  if (request.refine_spp() > limits.maxSpp) {
+    throw BadRequest("render.refine_spp", std::to_string(request.refine_spp()) + " exceeds limits.max_spp = " +
+                                              std::to_string(limits.maxSpp));
+  }
+  if (!(request.refine_contrast() >= 0.0f && request.refine_contrast() <= 1.0f)) {
+    throw BadRequest("render.refine_contrast", std::to_string(request.refine_contrast()) +
+                                                   " is not in [0, 1] (0 = the default 0.08)");
+  }
   checkPixelFormat(request.format());
   FrameJob job;
   job.display = state.displays.find(request.display_id());
   job.session = state.scenes.find(request.scene_id());
   job.spp = request.spp();
   job.seed = request.seed();
+  job.refineSpp = request.refine_spp();
+  if (request.refine_contrast() > 0.0f) job.refineContrast = request.refine_contrast();
   job.path = request.quilt() ? gpu::CameraPath::Quilt : gpu::CameraPath::Native;
   gpu::FrameShape shape;
   try {

@@ -83,12 +83,13 @@ QualityPoint point(const char* path, std::uint32_t spp, double ms, double psnr, 
 }
 
 // Equal-time / equal-PSNR comparisons worked by hand: the direct curve (1 s, 40 dB) -> (2 s, 44 dB); the adaptive
-// curve starts at the direct point of its base spp and keeps only points better than every faster one, here
-// (1 s, 40) -> (1.5 s, 45); the (1.8 s, 44) point is dominated and skipped.
+// curve keeps, of the adaptive and direct points, those better than every faster one: (1 s, 40) -> (1.5 s, 45)
+// -> (4 s, 47); (1.8 s, 44) and (2 s, 44) are dominated.
 TEST(QualityComparison, DirectAndAdaptiveCurvesAgainstAQuiltPoint) {
   DisplayQuality d;
   d.points = {point("direct", 1, 1000, 40), point("direct", 2, 2000, 44), point("adaptive", 1, 1800, 44, 4),
-              point("adaptive", 1, 1500, 45, 8), point("quilt", 1, std::sqrt(2.0) * 1000, 41)};
+              point("adaptive", 1, 1500, 45, 8), point("direct", 4, 4000, 47),
+              point("quilt", 1, std::sqrt(2.0) * 1000, 41)};
   const auto comparisons = d.compare();
   ASSERT_EQ(comparisons.size(), 1u);
   const EqualComparison& c = comparisons[0];
@@ -98,8 +99,10 @@ TEST(QualityComparison, DirectAndAdaptiveCurvesAgainstAQuiltPoint) {
   const double w = 0.5 / std::log2(1.5);  // sqrt 2 s between 1 s and 1.5 s in log2 time
   EXPECT_NEAR(*c.adaptiveGainDb, 40.0 + 5.0 * w - 41.0, 1e-9);
   EXPECT_NEAR(*c.adaptiveSpeedup, std::sqrt(2.0) / std::exp2(std::log2(1.5) * 0.2), 1e-9);
-  d.points.pop_back();
-  d.points.push_back(point("quilt", 1, 3000, 41));  // slower than every adaptive point: no equal-time figure
+  d.points.back() = point("quilt", 1, 3000, 46);  // between 1.5 s and 4 s: the adaptive curve, then direct spp 4
+  const double w3 = std::log2(3000.0 / 1500.0) / std::log2(4000.0 / 1500.0);
+  EXPECT_NEAR(*d.compare()[0].adaptiveGainDb, 45.0 + 2.0 * w3 - 46.0, 1e-9);
+  d.points.back() = point("quilt", 1, 5000, 41);  // slower than every point: no equal-time figure
   EXPECT_FALSE(d.compare()[0].adaptiveGainDb.has_value());
   EXPECT_FALSE(d.compare()[0].directGainDb.has_value());
 }

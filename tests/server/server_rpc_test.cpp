@@ -6,6 +6,7 @@
 #include <chrono>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <thread>
 
 #include "tests/server/server_fixture.h"
@@ -131,6 +132,33 @@ TEST_F(ServerTest, RenderFrameInEachPixelFormat) {
   ASSERT_GT(frame.bytes.size(), 8u);
   EXPECT_EQ(frame.bytes[1], 'P');
   EXPECT_EQ(frame.header.format(), v1::PIXEL_FORMAT_PNG);
+}
+
+// A refined frame reports the refine stage; threshold 0 refines every subpixel, so the frame equals the frame at the
+// refinement spp (the request's default contrast cannot ask for that: 0 means 0.08).
+TEST_F(ServerTest, RenderFrameWithAdaptiveRefinement) {
+  auto request = tinyRequest(sceneId_, v1::PIXEL_FORMAT_RGBA16F);
+  request.set_spp(1);
+  request.set_refine_spp(4);
+  ReceivedFrame refined, direct;
+  ASSERT_TRUE(renderOne(*stub_, request, &refined).ok());
+  bool hasRefineStage = false;
+  for (const auto& stage : refined.header.stages()) hasRefineStage = hasRefineStage || stage.name() == "refine";
+  EXPECT_TRUE(hasRefineStage);
+  request.set_refine_spp(0);
+  ASSERT_TRUE(renderOne(*stub_, request, &direct).ok());
+  EXPECT_EQ(refined.bytes.size(), direct.bytes.size());
+  EXPECT_NE(refined.bytes, direct.bytes);  // the plain scene has edges, and they were refined
+  for (float bad : {-0.5f, 1.5f, std::numeric_limits<float>::quiet_NaN()}) {
+    request.set_refine_spp(4);
+    request.set_refine_contrast(bad);
+    const grpc::Status status = renderOne(*stub_, request);
+    EXPECT_EQ(status.error_code(), StatusCode::INVALID_ARGUMENT) << bad;
+    EXPECT_NE(status.error_message().find("refine_contrast"), std::string::npos);
+  }
+  request.set_refine_contrast(0.1f);
+  request.set_refine_spp(1000);
+  EXPECT_EQ(renderOne(*stub_, request).error_code(), StatusCode::INVALID_ARGUMENT);
 }
 
 TEST_F(ServerTest, RequestLimitsAnswerPreciseStatuses) {
