@@ -34,14 +34,14 @@ for display in $(awk -F, 'NR > 1 { print $1 }' "$csv" | sort -u); do
     plots="$plots, '$tmp/quilt$n' using 1:2 with linespoints pt $((n + 3)) title 'quilt ${quilt//_/ } $filter'"
   done
   gnuplot <<GP
-set terminal pngcairo size 900,560 font ",10" noenhanced
+set terminal pngcairo size 900,680 font ",10" noenhanced
 set output "$dir/${prefix}_$slug.png"
 set title "$display: time vs error (reference: direct path, high spp; PSNR corrected for reference noise)"
 set xlabel "ms / frame (render wall time incl. readback; quilt interleave not counted), log scale"
 set ylabel "PSNR vs reference (dB, sRGB)"
 set logscale x 2
 set grid
-set key top left box opaque
+set key below box
 plot $plots
 GP
 done
