@@ -21,6 +21,11 @@ std::string fixed(double value, int digits) {
 
 std::string optionalText(const std::optional<double>& v, int digits) { return v ? fixed(*v, digits) : ""; }
 
+// "+1.25 dB" / "-0.40 dB", or what the comparison lacks.
+std::string gainText(const std::optional<double>& db) {
+  return db ? (*db >= 0 ? "+" : "") + fixed(*db, 2) + " dB" : "n/a (outside)";
+}
+
 // The direct points, sorted by time.
 std::vector<const QualityPoint*> directCurve(const std::vector<QualityPoint>& points) {
   std::vector<const QualityPoint*> curve;
@@ -120,10 +125,10 @@ void printQualityReport(std::ostream& out, const QualityReport& r) {
     }
     for (const EqualComparison& c : d.compare()) {
       out << "  vs quilt " << c.quilt->quilt << " spp " << c.quilt->spp << " " << c.quilt->filter
-          << ": direct at equal time " << (c.directGainDb ? "+" + fixed(*c.directGainDb, 2) + " dB" : "n/a (outside)")
+          << ": direct at equal time " << gainText(c.directGainDb)
           << ", at equal PSNR " << (c.speedup ? fixed(*c.speedup, 2) + "x faster" : "n/a (not reached)")
           << "; adaptive at equal time "
-          << (c.adaptiveGainDb ? fixed(*c.adaptiveGainDb, 2) + " dB" : "n/a (outside)") << ", at equal PSNR "
+          << gainText(c.adaptiveGainDb) << ", at equal PSNR "
           << (c.adaptiveSpeedup ? fixed(*c.adaptiveSpeedup, 2) + "x faster" : "n/a (not reached)") << "\n";
     }
   }
