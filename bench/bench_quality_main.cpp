@@ -48,6 +48,24 @@ gpu::RenderSettings settings(const QualityOptions& o, std::uint32_t spp, std::ui
   return s;
 }
 
+// Renders one frame and prints its per-pass times (the per-pass breakdown, one line per point).
+gpu::RenderResult renderAndPrintStages(const Context& c, const gpu::FrameCamera& camera, const gpu::RenderSettings& s) {
+  const gpu::RenderResult frame = c.renderer.render(camera, s);
+  std::cout << "   ";
+  for (const auto& stage : frame.stages) std::cout << " " << stage.name << " " << std::lround(stage.ms);
+  std::cout << " ms" << std::endl;
+  return frame;
+}
+
+// spp 1 at depth 0 with every target refined at spp 2: compiles the frame's kernels and both refinement passes.
+gpu::RenderSettings warmUpSettings(const QualityOptions& o) {
+  gpu::RenderSettings s = settings(o, 1, 0);
+  s.maxDepth = 0;
+  s.refineSpp = 2;
+  s.refineContrast = 0.0f;
+  return s;
+}
+
 double stageSum(const gpu::RenderResult& r) {
   double sum = 0.0;
   for (const auto& stage : r.stages) sum += stage.ms;
@@ -62,21 +80,15 @@ void scoreAgainst(QualityPoint& p, const std::vector<float>& image, const std::v
 
 // The display's own camera model (and for a lenticular display the quilt cameras) once on a small copy of it.
 void warmUp(const Context& c, const DisplayConfig& display, const gpu::FrameCamera& camera) {
-  if (!display.calibration) {  // one frame of the real camera at spp 1 and depth 0: compiles every kernel it uses
-    gpu::RenderSettings s = settings(c.options, 1, 0);
-    s.maxDepth = 0;
-    s.refineSpp = 2;  // the refinement kernels too
-    c.renderer.render(camera, s);
+  if (!display.calibration) {  // one frame of the real camera: compiles every kernel it uses
+    c.renderer.render(camera, warmUpSettings(c.options));
     return;
   }
   DisplayConfig small = display;
   small.calibration->screenW = 96;
   small.calibration->screenH = 128;
   const auto bounds = c.scene.bounds();
-  gpu::RenderSettings refined = settings(c.options, 1, 0);
-  refined.refineSpp = 2;  // compiles the refinement kernels too
-  refined.refineContrast = 0.0f;
-  c.renderer.renderLenticular(makeLenticularParams(small, bounds), refined);
+  c.renderer.renderLenticular(makeLenticularParams(small, bounds), warmUpSettings(c.options));
   const QuiltLayout layout = defaultQuiltLayout(display);
   const QuiltLayout tiny = makeQuiltLayout(layout.columns, layout.rows, layout.columns * 16, layout.rows * 16,
                                            layout.aspect);
@@ -103,10 +115,7 @@ void measureDirect(const Context& c, const gpu::FrameCamera& camera, const std::
                    DisplayQuality& d) {
   for (std::uint32_t spp : c.options.directSpp) {
     std::cout << "  direct spp " << spp << "..." << std::endl;
-    const auto frame = c.renderer.render(camera, settings(c.options, spp, 0));
-    std::cout << "   ";
-    for (const auto& stage : frame.stages) std::cout << " " << stage.name << " " << std::lround(stage.ms);
-    std::cout << " ms" << std::endl;
+    const auto frame = renderAndPrintStages(c, camera, settings(c.options, spp, 0));
     QualityPoint p{"direct", spp, "", "", frame.totalMs, stageSum(frame), 0.0, {}, 0.0};
     scoreAgainst(p, frame.rgba, reference, d);
     d.points.push_back(p);
@@ -121,10 +130,7 @@ void measureAdaptive(const Context& c, const gpu::FrameCamera& camera, const std
     gpu::RenderSettings s = settings(c.options, a.baseSpp, 0);
     s.refineSpp = a.refineSpp;
     s.refineContrast = a.contrast;
-    const auto frame = c.renderer.render(camera, s);
-    std::cout << "   ";
-    for (const auto& stage : frame.stages) std::cout << " " << stage.name << " " << std::lround(stage.ms);
-    std::cout << " ms" << std::endl;
+    const auto frame = renderAndPrintStages(c, camera, s);
     const double targets = double(gpu::frameShape(camera).targets());
     QualityPoint p{"adaptive", a.baseSpp, "", "", frame.totalMs, stageSum(frame), 0.0, {}, 0.0,
                    a.refineSpp, a.contrast, double(frame.refinedTargets) / targets};

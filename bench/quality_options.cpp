@@ -42,7 +42,7 @@ const char* const kHelp =
     "          the CPU (bench/quilt_interleave.h) with the nearest, vendor-lerp and centred-lerp view filters\n"
     "Per point: ms/frame (render wall time incl. readback; the quilt's CPU interleave is reported apart), RMSE, PSNR, SSIM on sRGB-encoded [0,1] values, and PSNR\n"
     "corrected for the reference's own noise (MSE - MSE(half A, half B)/4). Summary: at the quilt's time, how many dB\n"
-    "the direct path and the adaptive path (its fastest-for-quality points, from direct at BASE spp) gain (log-time\n"
+    "the direct path and the adaptive path (the Pareto front of adaptive and direct points) gain (log-time\n"
     "interpolation), and how much faster they reach the quilt's PSNR.\n";
 
 std::vector<std::string> splitText(const std::string& text) {
@@ -70,7 +70,6 @@ std::vector<std::uint32_t> sppList(const cli::ParsedArguments& parsed, const std
   }
   return values;
 }
-
 
 std::optional<std::pair<std::uint32_t, std::uint32_t>> quiltSizeValue(const cli::ParsedArguments& parsed) {
   const auto text = parsed.text("--quilt-size");

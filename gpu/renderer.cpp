@@ -120,7 +120,7 @@ struct Renderer::Impl {
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
   FrameCamera camera;
-  DeviceBuffer refineBuffer;  // adaptive refinement: per-workgroup counts, then the target list (host visible)
+  DeviceBuffer refineBuffer;  // adaptive refinement: per-subgroup counts, staging, target list (refine_select.comp)
   DeviceBuffer rayTableTexels;                     // the current ray table (2 texels per entry) or a 1-entry dummy
   std::shared_ptr<const RayTable> boundRayTable;   // which table rayTableTexels holds
 
@@ -291,8 +291,10 @@ struct Renderer::Impl {
                    const RenderSettings& settings, StageTimes& stageMs, RenderResult& result);
   // Traces paths [0, totalPaths) of `spp` samples per target in batches of perBatch (a multiple of spp) and resolves
   // them into the subpixel buffer (listed targets while FrameBlock.refineInfo.w == 1).
+  // clearShadowSlots: the chunk's first call; gather_direct leaves every slot it used cleared for later batches.
   void tracePaths(const FrameShape& shape, std::uint32_t spp, std::uint64_t totalPaths, std::uint64_t perBatch,
-                  const RenderSettings& settings, StageTimes& stageMs, const std::function<void(double)>& progress);
+                  bool clearShadowSlots, const RenderSettings& settings, StageTimes& stageMs,
+                  const std::function<void(double)>& progress);
   std::uint64_t selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast, StageTimes& stageMs);
   std::vector<gpu_shared::HtRay> generateRays(const RenderSettings& settings, std::uint64_t firstTarget,
                                               std::uint32_t targetCount, TraceStats* stats);
@@ -480,7 +482,7 @@ void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirs
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));
 
   const double share = settings.refineSpp > 0 ? 0.8 : 1.0;  // progress: the refinement takes the rest
-  tracePaths(shape, settings.spp, targets * settings.spp, perBatch, settings, stageMs, [&](double done) {
+  tracePaths(shape, settings.spp, targets * settings.spp, perBatch, true, settings, stageMs, [&](double done) {
     if (settings.progress) settings.progress(done * share);
   });
   if (settings.refineSpp > 0) {
@@ -491,9 +493,10 @@ void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirs
       f.dims.z = settings.refineSpp;
       f.refineInfo.w = 1u;
       const std::uint64_t refineBatch = std::min(perBatch / settings.refineSpp * settings.refineSpp, refined * settings.refineSpp);
-      tracePaths(shape, settings.refineSpp, refined * settings.refineSpp, refineBatch, settings, stageMs, [&](double done) {
-        if (settings.progress) settings.progress(share + done * (1.0 - share));
-      });
+      tracePaths(shape, settings.refineSpp, refined * settings.refineSpp, refineBatch, false, settings, stageMs,
+                 [&](double done) {
+                   if (settings.progress) settings.progress(share + done * (1.0 - share));
+                 });
     }
   }
   const ComputePipeline& interleave = pipeline(ShaderId::Interleave);
@@ -510,8 +513,8 @@ void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirs
 }
 
 void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std::uint64_t totalPaths,
-                                std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
-                                const std::function<void(double)>& progress) {
+                                std::uint64_t perBatch, bool clearShadowSlots, const RenderSettings& settings,
+                                StageTimes& stageMs, const std::function<void(double)>& progress) {
   const SceneFeatures& feat = scene.features();
   const bool all = settings.forceAllFeatures;
   const bool lights = scene.lightCount() > 0 && (feat.lights || all);
@@ -528,17 +531,17 @@ void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std:
   const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {shape.model});
 
   const VkBuffer args = counters.handle();
-  bool first = true;
+  bool clear = clearShadowSlots;
   for (std::uint64_t begin = 0; begin < totalPaths; begin += perBatch) {
     const auto count = static_cast<std::uint32_t>(std::min<std::uint64_t>(perBatch, totalPaths - begin));
     const auto batchFirst = static_cast<std::uint32_t>(begin);
     beginCommands();
-    if (first) {  // live flags of the shadow slots start cleared; gather_direct clears them after use
+    if (clear) {  // live flags of the shadow slots start cleared; gather_direct clears them after use
       vkCmdFillBuffer(cmd, work.shadowContrib.handle(), 0, VK_WHOLE_SIZE, 0);
       VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
                         VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
       vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
-      first = false;
+      clear = false;
     }
     PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
     rec.dispatch(raygen, passConstants(batchFirst, count, 0, 0), groupsFor(count), Stage::Raygen);

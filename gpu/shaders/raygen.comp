@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// raygen: one invocation per path (target x sample, or listed target x sample when refining). Writes the primary ray of the path into ray queue 0
-// and initialises its radiance and throughput. Targets count pixels x, then rows y (from the bottom, optics.md §0),
+// raygen: one invocation per path (target x sample; listed target x sample while refining). Writes the primary ray
+// of the path into ray queue 0 and initialises its radiance and throughput. Targets count pixels x, then rows y (from the bottom, optics.md §0),
 // then views; subpixel models (lenticular, integral) have 3 targets per pixel (target = 3*pixel + c).
 // The MODEL specialisation constant removes every other model's code.
 #include "gpu/shaders/common.glsl"
