@@ -24,6 +24,15 @@
 
 HT_SHARED_BEGIN
 
+// The Gen3 cell layout (pattern mode, cell count) is read through these macros, which a kernel may define as
+// specialisation constants (raygen.comp): the cell code then folds to the one pattern the panel has, or vanishes on
+// classic panels. A CPU Vulkan driver (lavapipe) runs both sides of a branch with lanes masked off, so the generic
+// code cost 0.3 s of a 0.9 s raygen on Portrait (no cells) and 0.9 s of 2.2 s on the Gen3 16" (docs/BENCHMARKS.md).
+#ifndef HT_LENTICULAR_CELL_MODE
+#define HT_LENTICULAR_CELL_MODE(p) (p).flags.x
+#define HT_LENTICULAR_CELL_COUNT(p) (p).flags.y
+#endif
+
 // Largest float below 1: t stays in [0, 1) when rounding pushes it up to 1.
 HT_CONST float HT_LENTICULAR_T_MAX = 0.99999994f;
 
@@ -33,15 +42,20 @@ HT_INLINE uint lenticular_physical_channel(LenticularParams p, uint c) {
   return p.panel.w > 0.5f ? 2u - c : c;
 }
 
+// Whether the panel places its subpixels by Gen3 cells (optics.md §3.2) rather than the classic 1/3-pixel steps.
+HT_INLINE bool lenticular_has_cells(LenticularParams p) {
+  return HT_LENTICULAR_CELL_MODE(p) != 0 && HT_LENTICULAR_CELL_COUNT(p) > 0;
+}
+
 // Gen3 subpixel cell of pixel (x, y), y from the bottom (holoplaycore.js GetCellForPixel, optics.md §3.2).
 HT_INLINE uint lenticular_cell(LenticularParams p, uint x, uint y) {
-  int mode = p.flags.x;
+  int mode = HT_LENTICULAR_CELL_MODE(p);
   uint cell = 0u;
   if (mode == 1) cell = ((x % 2u) == (y % 2u)) ? 0u : 1u;  // checkerboard
   if (mode == 2) cell = x % 2u;
   if (mode == 3) cell = (y + (x % 2u) * 2u) % 4u;
   if (mode == 4) cell = y % 2u;
-  uint count = uint(max(p.flags.y, 1));
+  uint count = uint(max(HT_LENTICULAR_CELL_COUNT(p), 1));
   return cell % count;
 }
 
@@ -52,7 +66,7 @@ HT_INLINE uint lenticular_cell(LenticularParams p, uint x, uint y) {
 HT_INLINE vec2 lenticular_sample_offset_px(LenticularParams p, uint x, uint y, uint c, vec2 xi) {
   uint cp = lenticular_physical_channel(p, c);
   vec2 centre = vec2(0.5f, 0.5f);
-  if (p.flags.x != 0 && p.flags.y > 0) {
+  if (lenticular_has_cells(p)) {
     // Select instead of a dynamic index: an indexed array inside a by-value struct becomes per-lane scratch
     // memory on lavapipe (2.4x slower raygen, measured), a select chain stays in registers.
     uint idx = lenticular_cell(p, x, y) * 3u + cp;
@@ -67,9 +81,11 @@ HT_INLINE vec2 lenticular_sample_offset_px(LenticularParams p, uint x, uint y, u
 }
 
 // Screen uv (v from the bottom) of the sample point.
-HT_INLINE vec2 lenticular_sample_uv(LenticularParams p, uint x, uint y, uint c, vec2 xi) {
-  vec2 o = lenticular_sample_offset_px(p, x, y, c, xi);
+HT_INLINE vec2 lenticular_uv_at_offset(LenticularParams p, uint x, uint y, vec2 o) {
   return vec2((float(x) + o.x) / p.panel.x, (float(y) + o.y) / p.panel.y);
+}
+HT_INLINE vec2 lenticular_sample_uv(LenticularParams p, uint x, uint y, uint c, vec2 xi) {
+  return lenticular_uv_at_offset(p, x, y, lenticular_sample_offset_px(p, x, y, c, xi));
 }
 
 // Phase rate per pixel, split hi + lo. The host stores (hi, lo); a zero pair falls back to the float quotient.
@@ -82,11 +98,11 @@ HT_INLINE vec2 lenticular_rate_split(vec2 stored, float fallback) {
 //   t   = invView ? 1 - fract(phi) : fract(phi)
 // evaluated as phi = fract(x*A_hi) + fract(y*B_hi) + (x*A_lo + y*B_lo + ox*A + oy*B - center), where
 // A = pitch_s/W, B = tilt*pitch_s/H and (ox, oy) = lenticular_sample_offset_px; x*A_hi and y*B_hi are exact.
-HT_INLINE float lenticular_view_phase(LenticularParams p, uint x, uint y, uint c, vec2 xi) {
+// lenticular_view_phase_at_offset: the same at a sample offset o = lenticular_sample_offset_px(p, x, y, c, xi).
+HT_INLINE float lenticular_view_phase_at_offset(LenticularParams p, uint x, uint y, vec2 o) {
   vec2 rateX = lenticular_rate_split(vec2(p.cellOffset[0].z, p.cellOffset[0].w), p.phase.x / p.panel.x);
   vec2 rateY = lenticular_rate_split(vec2(p.cellOffset[1].z, p.cellOffset[1].w),
                                      p.phase.y * p.phase.x / p.panel.y);
-  vec2 o = lenticular_sample_offset_px(p, x, y, c, xi);
   HT_PRECISE float fx = fract(float(x) * rateX.x);
   HT_PRECISE float fy = fract(float(y) * rateY.x);
   HT_PRECISE float small = float(x) * rateX.y + float(y) * rateY.y;
@@ -94,6 +110,9 @@ HT_INLINE float lenticular_view_phase(LenticularParams p, uint x, uint y, uint c
   HT_PRECISE float f = fract((fx + fy) + (small + local));
   float t = p.panel.z > 0.5f ? 1.0f - f : f;
   return min(t, HT_LENTICULAR_T_MAX);
+}
+HT_INLINE float lenticular_view_phase(LenticularParams p, uint x, uint y, uint c, vec2 xi) {
+  return lenticular_view_phase_at_offset(p, x, y, lenticular_sample_offset_px(p, x, y, c, xi));
 }
 
 // Ray for view phase t through the focal-plane point at screen uv (optics.md §9 M1/M2, looking-glass-webxr camera):
@@ -117,8 +136,9 @@ HT_INLINE void lenticular_ray_for_phase(LenticularParams p, float t, vec2 uv, HT
 // Primary ray of subpixel (x, y, c) (y from the bottom) at footprint position xi in [0,1)^2.
 HT_INLINE void lenticular_ray(LenticularParams p, uint x, uint y, uint c, vec2 xi, HT_OUT(vec3) origin,
                               HT_OUT(vec3) dir) {
-  float t = lenticular_view_phase(p, x, y, c, xi);
-  lenticular_ray_for_phase(p, t, lenticular_sample_uv(p, x, y, c, xi), origin, dir);
+  vec2 o = lenticular_sample_offset_px(p, x, y, c, xi);
+  lenticular_ray_for_phase(p, lenticular_view_phase_at_offset(p, x, y, o), lenticular_uv_at_offset(p, x, y, o), origin,
+                           dir);
 }
 
 HT_SHARED_END

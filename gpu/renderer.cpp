@@ -155,6 +155,14 @@ struct Renderer::Impl {
     return vk.pipelines->get(id, spec);
   }
 
+  // Specialisation of raygen: the camera model, then a lenticular panel's Gen3 cell mode and count, so the cell code
+  // folds to the panel's own pattern (lenticular_model.h HT_LENTICULAR_CELL_MODE; a CPU driver pays for untaken code).
+  std::vector<std::uint32_t> raygenSpec(const FrameShape& shape) const {
+    const auto* lenticular = std::get_if<gpu_shared::LenticularParams>(&camera);
+    if (!lenticular) return {shape.model, 0u, 0u};
+    return {shape.model, static_cast<std::uint32_t>(lenticular->flags.x), static_cast<std::uint32_t>(lenticular->flags.y)};
+  }
+
   // Specialisation of the trace kernels: their own constants, then constant_id 10 = TEXEL_FETCH.
   std::vector<std::uint32_t> traceSpec(std::vector<std::uint32_t> own) const {
     own.resize(10, 0u);
@@ -521,7 +529,7 @@ void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std:
   const bool mirror = feat.mirrors || all, glass = feat.glass || all, textures = (feat.textures && scene.textureCount() > 0) || all;
   const std::uint32_t depthPasses = (mirror || glass) ? settings.maxDepth + 1 : 1;
 
-  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, {shape.model});
+  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(shape));
   const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest, traceSpec({}));
   const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
   const ComputePipeline& shade = pipeline(ShaderId::Shade, {lights, mirror, glass, textures});
@@ -630,7 +638,7 @@ std::vector<gpu_shared::HtRay> Renderer::Impl::generateRays(const RenderSettings
   if (outputs.generation == 0) outputs.ensure(vk, 1, 1);  // raygen writes no outputs; the views need a buffer
   bindState();
   fillFrame(shape, 0, shape.views, settings);
-  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, {shape.model});
+  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(shape));
   std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};
   for (std::uint64_t begin = 0; begin < totalPaths; begin += perBatch) {
     const auto count = static_cast<std::uint32_t>(std::min(perBatch, totalPaths - begin));

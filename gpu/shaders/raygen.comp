@@ -8,6 +8,12 @@
 #include "camera_models/footprint_sampling.h"
 #include "camera_models/capture_grid_model.h"
 #include "camera_models/integral_model.h"
+layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
+// The lenticular panel's Gen3 cell layout, folded into the code (lenticular_model.h HT_LENTICULAR_CELL_MODE).
+layout(constant_id = 1) const int LENTICULAR_CELL_MODE = 0;
+layout(constant_id = 2) const int LENTICULAR_CELL_COUNT = 0;
+#define HT_LENTICULAR_CELL_MODE(p) LENTICULAR_CELL_MODE
+#define HT_LENTICULAR_CELL_COUNT(p) LENTICULAR_CELL_COUNT
 #include "camera_models/lenticular_model.h"
 #include "camera_models/oblique_model.h"
 #include "camera_models/pinhole_model.h"
@@ -16,8 +22,6 @@
 #define HT_RAY_TABLE_ORIGIN(i) texelFetch(rayTableTexels, int(2u * (i))).xyz
 #define HT_RAY_TABLE_DIRECTION(i) texelFetch(rayTableTexels, int(2u * (i) + 1u)).xyz
 #include "camera_models/ray_table_model.h"
-
-layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
 
 // Projector `view` assembled from single uniform members (projector_model.h ProjectorView: no 8 KiB copy).
 ProjectorView frame_projector(uint view) {

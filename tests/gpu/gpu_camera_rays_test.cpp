@@ -155,6 +155,17 @@ TEST_F(GpuCameraRays, LenticularEightKGen3CornersAndRows) {
   checkLenticular(*renderer_, settings_, "8k gen3", test::eightKDisplay(2), bounds_, test::kSanitized ? 97 : 13);
 }
 
+// Raygen folds the panel's cell pattern mode and count into its code (specialisation constants, lenticular_model.h
+// HT_LENTICULAR_CELL_MODE): every mode, with 2 cells (mode 3 counts 4 cells, so its cell index wraps), against the
+// double reference.
+TEST_F(GpuCameraRays, LenticularEveryGen3CellPatternMode) {
+  for (int mode = 1; mode <= 4; ++mode) {
+    const std::string what = "8k gen3 cell mode " + std::to_string(mode);
+    checkLenticular(*renderer_, settings_, what.c_str(), test::eightKDisplay(mode), bounds_,
+                    test::kSanitized ? 1031 : 211);
+  }
+}
+
 TEST_F(GpuCameraRays, LenticularEightKClassicBgrFlipped) {
   checkLenticular(*renderer_, settings_, "8k classic bgr flipX", test::eightKDisplay(0, true, true),
                   bounds_, test::kSanitized ? 211 : 29);
