@@ -585,17 +585,18 @@ void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std:
 // the device runs the workgroups in.
 std::uint64_t Renderer::Impl::selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast,
                                                    StageTimes& stageMs) {
-  const glm::uvec3 grid(groupsFor(std::uint64_t{shape.width} * shape.targetsPerPixel), shape.height,
+  const glm::uvec3 grid(groupsFor(shape.width), shape.height,
                         static_cast<std::uint32_t>(targets / (std::uint64_t{shape.width} * shape.height * shape.targetsPerPixel)));
   const std::uint32_t subgroup = std::clamp(vk.info.subgroupSize, 1u, HT_WORKGROUP_SIZE);
   const std::uint64_t slots = std::uint64_t{grid.x} * grid.y * grid.z * ((HT_WORKGROUP_SIZE + subgroup - 1) / subgroup);
-  const std::uint64_t listFirst = slots + 1 + slots * subgroup;
+  const std::uint32_t stride = subgroup * shape.targetsPerPixel;  // staging per slot: a subgroup of pixels' targets
+  const std::uint64_t listFirst = slots + 1 + slots * stride;
   if (listFirst + targets >= (1ull << 32)) throw GpuError("too many targets for adaptive refinement in one chunk");
   const VkDeviceSize bytes = (listFirst + targets) * sizeof(std::uint32_t);
   if (refineBuffer.size() < bytes) refineBuffer = DeviceBuffer(vk, bytes, MemoryPlace::HostReadback);
   FrameBlock& f = frameBlock();
   f.refine = refineBuffer.address();
-  f.refineInfo = glm::uvec4(glm::floatBitsToUint(contrast), static_cast<std::uint32_t>(listFirst), subgroup, 0u);
+  f.refineInfo = glm::uvec4(glm::floatBitsToUint(contrast), static_cast<std::uint32_t>(listFirst), stride, 0u);
 
   auto run = [&](std::uint32_t mode, glm::uvec3 groups, std::uint32_t count) {
     beginCommands();

@@ -7,12 +7,16 @@
 // workgroup barrier (lavapipe's barriers switch coroutines: twice the time of this pass). Buffer FRAME.refine:
 //   [0, slots]                     per-slot counts, then (host) their exclusive scan with the total at [slots]
 //   [slots + 1, + slots * S)       staging: slot s keeps its selected targets at (s * S + rank), S = refineInfo.z
+//                                  = subgroup size x targets per pixel
 //   [refineInfo.y, + targets)      the list
-//   MODE 0, one invocation per target on a grid (targets of a row) x rows x views: select, count and stage
-//           (slot = linear workgroup * gl_NumSubgroups + subgroup; rows of 64-target groups keep the target order);
+//   MODE 0, one invocation per pixel on a grid (pixels of a row) x rows x views: select its targets (3 subpixels, or
+//           the pixel), count and stage (slot = linear workgroup * gl_NumSubgroups + subgroup; rows of 64-pixel
+//           groups and pixel-major ranks keep the target order). One invocation per pixel rather than per subpixel
+//           target: lavapipe pays a lot per invocation (select stage 228 -> 182 ms on Portrait, docs/BENCHMARKS.md);
 //   MODE 1, one invocation per slot, after the host scan: move the slot's staged targets to list[scan[s] + rank].
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "gpu/adaptive_refinement.h"
 
 layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
@@ -21,8 +25,8 @@ layout(constant_id = 1) const uint MODE = 0u;
 // Texel fetches, not image loads: lavapipe gathers all lanes of a fetch at once (gpu/shaders/bvh_access.glsl).
 float channel(uint pixel, uint c) { return texelFetch(subpixelTexels, int(3u * pixel + c)).x; }
 
-// Contrast of target (x, c) of row y of view `view` (MODE 0 runs one invocation per target on a grid of rows x views:
-// no integer division by the image size, which the CPU driver cannot vectorise).
+// Contrast of target (x, c) of row y of view `view` (MODE 0 runs on a grid of pixels x rows x views: no integer
+// division by the image size, which the CPU driver cannot vectorise).
 float target_contrast(uint x, uint c, uint y, uint view) {
   uint width = FRAME.dims.x;
   uint height = FRAME.dims.y;
@@ -47,19 +51,26 @@ void main() {
   uint stride = FRAME.refineInfo.z;
   if (MODE == 0u) {
     uint perPixel = ht_model_has_subpixel_targets(MODEL) ? 3u : 1u;
-    uint rowTargets = FRAME.dims.x * perPixel;
-    uint xt = gl_GlobalInvocationID.x;  // target within the row
+    uint x = gl_GlobalInvocationID.x;
     uint row = gl_GlobalInvocationID.z * FRAME.dims.y + gl_GlobalInvocationID.y;
-    uint target = row * rowTargets + xt;
     uint group = (gl_WorkGroupID.z * gl_NumWorkGroups.y + gl_WorkGroupID.y) * gl_NumWorkGroups.x + gl_WorkGroupID.x;
     uint slots = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z * gl_NumSubgroups;
     uint slot = group * gl_NumSubgroups + gl_SubgroupID;
-    bool selected = xt < rowTargets &&
-                    target_contrast(xt / perPixel, xt % perPixel, gl_GlobalInvocationID.y, gl_GlobalInvocationID.z) >=
-                        uintBitsToFloat(FRAME.refineInfo.x);
-    uvec4 ballot = subgroupBallot(selected);
-    if (selected) refine.v[slots + 1u + slot * stride + subgroupBallotExclusiveBitCount(ballot)] = target;
-    if (subgroupElect()) refine.v[slot] = subgroupBallotBitCount(ballot);
+    float threshold = uintBitsToFloat(FRAME.refineInfo.x);
+    uint selected = 0u;  // bit c: target c of the pixel
+    if (x < FRAME.dims.x) {
+      for (uint c = 0u; c < perPixel; ++c) {
+        if (target_contrast(x, c, gl_GlobalInvocationID.y, gl_GlobalInvocationID.z) >= threshold) selected |= 1u << c;
+      }
+    }
+    uint count = bitCount(selected);
+    uint at = slots + 1u + slot * stride + subgroupExclusiveAdd(count);
+    uint first = (row * FRAME.dims.x + x) * perPixel;
+    for (uint c = 0u; c < perPixel; ++c) {
+      if ((selected & (1u << c)) != 0u) refine.v[at++] = first + c;
+    }
+    uint total = subgroupAdd(count);
+    if (subgroupElect()) refine.v[slot] = total;
     if (group == 0u && gl_LocalInvocationIndex == 0u) COUNTERS.subgroupSize = gl_SubgroupSize;  // checked by the host
   } else {
     uint slot = gl_GlobalInvocationID.x;
