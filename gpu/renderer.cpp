@@ -163,6 +163,14 @@ struct Renderer::Impl {
     return {shape.model, static_cast<std::uint32_t>(lenticular->flags.x), static_cast<std::uint32_t>(lenticular->flags.y)};
   }
 
+  // Specialisation of the kernels that continue paths (shade, gather_direct): their own constants, then
+  // constant_id 20 = PRIMARY_DEPTH, true for the dispatches at depth 0 (common.glsl queue_path).
+  static std::vector<std::uint32_t> depthSpec(std::vector<std::uint32_t> own, std::uint32_t depth) {
+    own.resize(20, 0u);
+    own.push_back(depth == 0 ? 1u : 0u);
+    return own;
+  }
+
   // Specialisation of the trace kernels: their own constants, then constant_id 10 = TEXEL_FETCH.
   std::vector<std::uint32_t> traceSpec(std::vector<std::uint32_t> own) const {
     own.resize(10, 0u);
@@ -532,10 +540,9 @@ void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std:
   const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(shape));
   const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest, traceSpec({}));
   const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
-  const ComputePipeline& shade = pipeline(ShaderId::Shade, {lights, mirror, glass, textures});
+  const std::vector<std::uint32_t> shadeFeatures = {lights, mirror, glass, textures};
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
-  const ComputePipeline& gather = pipeline(ShaderId::GatherDirect);
   const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {shape.model});
 
   const VkBuffer args = counters.handle();
@@ -557,6 +564,8 @@ void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std:
       const std::uint32_t q = depth % 2;
       PassConstants pc = passConstants(batchFirst, count, depth, q);
       const VkDeviceSize queueArgs = offsetof(GpuCounters, dispatch) + q * sizeof(glm::uvec4);
+      const ComputePipeline& shade = pipeline(ShaderId::Shade, depthSpec(shadeFeatures, depth));
+      const ComputePipeline& gather = pipeline(ShaderId::GatherDirect, depthSpec({}, depth));
       if (depth == 0) {
         rec.dispatch(traceClosest, pc, groupsFor(count), Stage::Trace);
         rec.dispatch(shade, pc, groupsFor(count), Stage::Shade);

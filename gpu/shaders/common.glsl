@@ -78,6 +78,24 @@ void store_queue_path(uint q, uint i, uint path) {
   if (q == 0u) imageStore(queuePath0, int(i), uvec4(path));
   else imageStore(queuePath1, int(i), uvec4(path));
 }
+// Depth 0 runs over the batch in raygen order -- entry i of queue 0 is path i, with radiance 0 and throughput 1 --
+// so raygen writes none of those and the depth-0 pipelines (PRIMARY_DEPTH = true, set by the host for the dispatches
+// at depth 0) read none: lavapipe stores and loads storage texels lane by lane, and these were 3 of raygen's 5
+// stores. A specialisation constant rather than a test of pc.depth: lavapipe runs a branch's masked loads anyway.
+layout(constant_id = 20) const bool PRIMARY_DEPTH = false;
+uint queue_path(uint i) {
+  if (PRIMARY_DEPTH) return i;
+  return load_queue_path(pc.queue, i);
+}
+vec3 path_throughput(uint path) {
+  if (PRIMARY_DEPTH) return vec3(1.0f);
+  return imageLoad(throughputBuffer, int(path)).xyz;
+}
+void add_path_radiance(uint path, vec3 radiance) {
+  vec4 sum = vec4(0.0f);
+  if (!PRIMARY_DEPTH) sum = imageLoad(radianceBuffer, int(path));
+  imageStore(radianceBuffer, int(path), sum + vec4(radiance, 0.0f));
+}
 HtHit load_hit(uint i) {
   uvec4 h = imageLoad(hitBuffer, int(i));
   return HtHit(uintBitsToFloat(h.x), h.y, uintBitsToFloat(h.z), uintBitsToFloat(h.w));

@@ -8,7 +8,7 @@
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= COUNTERS.queueCount[pc.queue]) return;
-  uint path = load_queue_path(pc.queue, i);
+  uint path = queue_path(i);
   uint lightCount = FRAME.scene.x;
   vec3 sum = vec3(0.0f);
   for (uint l = 0u; l < lightCount; ++l) {

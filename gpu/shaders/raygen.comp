@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // raygen: one invocation per path (target x sample; listed target x sample while refining). Writes the primary ray
-// of the path into ray queue 0 and initialises its radiance and throughput. Targets count pixels x, then rows y (from the bottom, optics.md §0),
-// then views; subpixel models (lenticular, integral) have 3 targets per pixel (target = 3*pixel + c).
+// of path i into entry i of ray queue 0; the depth-0 kernels know its radiance 0 and throughput 1 (common.glsl
+// queue_path). Targets count pixels x, then rows y (from the bottom, optics.md §0), then views; subpixel models
+// (lenticular, integral) have 3 targets per pixel (target = 3*pixel + c).
 // The MODEL specialisation constant removes every other model's code.
 #include "gpu/shaders/common.glsl"
 #include "camera_models/footprint_sampling.h"
@@ -78,8 +79,5 @@ void main() {
   } else {
     ray_table_ray(FRAME.rayTable, x, y, xi, origin, dir);
   }
-  store_ray(0u, i, HtRay(origin, 0.0f, dir, 3.0e38f));
-  store_queue_path(0u, i, i);
-  imageStore(radianceBuffer, int(i), vec4(0.0f));
-  imageStore(throughputBuffer, int(i), vec4(1.0f));
+  store_ray(0u, i, HtRay(origin, 0.0f, dir, 3.0e38f));  // path i = queue entry i, radiance 0, throughput 1 (queue_path)
 }

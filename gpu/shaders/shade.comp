@@ -142,10 +142,10 @@ float fresnel_dielectric(float cosI, float cosT, float eta) {
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= COUNTERS.queueCount[pc.queue]) return;
-  uint path = load_queue_path(pc.queue, i);
+  uint path = queue_path(i);
   HtRay ray = load_ray(pc.queue, i);
   HtHit hit = load_hit(i);
-  vec3 throughput = imageLoad(throughputBuffer, int(path)).xyz;
+  vec3 throughput = path_throughput(path);
   vec3 radiance = vec3(0.0f);
   bool hitSurface = hit.triId != HT_MISS;
   bool wantShadows = false;
@@ -194,7 +194,7 @@ void main() {
     }
     continues = continues && max(throughput.x, max(throughput.y, throughput.z)) > 1e-4f;
   }
-  imageStore(radianceBuffer, int(path), imageLoad(radianceBuffer, int(path)) + vec4(radiance, 0.0f));
+  add_path_radiance(path, radiance);
 
   // Subgroup operations act on the lanes active at the call, so each divergent group appends for itself.
   if (HAS_LIGHTS && wantShadows) emit_shadow_rays(path, s, throughput * albedo * HT_INV_PI);
