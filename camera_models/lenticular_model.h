@@ -26,8 +26,8 @@ HT_SHARED_BEGIN
 
 // The Gen3 cell layout (pattern mode, cell count) is read through these macros, which a kernel may define as
 // specialisation constants (raygen.comp): the cell code then folds to the one pattern the panel has, or vanishes on
-// classic panels. A CPU Vulkan driver (lavapipe) runs both sides of a branch with lanes masked off, so the generic
-// code cost 0.3 s of a 0.9 s raygen on Portrait (no cells) and 0.9 s of 2.2 s on the Gen3 16" (docs/BENCHMARKS.md).
+// classic panels. On a CPU Vulkan driver (lavapipe) the generic code cost time even where no ray took it: 0.3 s of
+// a 0.8 s raygen on the Portrait (no cells) and 0.5 s of 2.2 s on the Gen3 16" (docs/BENCHMARKS.md).
 #ifndef HT_LENTICULAR_CELL_MODE
 #define HT_LENTICULAR_CELL_MODE(p) (p).flags.x
 #define HT_LENTICULAR_CELL_COUNT(p) (p).flags.y
