@@ -49,6 +49,14 @@ constexpr std::uint32_t kMaxImageSide = 32768;
 
 using StageTimes = std::array<double, static_cast<size_t>(Stage::Count)>;
 
+// `spec` (a kernel's own constants, ids 0..) with constant `id` set to `value`, the ids between left 0: the
+// constants common to several kernels sit at fixed high ids (trace_*: 10, shade / gather_direct: 20).
+std::vector<std::uint32_t> withConstant(std::vector<std::uint32_t> spec, std::uint32_t id, std::uint32_t value) {
+  spec.resize(std::max<std::size_t>(spec.size(), id + 1), 0u);
+  spec[id] = value;
+  return spec;
+}
+
 std::uint32_t groupsFor(std::uint64_t n) { return static_cast<std::uint32_t>((n + HT_WORKGROUP_SIZE - 1) / HT_WORKGROUP_SIZE); }
 
 double msSince(std::chrono::steady_clock::time_point t0) {
@@ -166,16 +174,12 @@ struct Renderer::Impl {
   // Specialisation of the kernels that continue paths (shade, gather_direct): their own constants, then
   // constant_id 20 = PRIMARY_DEPTH, true for the dispatches at depth 0 (common.glsl queue_path).
   static std::vector<std::uint32_t> depthSpec(std::vector<std::uint32_t> own, std::uint32_t depth) {
-    own.resize(20, 0u);
-    own.push_back(depth == 0 ? 1u : 0u);
-    return own;
+    return withConstant(std::move(own), 20, depth == 0 ? 1u : 0u);
   }
 
   // Specialisation of the trace kernels: their own constants, then constant_id 10 = TEXEL_FETCH.
   std::vector<std::uint32_t> traceSpec(std::vector<std::uint32_t> own) const {
-    own.resize(10, 0u);
-    own.push_back(bvhTexelsCover ? 1u : 0u);
-    return own;
+    return withConstant(std::move(own), 10, bvhTexelsCover ? 1u : 0u);
   }
 
   // Binding HT_BINDING_RAY_TABLE: the ray-table camera's entries (uploaded when the table object changes), else a
