@@ -10,8 +10,9 @@
 // conservative. Values are compared sRGB-encoded and clamped to [0, 1], the scale the display shows and the
 // quality benchmark measures (PSNR on sRGB): a fixed threshold means the same visible step in dark and bright areas.
 //
-// A target is refined when its contrast is >= the threshold, so threshold 0 refines every target (the refined frame
-// then equals a frame rendered at the refinement spp) and a threshold above 1 refines none.
+// A target is refined when its contrast is >= the threshold, so threshold 0 refines every target (each then takes the
+// mean of its base samples and the samples a frame at the refinement spp gives it, resolve.comp) and a threshold
+// above 1 refines none.
 #ifndef HT_ADAPTIVE_REFINEMENT_H
 #define HT_ADAPTIVE_REFINEMENT_H
 #include "common/glsl_cpp.h"

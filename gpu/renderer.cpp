@@ -310,7 +310,7 @@ struct Renderer::Impl {
   void renderChunk(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
                    const RenderSettings& settings, StageTimes& stageMs, RenderResult& result);
   // Traces paths [0, totalPaths) of `spp` samples per target in batches of perBatch (a multiple of spp) and resolves
-  // them into the subpixel buffer (listed targets while FrameBlock.refineInfo.w == 1).
+  // them into the subpixel buffer (listed targets while FrameBlock.refineInfo.w != 0).
   // clearShadowSlots: the chunk's first call; gather_direct leaves every slot it used cleared for later batches.
   void tracePaths(const FrameShape& shape, std::uint32_t spp, std::uint64_t totalPaths, std::uint64_t perBatch,
                   bool clearShadowSlots, const RenderSettings& settings, StageTimes& stageMs,
@@ -511,7 +511,7 @@ void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirs
     if (refined > 0) {
       FrameBlock& f = frameBlock();
       f.dims.z = settings.refineSpp;
-      f.refineInfo.w = 1u;
+      f.refineInfo.w = settings.spp;  // != 0: trace the listed targets, and keep the base samples in their mean
       const std::uint64_t refineBatch = std::min(perBatch / settings.refineSpp * settings.refineSpp, refined * settings.refineSpp);
       tracePaths(shape, settings.refineSpp, refined * settings.refineSpp, refineBatch, false, settings, stageMs,
                  [&](double done) {
@@ -547,7 +547,8 @@ void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std:
   const std::vector<std::uint32_t> shadeFeatures = {lights, mirror, glass, textures};
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
-  const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {shape.model});
+  const bool refining = frameBlock().refineInfo.w != 0u;
+  const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {shape.model, refining});
 
   const VkBuffer args = counters.handle();
   bool clear = clearShadowSlots;

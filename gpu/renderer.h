@@ -54,8 +54,8 @@ struct RenderSettings {
   bool forceAllFeatures = false;  // disable scene specialisation (benchmark of the skipping)
   std::uint32_t seed = 0;         // decorrelates sample patterns; same seed -> bit-identical frame
   // Adaptive refinement (gpu/adaptive_refinement.h): after the frame at `spp`, every target whose sRGB value differs
-  // from a same-channel neighbour pixel by >= refineContrast is traced again at refineSpp samples, and that estimate
-  // replaces the first. refineSpp 0 = off; refineContrast 0 refines every target, > 1 none.
+  // from a same-channel neighbour pixel by >= refineContrast is traced again at refineSpp samples, and takes the mean
+  // of all its spp + refineSpp samples. refineSpp 0 = off; refineContrast 0 refines every target, > 1 none.
   std::uint32_t refineSpp = 0;
   float refineContrast = 0.08f;
   std::function<void(double fractionDone)> progress;  // called after each batch of paths (optional)

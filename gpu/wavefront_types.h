@@ -92,7 +92,8 @@ struct FrameBlock {
   uvec4 frame;             // x = seed; yzw unused (per-dispatch values travel in PassConstants)
   uvec4 refineInfo;        // adaptive refinement (refine_select.comp): x = contrast threshold (float bits), y = first
                            // entry of the target list in `refine`, z = subgroup size the slots assume,
-                           // w = 1 while the listed targets are traced
+                           // w = the base pass's spp while the listed targets are traced (resolve.comp averages
+                           // its samples with theirs), 0 otherwise
   uvec4 flags;             // x = scene has vertex normals, y = scene has texcoords
   vec4 background;         // rgb radiance of escaped rays
   vec4 ambient;            // rgb ambient irradiance on diffuse surfaces

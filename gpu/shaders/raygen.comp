@@ -44,7 +44,7 @@ void main() {
   uint path = pc.batchFirst + i;
   // While refined targets are traced (adaptive_refinement.h), path p is sample p % spp of the (p / spp)-th listed
   // target; its samples are those of a frame rendered at this spp.
-  uint target = FRAME.refineInfo.w == 1u ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + path / spp] : path / spp;
+  uint target = FRAME.refineInfo.w != 0u ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + path / spp] : path / spp;
   uint s = path % spp;
   uint perPixel = ht_model_has_subpixel_targets(MODEL) ? 3u : 1u;
   uint pixel = target / perPixel;

@@ -2,20 +2,33 @@
 #extension GL_GOOGLE_include_directive : require
 // resolve: box-filters the spp samples of each target of the batch into the subpixel buffer.
 // Subpixel targets (lenticular, integral) keep their own channel only (a subpixel shows one primary); pixel
-// targets keep RGB.
+// targets keep RGB. Refining (FRAME.refineInfo.w = the base pass's spp B != 0), a listed target's value becomes the
+// mean of all its B + spp samples: (B x its base value + the sum of the new ones) / (B + spp). Dropping the base
+// samples, as this pass first did, wasted a fifth of a 1 + 4 target's samples (Portrait, 1 + 4 at contrast 0.10:
+// 49.70 -> 50.08 dB for one more texel load per refined target, docs/BENCHMARKS.md).
 #include "gpu/shaders/common.glsl"
 
 layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
+// The refinement pass's pipeline: lavapipe would run the list and base-value loads of a runtime branch on every pass.
+layout(constant_id = 1) const bool REFINING = false;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   uint spp = FRAME.dims.z;
   if (i >= pc.batchCount / spp) return;
   uint entry = pc.batchFirst / spp + i;
-  uint target = FRAME.refineInfo.w == 1u ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;  // refining: listed
+  uint target = REFINING ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;  // refining: listed
   vec3 sum = vec3(0.0f);
   for (uint s = 0u; s < spp; ++s) sum += imageLoad(radianceBuffer, int(i * spp + s)).xyz;
   vec3 value = sum / float(spp);
+  if (REFINING) {
+    uint baseSpp = FRAME.refineInfo.w;
+    bool subpixel = ht_model_has_subpixel_targets(MODEL);
+    vec3 base = subpixel ? vec3(imageLoad(subpixelBuffer, int(target)).x)
+                         : vec3(imageLoad(subpixelBuffer, int(3u * target)).x, imageLoad(subpixelBuffer, int(3u * target + 1u)).x,
+                                imageLoad(subpixelBuffer, int(3u * target + 2u)).x);
+    value = (base * float(baseSpp) + sum) / float(baseSpp + spp);
+  }
   bool finite = !(any(isnan(value)) || any(isinf(value)));
   if (!finite) {
     atomicAdd(COUNTERS.nanCount, 1u);

@@ -1,7 +1,7 @@
 // Adaptive refinement (RenderSettings::refineSpp, gpu/adaptive_refinement.h, refine_select.comp) end to end: the
 // targets the GPU refines are the ones the shared contrast function picks on the CPU from the base frame, a refined
-// target takes exactly the value of a frame rendered at the refinement spp, every other target keeps its base value,
-// and the frame is bit-identical from run to run.
+// target takes the mean of all its samples (its base value and its value in a frame rendered at the refinement spp,
+// weighted by their spp), every other target keeps its base value, and the frame is bit-identical from run to run.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -51,10 +51,19 @@ struct SelectionCheck {
   size_t refined = 0, ambiguous = 0, wrong = 0, targets = 0;
 };
 
-// Compares the adaptive frame with the base and the high-spp frames target by target. subpixelTargets: one target
-// per channel (lenticular); otherwise one RGB target per pixel, refined when any channel's contrast reaches it.
-SelectionCheck checkSelection(const gpu::RenderResult& base, const gpu::RenderResult& high,
-                              const gpu::RenderResult& adaptive, float threshold, bool subpixelTargets) {
+// The value resolve.comp gives a refined target: the mean of its base samples and its refinement samples, from the
+// frames rendered at those spp (whose values are their samples' sums divided by a power of two here: exact).
+float refinedValue(float base, std::uint32_t baseSpp, float high, std::uint32_t refineSpp) {
+  return (base * static_cast<float>(baseSpp) + high * static_cast<float>(refineSpp)) /
+         static_cast<float>(baseSpp + refineSpp);
+}
+
+// Compares the adaptive frame with the base and the refinement-spp (high) frames target by target. subpixelTargets:
+// one target per channel (lenticular); otherwise one RGB target per pixel, refined when any channel's contrast
+// reaches it.
+SelectionCheck checkSelection(const gpu::RenderResult& base, std::uint32_t baseSpp, const gpu::RenderResult& high,
+                              std::uint32_t refineSpp, const gpu::RenderResult& adaptive, float threshold,
+                              bool subpixelTargets) {
   SelectionCheck out;
   for (std::uint32_t view = 0; view < base.views; ++view) {
     for (std::uint32_t row = 0; row < base.height; ++row) {
@@ -65,18 +74,19 @@ SelectionCheck checkSelection(const gpu::RenderResult& base, const gpu::RenderRe
         for (std::uint32_t t = 0; t < (subpixelTargets ? 3u : 1u); ++t) {
           const float k = subpixelTargets ? contrast[t] : std::max(contrast[0], std::max(contrast[1], contrast[2]));
           const std::uint32_t c0 = subpixelTargets ? t : 0, c1 = subpixelTargets ? t + 1 : 3;
-          bool isBase = true, isHigh = true;
+          bool isBase = true, isRefined = true;
           for (std::uint32_t c = c0; c < c1; ++c) {
-            isBase = isBase && adaptive.rgba[pixel * 4 + c] == base.rgba[pixel * 4 + c];
-            isHigh = isHigh && adaptive.rgba[pixel * 4 + c] == high.rgba[pixel * 4 + c];
+            const size_t at = pixel * 4 + c;
+            isBase = isBase && adaptive.rgba[at] == base.rgba[at];
+            isRefined = isRefined && adaptive.rgba[at] == refinedValue(base.rgba[at], baseSpp, high.rgba[at], refineSpp);
           }
           ++out.targets;
           const bool cpuRefines = k >= threshold;
           out.refined += cpuRefines;
           if (std::abs(k - threshold) < 1e-5f) {
             ++out.ambiguous;  // GLSL and C++ pow may round the last bit apart
-            if (!isBase && !isHigh) ++out.wrong;
-          } else if (cpuRefines ? !isHigh : !isBase) {
+            if (!isBase && !isRefined) ++out.wrong;
+          } else if (cpuRefines ? !isRefined : !isBase) {
             ++out.wrong;
           }
         }
@@ -94,7 +104,7 @@ TEST(GpuRefinement, RefinedSubpixelsAreTheCpuSelectionAndTakeTheRefinedValues) {
   const auto base = renderer.renderLenticular(params, withSpp(1));
   const auto high = renderer.renderLenticular(params, withSpp(4));
   const auto adaptive = renderer.renderLenticular(params, withSpp(1, 4, threshold));
-  const SelectionCheck check = checkSelection(base, high, adaptive, threshold, true);
+  const SelectionCheck check = checkSelection(base, 1, high, 4, adaptive, threshold, true);
   std::printf("targets %zu, refined on the GPU %llu, by the CPU reference %zu (%zu at the threshold)\n", check.targets,
               static_cast<unsigned long long>(adaptive.refinedTargets), check.refined, check.ambiguous);
   EXPECT_EQ(check.wrong, 0u);
@@ -116,7 +126,7 @@ TEST(GpuRefinement, RefinedPixelsOfMultiViewFramesAreTheCpuSelection) {
   const auto high = renderer.renderQuilt(params, withSpp(8));
   const auto adaptive = renderer.renderQuilt(params, withSpp(2, 8, threshold));
   ASSERT_EQ(base.views, 48u);
-  const SelectionCheck check = checkSelection(base, high, adaptive, threshold, false);
+  const SelectionCheck check = checkSelection(base, 2, high, 8, adaptive, threshold, false);
   EXPECT_EQ(check.wrong, 0u);
   EXPECT_LE(std::abs(double(adaptive.refinedTargets) - double(check.refined)), double(check.ambiguous));
   EXPECT_GT(check.refined, 0u);
@@ -134,14 +144,21 @@ class GpuRefinementShowcase : public ::testing::Test {
   gpu::Renderer renderer_{sharedContext(), scene_};
 };
 
-// Threshold 0 refines every target: the frame at the refinement spp, bit for bit (glass too: the refined paths keep
-// the full frame's path indices). A threshold above 1 refines none: the base frame.
-TEST_F(GpuRefinementShowcase, ThresholdsZeroAndAboveOneGiveTheFramesAtTheRefinementAndTheBaseSpp) {
+// Threshold 0 refines every target: each takes the mean of its base sample and the samples of the frame at the
+// refinement spp, bit for bit (glass too: the refined paths keep the full frame's path indices). A threshold above 1
+// refines none: the base frame.
+TEST_F(GpuRefinementShowcase, ThresholdsZeroAndAboveOneGiveAllSamplesMeanAndTheBaseFrame) {
   const auto base = render(1);
   const auto high = render(4);
   const auto all = render(1, 4, 0.0f);
   EXPECT_EQ(all.refinedTargets, std::uint64_t{high.width} * high.height * 3);
-  EXPECT_EQ(all.rgba, high.rgba);
+  ASSERT_EQ(all.rgba.size(), high.rgba.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < all.rgba.size(); ++i) {
+    if (i % 4 == 3) continue;  // alpha: 1 everywhere
+    differing += all.rgba[i] != refinedValue(base.rgba[i], 1, high.rgba[i], 4);
+  }
+  EXPECT_EQ(differing, 0u);
   const auto none = render(1, 4, 1.01f);
   EXPECT_EQ(none.refinedTargets, 0u);
   EXPECT_EQ(none.rgba, base.rgba);
