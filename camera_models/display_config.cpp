@@ -5,6 +5,8 @@
 #include <cmath>
 #include <initializer_list>
 
+#include <nlohmann/json.hpp>
+
 #include "camera_models/embedded_display_configs.h"
 #include "camera_models/json_fields.h"
 #include "common/error.h"

@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include <nlohmann/json.hpp>
+
 #include "camera_models/json_fields.h"
 #include "camera_models/lens_distortion.h"
 #include "common/error.h"

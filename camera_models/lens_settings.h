@@ -1,7 +1,7 @@
 // lens_settings.h - Brown-Conrady lens coefficients as a display config gives them ("distortion" objects of the
 // "pinhole" and "projectorArray.lens" sections, docs/configs.md); formulas in lens_distortion.h.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "camera_models/json_fields.h"
 

@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include <nlohmann/json.hpp>
+
 #include "camera_models/camera_params.h"
 #include "camera_models/json_fields.h"
 #include "common/error.h"
@@ -97,7 +99,7 @@ LookingGlassCalibration parseLookingGlassCalibration(const json& raw, const std:
     throw ConfigError(file, fieldPrefix.empty() ? "(root)" : fieldPrefix, detail::valueText(&raw),
                       "expected a visual.json object");
   LookingGlassCalibration c;
-  c.raw = raw;
+  c.rawJson = raw.dump();
   c.configVersion = readVersion(at, raw);
   c.serial = detail::optionalString(at, raw, "serial").value_or("");
   c.pitch = requirePositive(at, raw, "pitch", "raw lenticular pitch");

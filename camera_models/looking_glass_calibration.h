@@ -2,7 +2,7 @@
 //
 // Fields and their meaning: optics.md §1 (LKG-Toolkit Toolkit-API/Device/Calibration.cs, SubpixelCell.cs). The raw
 // file is accepted unchanged: numbers bare or wrapped as {"value": x}, configVersion "1.0" or "3.0", booleans as
-// 0/1 or true/false, `CellPatternMode` or `cellPatternMode`. Unknown keys are kept verbatim in `raw`.
+// 0/1 or true/false, `CellPatternMode` or `cellPatternMode`. Unknown keys are kept (as text) in `rawJson`.
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 namespace ht {
 
@@ -42,7 +42,7 @@ struct LookingGlassCalibration {
   double fringe = 0.0;              // Large/Pro fringe correction; optional, default 0; not used by the ray model
   int cellPatternMode = 0;          // CellPatternMode 0 (classic) .. 4 (Gen3 cell layouts, optics.md §3.2)
   std::vector<SubpixelCell> subpixelCells;  // <= 4 cells; >= 1 when cellPatternMode != 0
-  nlohmann::json raw;               // the file's JSON as read, unknown keys included
+  std::string rawJson;              // the file's JSON object as read (compact text), unknown keys included
 };
 
 // Parses and validates a visual.json object. `file` names the source in errors; `fieldPrefix` is prepended to field

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "camera_models/lens_settings.h"
 #include "camera_models/json_fields.h"

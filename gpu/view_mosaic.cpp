@@ -76,7 +76,7 @@ std::string quiltMetadataJson(const DisplayConfig& display, const DisplayCamera&
     meta["viewConeDeg"] = double(quilt->camera.w) * 180.0 / kPi;
     meta["fovyDeg"] = display.camera.fovyDeg;
   }
-  if (display.calibration) meta["calibration"] = display.calibration->raw;
+  if (display.calibration) meta["calibration"] = nlohmann::json::parse(display.calibration->rawJson);
   return meta.dump(2);
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "camera_models/capture_grid_model.h"
 #include "camera_models/capture_grid_setup.h"

@@ -5,6 +5,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_params.h"

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "camera_models/display_config.h"
 #include "camera_models/integral_model.h"

@@ -74,7 +74,7 @@ TEST(FrameOutputs, QuiltMetadataCarriesLayoutConeAndCalibrationVerbatim) {
   EXPECT_EQ(meta["aspect"], 0.75);
   EXPECT_EQ(meta["tileWidth"], 420);
   EXPECT_NEAR(meta["viewConeDeg"].get<double>(), display.calibration->viewCone * display.camera.depthiness, 1e-4);
-  EXPECT_EQ(meta["calibration"], display.calibration->raw);
+  EXPECT_EQ(meta["calibration"], nlohmann::json::parse(display.calibration->rawJson));
 }
 
 TEST(FrameOutputs, MultiViewExrHoldsEveryViewUnderItsName) {
