@@ -19,9 +19,9 @@ namespace ht {
 namespace {
 
 #ifdef HT_SANITIZED_BUILD
-constexpr std::uint32_t kStride = 29;
+constexpr std::uint32_t kGridStride = 29;
 #else
-constexpr std::uint32_t kStride = 2;
+constexpr std::uint32_t kGridStride = 2;
 #endif
 
 using nlohmann::json;
@@ -89,8 +89,8 @@ TEST(CaptureGrid, FloatMatchesDoubleReference) {
     };
     const std::uint32_t views = c.columns * c.rows;
     for (std::uint32_t view : {0u, c.columns - 1, views / 2, views - 1}) {
-      for (std::uint32_t y = 0; y < c.imageHeight; y += kStride)
-        for (std::uint32_t x = 0; x < c.imageWidth; x += kStride) check(x, y, view, glm::vec2(0.5f));
+      for (std::uint32_t y = 0; y < c.imageHeight; y += kGridStride)
+        for (std::uint32_t x = 0; x < c.imageWidth; x += kGridStride) check(x, y, view, glm::vec2(0.5f));
       for (std::uint32_t x : {0u, c.imageWidth - 1})
         for (std::uint32_t y : {0u, c.imageHeight - 1})
           for (glm::vec2 xi : {glm::vec2(0.0f), glm::vec2(0.9999999f)}) check(x, y, view, xi);
@@ -102,7 +102,7 @@ TEST(CaptureGrid, FloatMatchesDoubleReference) {
   }
 }
 
-ConfigError sectionError(const std::function<void(json&)>& edit) {
+ConfigError gridSectionError(const std::function<void(json&)>& edit) {
   json config = {{"model", "capture-grid"},
                  {"captureGrid", {{"columns", 8}, {"rows", 6}, {"spacing", {0.1, 0.1}}, {"distance", 2.0},
                                   {"window", {{"width", 1.6}, {"height", 1.2}}},
@@ -118,13 +118,13 @@ ConfigError sectionError(const std::function<void(json&)>& edit) {
 }
 
 TEST(CaptureGrid, BadSectionsRejected) {
-  EXPECT_EQ(sectionError([](json& s) { s["columns"] = 0; }).field(), "captureGrid.columns");
-  EXPECT_EQ(sectionError([](json& s) { s["spacing"] = {0.1, 0}; }).field(), "captureGrid.spacing");
-  EXPECT_EQ(sectionError([](json& s) { s["spacing"] = {0.1, "NaN"}; }).field(), "captureGrid.spacing");
-  EXPECT_EQ(sectionError([](json& s) { s["distance"] = -2; }).field(), "captureGrid.distance");
-  EXPECT_EQ(sectionError([](json& s) { s["window"]["width"] = 0; }).field(), "captureGrid.window.width");
-  EXPECT_EQ(sectionError([](json& s) { s["image"]["height"] = 0; }).field(), "captureGrid.image.height");
-  EXPECT_EQ(sectionError([](json& s) { s["fov"] = 1; }).field(), "captureGrid.fov");
+  EXPECT_EQ(gridSectionError([](json& s) { s["columns"] = 0; }).field(), "captureGrid.columns");
+  EXPECT_EQ(gridSectionError([](json& s) { s["spacing"] = {0.1, 0}; }).field(), "captureGrid.spacing");
+  EXPECT_EQ(gridSectionError([](json& s) { s["spacing"] = {0.1, "NaN"}; }).field(), "captureGrid.spacing");
+  EXPECT_EQ(gridSectionError([](json& s) { s["distance"] = -2; }).field(), "captureGrid.distance");
+  EXPECT_EQ(gridSectionError([](json& s) { s["window"]["width"] = 0; }).field(), "captureGrid.window.width");
+  EXPECT_EQ(gridSectionError([](json& s) { s["image"]["height"] = 0; }).field(), "captureGrid.image.height");
+  EXPECT_EQ(gridSectionError([](json& s) { s["fov"] = 1; }).field(), "captureGrid.fov");
   EXPECT_THROW(makeCaptureGridParams(builtinDisplay("portrait"), test::testBounds()), ConfigError);
 }
 

@@ -20,9 +20,9 @@ namespace ht {
 namespace {
 
 #ifdef HT_SANITIZED_BUILD
-constexpr std::uint32_t kStride = 61;
+constexpr std::uint32_t kLensStride = 61;
 #else
-constexpr std::uint32_t kStride = 5;
+constexpr std::uint32_t kLensStride = 5;
 #endif
 
 using nlohmann::json;
@@ -101,7 +101,7 @@ TEST(IntegralModel, ApertureSamplesCollimatedAtFocus) {
   }
 }
 
-void measure(const DisplayConfig& config, double& maxAngle, double& maxOrigin, double& sceneScale) {
+void measureIntegral(const DisplayConfig& config, double& maxAngle, double& maxOrigin, double& sceneScale) {
   const Bounds3 bounds = test::testBounds();
   const gpu_shared::IntegralParams p = makeIntegralParams(config, bounds);
   const IntegralReference reference(config, bounds);
@@ -114,8 +114,8 @@ void measure(const DisplayConfig& config, double& maxAngle, double& maxOrigin, d
     maxAngle = std::max(maxAngle, test::angleBetween(glm::dvec3(d), r.dir));
     maxOrigin = std::max(maxOrigin, glm::length(glm::dvec3(o) - r.origin));
   };
-  for (std::uint32_t y = 0; y < c.panelHeight; y += kStride)
-    for (std::uint32_t x = 0; x < c.panelWidth; x += kStride) {
+  for (std::uint32_t y = 0; y < c.panelHeight; y += kLensStride)
+    for (std::uint32_t x = 0; x < c.panelWidth; x += kLensStride) {
       const glm::vec2 xi(float((x * 7u) % 10u) / 10.0f + 0.05f, float((y * 3u) % 10u) / 10.0f + 0.05f);
       check(x, y, (x + y) % 4 == 3 ? kWhole : (x + y) % 4, xi);
     }
@@ -136,7 +136,7 @@ TEST(IntegralModel, FloatMatchesDoubleReference) {
   for (const DisplayConfig& config : {builtinDisplay("integral-15-4k"), eightK, rotated, smallPanel(),
                                       withSampling(smallPanel(), LensSampling::Centre)}) {
     double maxAngle = 0.0, maxOrigin = 0.0, sceneScale = 0.0;
-    measure(config, maxAngle, maxOrigin, sceneScale);
+    measureIntegral(config, maxAngle, maxOrigin, sceneScale);
     std::printf("integral %s %ux%u rot %g %s float vs double: max angle %.3g rad, max origin %.3g (scene scale %.3g)\n",
                 config.name.c_str(), config.integral->panelWidth, config.integral->panelHeight,
                 config.integral->lensRotationDeg,
@@ -168,7 +168,7 @@ json validSection() {
                          "focalLength": 2, "viewerDistance": 500})");
 }
 
-ConfigError sectionError(const std::function<void(json&)>& edit) {
+ConfigError integralSectionError(const std::function<void(json&)>& edit) {
   json config = {{"model", "integral"}, {"integral", validSection()}};
   edit(config["integral"]);
   try {
@@ -191,20 +191,20 @@ TEST(IntegralConfig, ParsesAndDefaults) {
 }
 
 TEST(IntegralConfig, BadValuesRejected) {
-  EXPECT_EQ(sectionError([](json& s) { s["gap"] = 0; }).field(), "integral.gap");
-  EXPECT_EQ(sectionError([](json& s) { s["gap"] = -1; }).field(), "integral.gap");
-  EXPECT_EQ(sectionError([](json& s) { s["lensPitch"] = 0; }).field(), "integral.lensPitch");
-  EXPECT_EQ(sectionError([](json& s) { s["lensPitch"] = -0.5; }).field(), "integral.lensPitch");
-  EXPECT_EQ(sectionError([](json& s) { s["focalLength"] = 0; }).field(), "integral.focalLength");
-  EXPECT_EQ(sectionError([](json& s) { s["pixelPitch"] = "NaN"; }).field(), "integral.pixelPitch");
-  EXPECT_EQ(sectionError([](json& s) { s["viewerDistance"] = std::nan(""); }).field(), "integral.viewerDistance");
-  EXPECT_EQ(sectionError([](json& s) { s["frontPlane"] = 0; }).field(), "integral.frontPlane");
-  EXPECT_EQ(sectionError([](json& s) { s["frontPlane"] = 501; }).field(), "integral.frontPlane");
-  EXPECT_EQ(sectionError([](json& s) { s["panelWidth"] = 0; }).field(), "integral.panelWidth");
-  EXPECT_EQ(sectionError([](json& s) { s["lensOffset"] = {0, "x"}; }).field(), "integral.lensOffset");
-  EXPECT_EQ(sectionError([](json& s) { s["sampling"] = "average"; }).field(), "integral.sampling");
-  EXPECT_EQ(sectionError([](json& s) { s["lensPitchh"] = 1; }).field(), "integral.lensPitchh");
-  EXPECT_EQ(sectionError([](json& s) { s.erase("gap"); }).field(), "integral.gap");
+  EXPECT_EQ(integralSectionError([](json& s) { s["gap"] = 0; }).field(), "integral.gap");
+  EXPECT_EQ(integralSectionError([](json& s) { s["gap"] = -1; }).field(), "integral.gap");
+  EXPECT_EQ(integralSectionError([](json& s) { s["lensPitch"] = 0; }).field(), "integral.lensPitch");
+  EXPECT_EQ(integralSectionError([](json& s) { s["lensPitch"] = -0.5; }).field(), "integral.lensPitch");
+  EXPECT_EQ(integralSectionError([](json& s) { s["focalLength"] = 0; }).field(), "integral.focalLength");
+  EXPECT_EQ(integralSectionError([](json& s) { s["pixelPitch"] = "NaN"; }).field(), "integral.pixelPitch");
+  EXPECT_EQ(integralSectionError([](json& s) { s["viewerDistance"] = std::nan(""); }).field(), "integral.viewerDistance");
+  EXPECT_EQ(integralSectionError([](json& s) { s["frontPlane"] = 0; }).field(), "integral.frontPlane");
+  EXPECT_EQ(integralSectionError([](json& s) { s["frontPlane"] = 501; }).field(), "integral.frontPlane");
+  EXPECT_EQ(integralSectionError([](json& s) { s["panelWidth"] = 0; }).field(), "integral.panelWidth");
+  EXPECT_EQ(integralSectionError([](json& s) { s["lensOffset"] = {0, "x"}; }).field(), "integral.lensOffset");
+  EXPECT_EQ(integralSectionError([](json& s) { s["sampling"] = "average"; }).field(), "integral.sampling");
+  EXPECT_EQ(integralSectionError([](json& s) { s["lensPitchh"] = 1; }).field(), "integral.lensPitchh");
+  EXPECT_EQ(integralSectionError([](json& s) { s.erase("gap"); }).field(), "integral.gap");
   EXPECT_THROW(makeIntegralParams(builtinDisplay("portrait"), test::testBounds()), ConfigError);
 }
 

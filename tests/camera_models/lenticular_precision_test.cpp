@@ -32,7 +32,7 @@ struct ErrorStats {
 
 // Visits every sample of a panel region; `Visit` is called as visit(Sample).
 template <class SampleSource>
-ErrorStats measure(const DisplayConfig& config, const Bounds3& bounds, const SampleSource& forEachSample) {
+ErrorStats measureErrors(const DisplayConfig& config, const Bounds3& bounds, const SampleSource& forEachSample) {
   const gpu_shared::LenticularParams p = makeLenticularParams(config, bounds);
   const LenticularReference reference(config, bounds);
   ErrorStats stats;
@@ -113,7 +113,7 @@ constexpr double kOriginBoundOfScale = 1e-6;
 template <class SampleSource>
 void expectWithinBounds(const char* what, const DisplayConfig& config, const SampleSource& samples) {
   const Bounds3 bounds = test::testBounds();
-  const ErrorStats stats = measure(config, bounds, samples);
+  const ErrorStats stats = measureErrors(config, bounds, samples);
   const LenticularCamera camera = resolveLenticularCamera(config, bounds);
   const double originScale = glm::length(camera.target) + camera.focalDistance;
   report(what, stats, originScale);

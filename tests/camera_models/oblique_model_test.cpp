@@ -20,9 +20,9 @@ namespace ht {
 namespace {
 
 #ifdef HT_SANITIZED_BUILD
-constexpr std::uint32_t kStride = 7;
+constexpr std::uint32_t kObliqueStride = 7;
 #else
-constexpr std::uint32_t kStride = 1;
+constexpr std::uint32_t kObliqueStride = 1;
 #endif
 
 constexpr double kMaxAngleError = 2e-6;        // rad
@@ -86,8 +86,8 @@ TEST(ObliqueModel, FloatMatchesDoubleOverWholeImages) {
   const glm::vec2 xiMax(std::nextafter(1.0f, 0.0f));
   for (std::uint32_t view = 0; view < 81; ++view) {
     const bool whole = view == 0 || view == 40 || view == 80 || view == 8 || view == 72;
-    for (std::uint32_t y = 0; y < 512; y += whole ? kStride : 37) {
-      for (std::uint32_t x = 0; x < 512; x += whole ? kStride : 37) {
+    for (std::uint32_t y = 0; y < 512; y += whole ? kObliqueStride : 37) {
+      for (std::uint32_t x = 0; x < 512; x += whole ? kObliqueStride : 37) {
         const glm::vec2 xi(uniform(rng), uniform(rng));
         err.add(floatRay(p, x, y, view, xi), ref.ray(x, y, view, glm::dvec2(xi)));
         err.add(floatRay(p, x, y, view, glm::vec2(0.5f)), ref.ray(x, y, view, glm::dvec2(0.5)));
@@ -119,7 +119,7 @@ TEST(ObliqueModel, FloatMatchesDoubleOnEightKImage) {
   std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
   const glm::vec2 xiMax(std::nextafter(1.0f, 0.0f));
   for (std::uint32_t view : {0u, 15u, 100u, 176u, 191u}) {
-    for (std::uint32_t k = 0; k < 8192; k += 3 * kStride) {
+    for (std::uint32_t k = 0; k < 8192; k += 3 * kObliqueStride) {
       for (auto [x, y] : {std::pair{k, 0u}, {k, 8191u}, {0u, k}, {8191u, k}, {k, k}, {8191u - k, k}, {k, 4097u}}) {
         const glm::vec2 xi(uniform(rng), uniform(rng));
         err.add(floatRay(p, x, y, view, xi), ref.ray(x, y, view, glm::dvec2(xi)));

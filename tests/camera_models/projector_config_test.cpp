@@ -38,7 +38,7 @@ ConfigError errorOf(const json& config) {
 }
 
 // The config with `edit` applied to its projectorArray section.
-ConfigError sectionError(const std::function<void(json&)>& edit) {
+ConfigError projectorSectionError(const std::function<void(json&)>& edit) {
   json config = validConfig();
   edit(config["projectorArray"]);
   return errorOf(config);
@@ -72,30 +72,30 @@ TEST(ProjectorConfig, ShippedWallAndFixtureLoad) {
 
 TEST(ProjectorConfig, ProjectorInFrontOfScreen) {
   for (double z : {0.0, 10.0}) {
-    ConfigError e = sectionError([&](json& s) { s["projectors"][1]["position"] = {0, 0, z}; });
+    ConfigError e = projectorSectionError([&](json& s) { s["projectors"][1]["position"] = {0, 0, z}; });
     EXPECT_EQ(e.field(), "projectorArray.projectors[1].position");
     EXPECT_THAT(e.expected(), HasSubstr("z < 0"));
   }
 }
 
 TEST(ProjectorConfig, ZeroOrNegativeSizes) {
-  EXPECT_EQ(sectionError([](json& s) { s["screen"]["width"] = 0; }).field(), "projectorArray.screen.width");
-  EXPECT_EQ(sectionError([](json& s) { s["screen"]["height"] = -600; }).field(), "projectorArray.screen.height");
-  EXPECT_EQ(sectionError([](json& s) { s["observerDistance"] = 0; }).field(), "projectorArray.observerDistance");
-  EXPECT_EQ(sectionError([](json& s) { s["observerDistance"] = -1; }).field(), "projectorArray.observerDistance");
-  EXPECT_EQ(sectionError([](json& s) { s["image"]["width"] = 0; }).field(), "projectorArray.image.width");
-  EXPECT_EQ(sectionError([](json& s) { s["projectors"][1]["height"] = 0; }).field(),
+  EXPECT_EQ(projectorSectionError([](json& s) { s["screen"]["width"] = 0; }).field(), "projectorArray.screen.width");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["screen"]["height"] = -600; }).field(), "projectorArray.screen.height");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["observerDistance"] = 0; }).field(), "projectorArray.observerDistance");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["observerDistance"] = -1; }).field(), "projectorArray.observerDistance");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["image"]["width"] = 0; }).field(), "projectorArray.image.width");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["projectors"][1]["height"] = 0; }).field(),
             "projectorArray.projectors[1].height");
-  EXPECT_EQ(sectionError([](json& s) { s["angularScattering"] = -0.1; }).field(), "projectorArray.angularScattering");
-  EXPECT_EQ(sectionError([](json& s) { s["projectors"] = json::array(); }).field(), "projectorArray.projectors");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["angularScattering"] = -0.1; }).field(), "projectorArray.angularScattering");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["projectors"] = json::array(); }).field(), "projectorArray.projectors");
 }
 
 TEST(ProjectorConfig, NonFiniteNumbers) {
   // JSON has no NaN literal: a NaN arrives as a string or an overflowing number.
-  EXPECT_EQ(sectionError([](json& s) { s["observerDistance"] = "NaN"; }).field(), "projectorArray.observerDistance");
-  EXPECT_EQ(sectionError([](json& s) { s["observerHeight"] = std::nan(""); }).field(),
+  EXPECT_EQ(projectorSectionError([](json& s) { s["observerDistance"] = "NaN"; }).field(), "projectorArray.observerDistance");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["observerHeight"] = std::nan(""); }).field(),
             "projectorArray.observerHeight");  // dumps as null
-  EXPECT_EQ(sectionError([](json& s) { s["projectors"][0]["position"] = {0, "NaN", -10}; }).field(),
+  EXPECT_EQ(projectorSectionError([](json& s) { s["projectors"][0]["position"] = {0, "NaN", -10}; }).field(),
             "projectorArray.projectors[0].position");
   json config = validConfig();
   std::string text = config.dump();
@@ -104,7 +104,7 @@ TEST(ProjectorConfig, NonFiniteNumbers) {
 }
 
 TEST(ProjectorConfig, BadHomographies) {
-  const auto withHomography = [](json h) { return sectionError([&](json& s) { s["projectors"][0]["homography"] = h; }); };
+  const auto withHomography = [](json h) { return projectorSectionError([&](json& s) { s["projectors"][0]["homography"] = h; }); };
   const std::string field = "projectorArray.projectors[0].homography";
   EXPECT_EQ(withHomography(json::parse("[[1,0,0],[2,0,0],[0,0,1]]")).field(), field);           // singular
   EXPECT_EQ(withHomography(json::parse("[[1,0,0],[0,1,0],[0.01,0,-1]]")).field(), field);       // w <= 0 at a corner
@@ -113,10 +113,10 @@ TEST(ProjectorConfig, BadHomographies) {
 }
 
 TEST(ProjectorConfig, StructuralErrors) {
-  EXPECT_EQ(sectionError([](json& s) { s["observerDistanse"] = 1; }).field(), "projectorArray.observerDistanse");
-  EXPECT_EQ(sectionError([](json& s) { s["projectors"][0]["pos"] = {0, 0, -1}; }).field(),
+  EXPECT_EQ(projectorSectionError([](json& s) { s["observerDistanse"] = 1; }).field(), "projectorArray.observerDistanse");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["projectors"][0]["pos"] = {0, 0, -1}; }).field(),
             "projectorArray.projectors[0].pos");
-  EXPECT_EQ(sectionError([](json& s) { s.erase("image"); }).field(), "projectorArray.projectors[0].width");
+  EXPECT_EQ(projectorSectionError([](json& s) { s.erase("image"); }).field(), "projectorArray.projectors[0].width");
   json tooMany = validConfig();
   for (int k = 0; k < 128; ++k) tooMany["projectorArray"]["projectors"].push_back({{"position", {k, 0, -100}}});
   EXPECT_EQ(errorOf(tooMany).field(), "projectorArray.projectors");

@@ -17,9 +17,9 @@ namespace ht {
 namespace {
 
 #ifdef HT_SANITIZED_BUILD
-constexpr std::uint32_t kStride = 41;
+constexpr std::uint32_t kProjectorStride = 41;
 #else
-constexpr std::uint32_t kStride = 3;
+constexpr std::uint32_t kProjectorStride = 3;
 #endif
 
 DisplayConfig smallArray() { return test::loadFixture("display_projector_small.json"); }
@@ -123,7 +123,7 @@ TEST(ProjectorModel, AutoScatteringIsOneAndAHalfCentralSpacings) {
 }
 
 // Float vs double over whole projector images of the 70-projector wall and of the calibrated fixture, corners
-// included (every kStride-th pixel plus all four corner pixels at xi = 0 and xi -> 1).
+// included (every kProjectorStride-th pixel plus all four corner pixels at xi = 0 and xi -> 1).
 void measureFloatAgainstReference(const DisplayConfig& config, double& maxAngle, double& maxOrigin,
                                   double& sceneScale) {
   const Bounds3 bounds = test::testBounds();
@@ -140,8 +140,8 @@ void measureFloatAgainstReference(const DisplayConfig& config, double& maxAngle,
   const ProjectorArrayConfig& a = *config.projectorArray;
   for (std::uint32_t k = 0; k < a.projectors.size(); k += (a.projectors.size() > 8 ? 3 : 1)) {
     const std::uint32_t w = a.projectors[k].width, h = a.projectors[k].height;
-    for (std::uint32_t y = 0; y < h; y += kStride)
-      for (std::uint32_t x = 0; x < w; x += kStride) check(x, y, k, glm::vec2(0.5f));
+    for (std::uint32_t y = 0; y < h; y += kProjectorStride)
+      for (std::uint32_t x = 0; x < w; x += kProjectorStride) check(x, y, k, glm::vec2(0.5f));
     for (std::uint32_t x : {0u, w - 1})
       for (std::uint32_t y : {0u, h - 1})
         for (glm::vec2 xi : {glm::vec2(0.0f), glm::vec2(0.9999999f)}) check(x, y, k, xi);

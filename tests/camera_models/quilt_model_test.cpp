@@ -18,9 +18,9 @@ namespace ht {
 namespace {
 
 #ifdef HT_SANITIZED_BUILD
-constexpr std::uint32_t kStride = 37;
+constexpr std::uint32_t kQuiltStride = 37;
 #else
-constexpr std::uint32_t kStride = 1;
+constexpr std::uint32_t kQuiltStride = 1;
 #endif
 
 // Quilt view i, tile pixel (x, y) at xi = 0.5, equals the lenticular ray at phase t = (i + 0.5)/N through the same
@@ -83,8 +83,8 @@ TEST(QuiltModel, FloatMatchesDoubleReferenceEightK) {
     maxOrigin = std::max(maxOrigin, glm::length(glm::dvec3(o) - r.origin));
   };
   for (std::uint32_t view : {0u, layout.views() / 2, layout.views() - 1}) {
-    for (std::uint32_t y = 0; y < layout.tileHeight; y += kStride)
-      for (std::uint32_t x = 0; x < layout.tileWidth; x += kStride) check(x, y, view, glm::vec2(0.5f));
+    for (std::uint32_t y = 0; y < layout.tileHeight; y += kQuiltStride)
+      for (std::uint32_t x = 0; x < layout.tileWidth; x += kQuiltStride) check(x, y, view, glm::vec2(0.5f));
     for (std::uint32_t x : {0u, layout.tileWidth - 1})
       for (std::uint32_t y : {0u, layout.tileHeight - 1})
         for (glm::vec2 xi : {glm::vec2(0.0f), glm::vec2(0.9999999f)}) check(x, y, view, xi);

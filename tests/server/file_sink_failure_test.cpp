@@ -18,7 +18,7 @@
 namespace ht::server::test {
 namespace {
 
-std::string readAll(const std::filesystem::path& file) {
+std::string readSinkFile(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
@@ -70,7 +70,7 @@ TEST_F(FileSinkFailureTest, EnospcMidWriteIsDiskFullAndLeavesNothingPartial) {
   EXPECT_THROW(sink.writeFile("frame.png", bytes_), DiskFull);
   EXPECT_THROW(sink.writeFile("new.png", bytes_), DiskFull);
   EXPECT_EQ(entries(root()), std::vector<std::string>{"frame.png"});  // no temp file, no new.png
-  EXPECT_EQ(readAll(root() / "frame.png"), "old contents");
+  EXPECT_EQ(readSinkFile(root() / "frame.png"), "old contents");
   EXPECT_EQ(codeOf([&] { sink.writeFile("x.png", bytes_); }), grpc::StatusCode::RESOURCE_EXHAUSTED);
 }
 
@@ -88,7 +88,7 @@ TEST_F(FileSinkFailureTest, EdquotAtFsyncIsDiskFull) {
     EXPECT_NE(std::string(e.what()).find("frame.png"), std::string::npos) << e.what();
   }
   EXPECT_EQ(entries(root()), std::vector<std::string>{"frame.png"});
-  EXPECT_EQ(readAll(root() / "frame.png"), "old contents");
+  EXPECT_EQ(readSinkFile(root() / "frame.png"), "old contents");
 }
 
 TEST_F(FileSinkFailureTest, OtherWriteErrorsAreInternalAndAlsoLeaveNothing) {
