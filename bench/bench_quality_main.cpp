@@ -1,12 +1,14 @@
 // bench_quality_main.cpp - holotrace-bench-quality: run time vs error of the direct lenticular path and the quilt
 // path per display (issue 5; method in quality_options.cpp's help text, optics.md §8 "quilt path vs direct").
 //
-// Every render is timed once (frames take seconds on lavapipe, so the run-to-run spread is small against the
-// spp steps); each camera model is warmed up first on a 96x128 copy of the display (lavapipe JIT-compiles at the
-// first dispatch).
+// Every render is timed once per run; --runs N renders every point N times in turn and the comparison uses the
+// medians of same-run ratios (single frames on a shared 2-core host are off by 10-15 %, which moves an
+// interpolated equal-time gain by +-1 dB, docs/BENCHMARKS.md). Each camera model is warmed up first on a 96x128 copy
+// of the display (lavapipe JIT-compiles at the first dispatch).
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -38,6 +40,13 @@ struct Context {
   gpu::Renderer& renderer;
   const Scene& scene;
   const QualityOptions& options;
+};
+
+// A render of the first run that the later timing runs (--runs) repeat, and the points it times (indices into
+// DisplayQuality::points: one, or a quilt's three view filters).
+struct Retime {
+  std::function<double()> renderMs;
+  std::vector<std::size_t> points;
 };
 
 gpu::RenderSettings settings(const QualityOptions& o, std::uint32_t spp, std::uint32_t seed) {
@@ -111,19 +120,27 @@ std::vector<float> renderReference(const Context& c, const gpu::FrameCamera& cam
   return reference;
 }
 
+// Appends a measured point, its first run's time and how to time it again.
+void addPoint(DisplayQuality& d, std::vector<Retime>& retimes, QualityPoint p, std::function<double()> renderMs) {
+  p.runMs = {p.renderMs};
+  d.points.push_back(std::move(p));
+  retimes.push_back({std::move(renderMs), {d.points.size() - 1}});
+}
+
 void measureDirect(const Context& c, const gpu::FrameCamera& camera, const std::vector<float>& reference,
-                   DisplayQuality& d) {
+                   DisplayQuality& d, std::vector<Retime>& retimes) {
   for (std::uint32_t spp : c.options.directSpp) {
     std::cout << "  direct spp " << spp << "..." << std::endl;
-    const auto frame = renderAndPrintStages(c, camera, settings(c.options, spp, 0));
+    const gpu::RenderSettings s = settings(c.options, spp, 0);
+    const auto frame = renderAndPrintStages(c, camera, s);
     QualityPoint p{"direct", spp, "", "", frame.totalMs, stageSum(frame), 0.0, {}, 0.0};
     scoreAgainst(p, frame.rgba, reference, d);
-    d.points.push_back(p);
+    addPoint(d, retimes, p, [&c, &camera, s] { return c.renderer.render(camera, s).totalMs; });
   }
 }
 
 void measureAdaptive(const Context& c, const gpu::FrameCamera& camera, const std::vector<float>& reference,
-                     DisplayQuality& d) {
+                     DisplayQuality& d, std::vector<Retime>& retimes) {
   for (const AdaptivePoint& a : c.options.adaptive) {
     std::cout << "  adaptive spp " << a.baseSpp << " + " << a.refineSpp << " at contrast >= " << a.contrast << "..."
               << std::endl;
@@ -135,20 +152,23 @@ void measureAdaptive(const Context& c, const gpu::FrameCamera& camera, const std
     QualityPoint p{"adaptive", a.baseSpp, "", "", frame.totalMs, stageSum(frame), 0.0, {}, 0.0,
                    a.refineSpp, a.contrast, double(frame.refinedTargets) / targets};
     scoreAgainst(p, frame.rgba, reference, d);
-    d.points.push_back(p);
+    addPoint(d, retimes, p, [&c, &camera, s] { return c.renderer.render(camera, s).totalMs; });
   }
 }
 
 void measureQuilt(const Context& c, const DisplayConfig& display, const QuiltLayout& layout,
-                  const std::vector<std::uint32_t>& sppList, const std::vector<float>& reference, DisplayQuality& d) {
+                  const std::vector<std::uint32_t>& sppList, const std::vector<float>& reference, DisplayQuality& d,
+                  std::vector<Retime>& retimes) {
   const auto lenticular = makeLenticularParams(display, c.scene.bounds());
   const auto params = makeQuiltParams(display, c.scene.bounds(), layout);
   const std::string name = std::to_string(layout.columns) + "x" + std::to_string(layout.rows) + " " +
                            std::to_string(layout.tileWidth) + "x" + std::to_string(layout.tileHeight);
   for (std::uint32_t spp : sppList) {
     std::cout << "  quilt " << name << " spp " << spp << "..." << std::endl;
-    const auto frame = c.renderer.renderQuilt(params, settings(c.options, spp, 0));
+    const gpu::RenderSettings s = settings(c.options, spp, 0);
+    const auto frame = c.renderer.renderQuilt(params, s);
     const QuiltViews views{frame.width, frame.height, frame.views, frame.rgba};
+    Retime retime{[&c, params, s] { return c.renderer.renderQuilt(params, s).totalMs; }, {}};
     for (QuiltViewFilter filter : kFilters) {
       const auto start = Clock::now();
       const auto panel = interleaveQuilt(views, lenticular, filter);
@@ -156,7 +176,23 @@ void measureQuilt(const Context& c, const DisplayConfig& display, const QuiltLay
       QualityPoint p{"quilt", spp, name, std::string(quiltViewFilterName(filter)), frame.totalMs, stageSum(frame),
                      interleaveMs, {}, 0.0};
       scoreAgainst(p, panel, reference, d);
+      p.runMs = {p.renderMs};
       d.points.push_back(p);
+      retime.points.push_back(d.points.size() - 1);
+    }
+    retimes.push_back(std::move(retime));
+  }
+}
+
+// Timing runs 2 .. --runs: every render of the first run again, in the same order, so that each run's ratios share
+// one state of the host. Frames are deterministic (same seed, same frame): their scores stay the first run's.
+void timeMoreRuns(const Context& c, const std::vector<Retime>& retimes, DisplayQuality& d) {
+  d.runs = c.options.runs;
+  for (std::uint32_t run = 2; run <= c.options.runs; ++run) {
+    std::cout << "  timing run " << run << " of " << c.options.runs << "..." << std::endl;
+    for (const Retime& r : retimes) {
+      const double ms = r.renderMs();
+      for (std::size_t i : r.points) d.points[i].runMs.push_back(ms);
     }
   }
 }
@@ -175,16 +211,20 @@ DisplayQuality measureDisplay(const Context& c, const std::string& spec) {
   DisplayQuality d;
   d.display = spec;
   const std::vector<float> reference = renderReference(c, camera, d);
-  measureDirect(c, camera, reference, d);
-  measureAdaptive(c, camera, reference, d);
-  if (!display.calibration) return d;  // projector arrays, integral panels ...: no quilt path to compare with
-  QuiltLayout layout = defaultQuiltLayout(display);
-  if (c.options.quiltSize) {
-    layout = makeQuiltLayout(layout.columns, layout.rows, c.options.quiltSize->first, c.options.quiltSize->second,
-                             layout.aspect);
+  std::vector<Retime> retimes;
+  measureDirect(c, camera, reference, d, retimes);
+  measureAdaptive(c, camera, reference, d, retimes);
+  if (display.calibration) {  // projector arrays, integral panels ...: no quilt path to compare with
+    QuiltLayout layout = defaultQuiltLayout(display);
+    if (c.options.quiltSize) {
+      layout = makeQuiltLayout(layout.columns, layout.rows, c.options.quiltSize->first, c.options.quiltSize->second,
+                               layout.aspect);
+    }
+    measureQuilt(c, display, layout, c.options.quiltSpp, reference, d, retimes);
+    measureQuilt(c, display, scaledLayout(layout, c.options.quiltScale), c.options.quiltScaledSpp, reference, d,
+                 retimes);
   }
-  measureQuilt(c, display, layout, c.options.quiltSpp, reference, d);
-  measureQuilt(c, display, scaledLayout(layout, c.options.quiltScale), c.options.quiltScaledSpp, reference, d);
+  timeMoreRuns(c, retimes, d);
   return d;
 }
 

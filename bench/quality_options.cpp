@@ -14,7 +14,7 @@ namespace {
 
 const char* const kCommand = "holotrace-bench-quality";
 
-const std::array<cli::OptionSpec, 15> kSpecs = {{
+const std::array<cli::OptionSpec, 16> kSpecs = {{
     {"--displays", "", "LIST", "comma-separated displays of any model (default builtin:portrait,builtin:gen3-16-landscape)"},
     {"--scene", "", "SPEC", "scene (default builtin:plain)"},
     {"--ref-spp", "", "N", "reference spp, even: two independent halves of N/2 (default 16)"},
@@ -25,6 +25,7 @@ const std::array<cli::OptionSpec, 15> kSpecs = {{
     {"--quilt-scale", "", "X", "pixel-count factor of the scaled quilt, tiles grow by sqrt(X) (default 2)"},
     {"--quilt-size", "", "WxH", "standard quilt texture size (default: the device's, quilt_layout.h); views stay cols x rows"},
     {"--depth", "", "N", "specular bounces, 0-32 (default 4)"},
+    {"--runs", "", "N", "timing runs, 1-99: every point rendered N times in turn, times = medians of same-run ratios to each quilt (default 1)"},
     {"--quick", "", "", "smoke test: --ref-spp 4 --spp 1,2 --adaptive 1:4:0.08 --quilt-spp 1 --quilt-scaled-spp none (explicit options win)"},
     {"--device", "", "N", "Vulkan device index (default: automatic)"},
     {"--csv", "", "PATH", "write one row per measured point"},
@@ -124,6 +125,7 @@ std::optional<QualityOptions> parseQualityOptions(std::span<const std::string> a
   o.quiltScale = parsed.numberValue("--quilt-scale", 0.25, 16.0).value_or(o.quiltScale);
   o.quiltSize = quiltSizeValue(parsed);
   o.maxDepth = parsed.unsignedValue("--depth", 0, 32).value_or(o.maxDepth);
+  o.runs = parsed.unsignedValue("--runs", 1, 99).value_or(o.runs);
   if (o.directSpp.empty()) throw UsageError(cli::usageMessage(kCommand, "--spp is empty"));
   if (auto device = parsed.unsignedValue("--device", 0, 255)) o.deviceIndex = int(*device);
   o.csvPath = parsed.text("--csv");

@@ -26,6 +26,7 @@ struct QualityOptions {
   std::optional<std::pair<std::uint32_t, std::uint32_t>> quiltSize;  // standard quilt texture size override
   double quiltScale = 2.0;                         // pixel-count factor of the scaled quilt (tiles x sqrt(scale))
   std::uint32_t maxDepth = 4;
+  std::uint32_t runs = 1;                          // timing runs of every point (frames are deterministic: scored once)
   int deviceIndex = -1;
   std::optional<std::string> csvPath, summaryCsvPath, jsonPath;
 };

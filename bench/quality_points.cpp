@@ -13,6 +13,12 @@
 namespace ht::bench {
 namespace {
 
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
 std::string fixed(double value, int digits) {
   char text[64];
   std::snprintf(text, sizeof text, "%.*f", digits, value);
@@ -79,27 +85,62 @@ std::optional<double> timeAtPsnr(const std::vector<const QualityPoint*>& curve, 
   return std::nullopt;
 }
 
+// The points with every time on quilt q's time scale: the median over the runs of the point's time / q's time in
+// the same run, times q's median time. One run (or a point timed fewer times): its own time.
+std::vector<QualityPoint> onQuiltScale(const std::vector<QualityPoint>& points, const QualityPoint& q) {
+  std::vector<QualityPoint> scaled = points;
+  for (QualityPoint& p : scaled) {
+    if (p.runMs.size() < 2 || p.runMs.size() != q.runMs.size()) continue;
+    std::vector<double> ratios;
+    for (std::size_t r = 0; r < p.runMs.size(); ++r) ratios.push_back(p.runMs[r] / q.runMs[r]);
+    p.renderMs = median(ratios) * q.frameMs();
+    p.runMs.clear();
+  }
+  return scaled;
+}
+
+// The points as timed in run r alone.
+std::vector<QualityPoint> inRun(const std::vector<QualityPoint>& points, std::size_t r) {
+  std::vector<QualityPoint> run = points;
+  for (QualityPoint& p : run) {
+    if (r < p.runMs.size()) p.renderMs = p.runMs[r];
+    p.runMs.clear();
+  }
+  return run;
+}
+
+nlohmann::json optionalJson(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+
 nlohmann::json pointJson(const QualityPoint& p) {
   return {{"path", p.path}, {"spp", p.spp}, {"quilt", p.quilt}, {"filter", p.filter}, {"render_ms", p.renderMs},
           {"gpu_stage_ms", p.gpuMs}, {"interleave_cpu_ms", p.interleaveMs}, {"frame_ms", p.frameMs()},
           {"rmse", p.metrics.rmse}, {"psnr_db", p.metrics.psnrDb}, {"psnr_corrected_db", p.psnrCorrectedDb},
           {"ssim", p.metrics.ssim}, {"refine_spp", p.refineSpp}, {"refine_contrast", p.refineContrast},
-          {"refined_fraction", p.refinedFraction}};
+          {"refined_fraction", p.refinedFraction}, {"run_ms", p.runMs}};
 }
 
 }  // namespace
 
+double QualityPoint::frameMs() const { return runMs.size() > 1 ? median(runMs) : renderMs; }
+
 std::vector<EqualComparison> DisplayQuality::compare() const {
-  const auto curve = directCurve(points);
-  const auto adaptive = adaptiveCurve(points);
   std::vector<EqualComparison> out;
-  for (const QualityPoint& p : points) {
-    if (p.path != "quilt") continue;
-    EqualComparison c{&p, std::nullopt, std::nullopt, std::nullopt, std::nullopt};
-    if (auto psnr = psnrAtTime(curve, p.frameMs())) c.directGainDb = *psnr - p.psnrCorrectedDb;
-    if (auto ms = timeAtPsnr(curve, p.psnrCorrectedDb)) c.speedup = p.frameMs() / *ms;
-    if (auto psnr = psnrAtTime(adaptive, p.frameMs())) c.adaptiveGainDb = *psnr - p.psnrCorrectedDb;
-    if (auto ms = timeAtPsnr(adaptive, p.psnrCorrectedDb)) c.adaptiveSpeedup = p.frameMs() / *ms;
+  for (const QualityPoint& q : points) {
+    if (q.path != "quilt") continue;
+    const std::vector<QualityPoint> scaled = onQuiltScale(points, q);
+    const auto curve = directCurve(scaled);
+    const auto adaptive = adaptiveCurve(scaled);
+    EqualComparison c{&q, std::nullopt, std::nullopt, std::nullopt, std::nullopt, {}};
+    const double ms = q.frameMs(), psnr = q.psnrCorrectedDb;
+    if (auto at = psnrAtTime(curve, ms)) c.directGainDb = *at - psnr;
+    if (auto t = timeAtPsnr(curve, psnr)) c.speedup = ms / *t;
+    if (auto at = psnrAtTime(adaptive, ms)) c.adaptiveGainDb = *at - psnr;
+    if (auto t = timeAtPsnr(adaptive, psnr)) c.adaptiveSpeedup = ms / *t;
+    for (std::size_t r = 0; q.runMs.size() > 1 && r < q.runMs.size(); ++r) {
+      const std::vector<QualityPoint> run = inRun(points, r);
+      const auto at = psnrAtTime(adaptiveCurve(run), q.runMs[r]);
+      c.adaptiveGainDbEachRun.push_back(at ? std::optional<double>(*at - psnr) : std::nullopt);
+    }
     out.push_back(c);
   }
   return out;
@@ -110,7 +151,7 @@ void printQualityReport(std::ostream& out, const QualityReport& r) {
   for (const DisplayQuality& d : r.displays) {
     out << "\n" << d.display << " (" << d.panelWidth << "x" << d.panelHeight << "), reference spp " << d.refSpp
         << " (" << fixed(d.refMs / 1000, 1) << " s, own noise PSNR " << fixed(psnrFromMse(d.refNoiseMse), 2)
-        << " dB)\n";
+        << " dB)" << (d.runs > 1 ? ", frame ms = median of " + std::to_string(d.runs) + " runs" : "") << "\n";
     out << "  path      spp  quilt / refinement          filter        frame ms   RMSE     PSNR  PSNRcorr  SSIM\n";
     for (const QualityPoint& p : d.points) {
       char line[256];
@@ -129,7 +170,12 @@ void printQualityReport(std::ostream& out, const QualityReport& r) {
           << ", at equal PSNR " << (c.speedup ? fixed(*c.speedup, 2) + "x faster" : "n/a (not reached)")
           << "; adaptive at equal time "
           << gainText(c.adaptiveGainDb) << ", at equal PSNR "
-          << (c.adaptiveSpeedup ? fixed(*c.adaptiveSpeedup, 2) + "x faster" : "n/a (not reached)") << "\n";
+          << (c.adaptiveSpeedup ? fixed(*c.adaptiveSpeedup, 2) + "x faster" : "n/a (not reached)");
+      if (!c.adaptiveGainDbEachRun.empty()) {
+        out << "; adaptive at equal time in each run:";
+        for (const auto& gain : c.adaptiveGainDbEachRun) out << " " << (gain ? fixed(*gain, 2) : "n/a");
+      }
+      out << "\n";
     }
   }
 }
@@ -172,12 +218,16 @@ void writeQualityJson(const std::string& path, const QualityReport& r) {
     for (const QualityPoint& p : d.points) points.push_back(pointJson(p));
     for (const EqualComparison& c : d.compare()) {
       comparisons.push_back({{"quilt", c.quilt->quilt}, {"spp", c.quilt->spp}, {"filter", c.quilt->filter},
-                             {"direct_gain_db_at_equal_time", c.directGainDb ? nlohmann::json(*c.directGainDb) : nullptr},
-                             {"direct_speedup_at_equal_psnr", c.speedup ? nlohmann::json(*c.speedup) : nullptr},
-                             {"adaptive_gain_db_at_equal_time", c.adaptiveGainDb ? nlohmann::json(*c.adaptiveGainDb) : nullptr},
-                             {"adaptive_speedup_at_equal_psnr", c.adaptiveSpeedup ? nlohmann::json(*c.adaptiveSpeedup) : nullptr}});
+                             {"direct_gain_db_at_equal_time", optionalJson(c.directGainDb)},
+                             {"direct_speedup_at_equal_psnr", optionalJson(c.speedup)},
+                             {"adaptive_gain_db_at_equal_time", optionalJson(c.adaptiveGainDb)},
+                             {"adaptive_speedup_at_equal_psnr", optionalJson(c.adaptiveSpeedup)}});
+      nlohmann::json eachRun = nlohmann::json::array();
+      for (const auto& gain : c.adaptiveGainDbEachRun) eachRun.push_back(optionalJson(gain));
+      comparisons.back()["adaptive_gain_db_at_equal_time_each_run"] = eachRun;
     }
     displays.push_back({{"display", d.display}, {"panel", {d.panelWidth, d.panelHeight}}, {"ref_spp", d.refSpp},
+                        {"runs", d.runs},
                         {"ref_ms", d.refMs}, {"ref_noise_mse", d.refNoiseMse}, {"points", points},
                         {"comparisons", comparisons}});
   }

@@ -24,25 +24,31 @@ struct QualityPoint {
   std::uint32_t refineSpp = 0;   // adaptive points: spp of the refined targets
   double refineContrast = 0;     // adaptive points: contrast threshold
   double refinedFraction = 0;    // adaptive points: refined targets / all targets
-  double frameMs() const { return renderMs; }  // both paths: render wall time incl. readback
+  std::vector<double> runMs;     // render wall time of each timing run (--runs), in run order; [0] = renderMs
+  // Render wall time incl. readback, both paths: the median of the runs.
+  double frameMs() const;
 };
 
 // Direct and adaptive paths vs one quilt point: PSNR gain at the quilt's time, speed-up at the quilt's PSNR (nullopt
 // when the curve does not reach that far; both by linear interpolation in log2(time)). The adaptive curve is the
 // Pareto front (faster points first, each better than every faster one) of the adaptive and the direct points (a
-// direct frame is the adaptive path refining every target).
+// direct frame is the adaptive path refining every target). With several timing runs a point's time is the median of
+// its same-run ratios to the quilt's time, times the quilt's median (the host's drift between runs cancels), and the
+// adaptive gain is also given for each run on its own.
 struct EqualComparison {
   const QualityPoint* quilt = nullptr;
   std::optional<double> directGainDb;   // direct PSNR(corrected) at quilt time - quilt PSNR(corrected)
   std::optional<double> speedup;        // quilt time / direct time at the quilt's PSNR(corrected)
   std::optional<double> adaptiveGainDb;
   std::optional<double> adaptiveSpeedup;
+  std::vector<std::optional<double>> adaptiveGainDbEachRun;  // runs > 1 only
 };
 
 struct DisplayQuality {
   std::string display;
   std::uint32_t panelWidth = 0, panelHeight = 0;
   std::uint32_t refSpp = 0;
+  std::uint32_t runs = 1;  // timing runs of every point (--runs)
   double refMs = 0, refNoiseMse = 0;  // refNoiseMse = MSE(half A, half B) / 4, the reference's own noise
   std::vector<QualityPoint> points;
   std::vector<EqualComparison> compare() const;

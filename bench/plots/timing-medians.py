@@ -7,6 +7,9 @@ ratios is reported (with their range). Frames are deterministic (bit-identical f
 from the quality CSVs (--psnr, measured against a converged reference). The equal-time gain is read off the Pareto
 front of the adaptive and direct points, interpolated in log2(time) at ratio 1, as holotrace-bench-quality does.
 
+holotrace-bench-quality --runs N now does the same within one process (bench/quality_points.cpp); this script
+stays for timing runs made as separate processes (docs/bench/equal_time*/).
+
 Usage: timing-medians.py --psnr quality_adaptive.csv[,more.csv] run1.json run2.json ...
 Standard library only (Debian's python3).
 """

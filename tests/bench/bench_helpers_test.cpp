@@ -107,6 +107,28 @@ TEST(QualityComparison, DirectAndAdaptiveCurvesAgainstAQuiltPoint) {
   EXPECT_FALSE(d.compare()[0].directGainDb.has_value());
 }
 
+// Two timing runs, the second on a host twice as slow for the quilt: each point's time is the median of its same-run
+// ratios to the quilt times the quilt's median (1500 ms), and each run is also compared on its own.
+TEST(QualityComparison, SeveralRunsUseSameRunRatiosToTheQuilt) {
+  DisplayQuality d;
+  d.runs = 2;
+  d.points = {point("direct", 1, 500, 40), point("adaptive", 1, 900, 45, 4), point("quilt", 1, 1000, 41)};
+  d.points[0].runMs = {500, 1000};  // ratios 0.5, 0.5 -> 750 ms
+  d.points[1].runMs = {900, 2200};  // ratios 0.9, 1.1 -> 1500 ms, the quilt's time
+  d.points[2].runMs = {1000, 2000};
+  EXPECT_DOUBLE_EQ(d.points[1].frameMs(), 1550.0);  // its own median
+  EXPECT_DOUBLE_EQ(d.points[2].frameMs(), 1500.0);
+  const auto comparisons = d.compare();
+  ASSERT_EQ(comparisons.size(), 1u);
+  const EqualComparison& c = comparisons[0];
+  ASSERT_TRUE(c.adaptiveGainDb.has_value());
+  EXPECT_NEAR(*c.adaptiveGainDb, 45.0 - 41.0, 1e-9);
+  ASSERT_EQ(c.adaptiveGainDbEachRun.size(), 2u);
+  EXPECT_FALSE(c.adaptiveGainDbEachRun[0].has_value());  // run 1: the quilt (1000 ms) is slower than every point
+  ASSERT_TRUE(c.adaptiveGainDbEachRun[1].has_value());   // run 2: 2000 ms between 1000 and 2200 ms in log2 time
+  EXPECT_NEAR(*c.adaptiveGainDbEachRun[1], 40.0 + 5.0 * (1.0 / std::log2(2.2)) - 41.0, 1e-9);
+}
+
 TEST(EmbreeBvhBuild, EveryTriangleSitsInExactlyOneLeafInsideItsBounds) {
   const Scene scene = loadScene("builtin:sphere");
   const EmbreeBvhBuild build = buildEmbreeBvh(scene.positions, scene.triangles, 4);
