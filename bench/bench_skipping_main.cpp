@@ -136,8 +136,6 @@ SceneSkip measureScene(gpu::VulkanContext& context, const std::string& spec, con
   return s;
 }
 
-double median(std::vector<double> v) { return TimingSeries{std::move(v)}.medianMs(); }
-
 void print(const std::vector<SceneSkip>& results) {
   for (const SceneSkip& s : results) {
     std::cout << "\n" << s.scene << " (features: " << s.features << ")\n";

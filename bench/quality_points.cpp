@@ -9,15 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/output_file.h"
+#include "bench/timing_series.h"
 
 namespace ht::bench {
 namespace {
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 std::string fixed(double value, int digits) {
   char text[64];

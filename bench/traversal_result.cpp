@@ -43,10 +43,6 @@ nlohmann::json setJson(const SetThroughput& s) {
 
 }  // namespace
 
-double median(std::vector<double> values) {
-  return TimingSeries{std::move(values)}.medianMs();
-}
-
 void printTraversalReport(std::ostream& out, const TraversalReport& r) {
   out << "device: " << r.device << ", Embree " << r.embreeVersion << " (" << r.threads << " threads), " << r.size
       << "^2 primary rays, medians of " << r.runs << " runs\n";

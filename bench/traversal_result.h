@@ -42,7 +42,6 @@ struct TraversalReport {
   std::vector<MeshResult> meshes;
 };
 
-double median(std::vector<double> values);
 void printTraversalReport(std::ostream& out, const TraversalReport& report);
 void writeTraversalCsv(const std::string& prefix, const TraversalReport& report);  // throws IoError
 void writeTraversalJson(const std::string& path, const TraversalReport& report);   // throws IoError
