@@ -45,6 +45,7 @@ struct Context {
 // A render of the first run that the later timing runs (--runs) repeat, and the points it times (indices into
 // DisplayQuality::points: one, or a quilt's three view filters).
 struct Retime {
+  explicit Retime(std::function<double()> render) : renderMs(std::move(render)) {}
   std::function<double()> renderMs;
   std::vector<std::size_t> points;
 };
@@ -120,11 +121,11 @@ std::vector<float> renderReference(const Context& c, const gpu::FrameCamera& cam
   return reference;
 }
 
-// Appends a measured point, its first run's time and how to time it again.
-void addPoint(DisplayQuality& d, std::vector<Retime>& retimes, QualityPoint p, std::function<double()> renderMs) {
+// Appends a measured point with its first run's time, timed again later by `retime`.
+void addPoint(DisplayQuality& d, Retime& retime, QualityPoint p) {
   p.runMs = {p.renderMs};
   d.points.push_back(std::move(p));
-  retimes.push_back({std::move(renderMs), {d.points.size() - 1}});
+  retime.points.push_back(d.points.size() - 1);
 }
 
 void measureDirect(const Context& c, const gpu::FrameCamera& camera, const std::vector<float>& reference,
@@ -135,7 +136,7 @@ void measureDirect(const Context& c, const gpu::FrameCamera& camera, const std::
     const auto frame = renderAndPrintStages(c, camera, s);
     QualityPoint p{"direct", spp, "", "", frame.totalMs, stageSum(frame), 0.0, {}, 0.0};
     scoreAgainst(p, frame.rgba, reference, d);
-    addPoint(d, retimes, p, [&c, &camera, s] { return c.renderer.render(camera, s).totalMs; });
+    addPoint(d, retimes.emplace_back([&c, &camera, s] { return c.renderer.render(camera, s).totalMs; }), p);
   }
 }
 
@@ -152,7 +153,7 @@ void measureAdaptive(const Context& c, const gpu::FrameCamera& camera, const std
     QualityPoint p{"adaptive", a.baseSpp, "", "", frame.totalMs, stageSum(frame), 0.0, {}, 0.0,
                    a.refineSpp, a.contrast, double(frame.refinedTargets) / targets};
     scoreAgainst(p, frame.rgba, reference, d);
-    addPoint(d, retimes, p, [&c, &camera, s] { return c.renderer.render(camera, s).totalMs; });
+    addPoint(d, retimes.emplace_back([&c, &camera, s] { return c.renderer.render(camera, s).totalMs; }), p);
   }
 }
 
@@ -168,7 +169,7 @@ void measureQuilt(const Context& c, const DisplayConfig& display, const QuiltLay
     const gpu::RenderSettings s = settings(c.options, spp, 0);
     const auto frame = c.renderer.renderQuilt(params, s);
     const QuiltViews views{frame.width, frame.height, frame.views, frame.rgba};
-    Retime retime{[&c, params, s] { return c.renderer.renderQuilt(params, s).totalMs; }, {}};
+    Retime& retime = retimes.emplace_back([&c, params, s] { return c.renderer.renderQuilt(params, s).totalMs; });
     for (QuiltViewFilter filter : kFilters) {
       const auto start = Clock::now();
       const auto panel = interleaveQuilt(views, lenticular, filter);
@@ -176,11 +177,8 @@ void measureQuilt(const Context& c, const DisplayConfig& display, const QuiltLay
       QualityPoint p{"quilt", spp, name, std::string(quiltViewFilterName(filter)), frame.totalMs, stageSum(frame),
                      interleaveMs, {}, 0.0};
       scoreAgainst(p, panel, reference, d);
-      p.runMs = {p.renderMs};
-      d.points.push_back(p);
-      retime.points.push_back(d.points.size() - 1);
+      addPoint(d, retime, p);
     }
-    retimes.push_back(std::move(retime));
   }
 }
 
