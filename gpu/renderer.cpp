@@ -164,11 +164,13 @@ struct Renderer::Impl {
   }
 
   // Specialisation of raygen: the camera model, then a lenticular panel's Gen3 cell mode and count, so the cell code
-  // folds to the panel's own pattern (lenticular_model.h HT_LENTICULAR_CELL_MODE; a CPU driver pays for untaken code).
-  std::vector<std::uint32_t> raygenSpec(const FrameShape& shape) const {
+  // folds to the panel's own pattern (lenticular_model.h HT_LENTICULAR_CELL_MODE; a CPU driver pays for untaken code),
+  // then REFINING for the pass over listed targets.
+  std::vector<std::uint32_t> raygenSpec(const FrameShape& shape, bool refining = false) const {
     const auto* lenticular = std::get_if<gpu_shared::LenticularParams>(&camera);
-    if (!lenticular) return {shape.model, 0u, 0u};
-    return {shape.model, static_cast<std::uint32_t>(lenticular->flags.x), static_cast<std::uint32_t>(lenticular->flags.y)};
+    if (!lenticular) return {shape.model, 0u, 0u, refining};
+    return {shape.model, static_cast<std::uint32_t>(lenticular->flags.x), static_cast<std::uint32_t>(lenticular->flags.y),
+            refining};
   }
 
   // Specialisation of the kernels that continue paths (shade, gather_direct): their own constants, then
@@ -310,10 +312,11 @@ struct Renderer::Impl {
   void renderChunk(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
                    const RenderSettings& settings, StageTimes& stageMs, RenderResult& result);
   // Traces paths [0, totalPaths) of `spp` samples per target in batches of perBatch (a multiple of spp) and resolves
-  // them into the subpixel buffer (listed targets while FrameBlock.refineInfo.w != 0).
-  // clearShadowSlots: the chunk's first call; gather_direct leaves every slot it used cleared for later batches.
+  // them into the subpixel buffer. refining: the listed targets of FrameBlock.refine (refineInfo.w = the base spp),
+  // through the REFINING pipelines of raygen and resolve; else the chunk's base pass, its first call, which clears
+  // the shadow slots (gather_direct leaves every slot it used cleared for later batches).
   void tracePaths(const FrameShape& shape, std::uint32_t spp, std::uint64_t totalPaths, std::uint64_t perBatch,
-                  bool clearShadowSlots, const RenderSettings& settings, StageTimes& stageMs,
+                  bool refining, const RenderSettings& settings, StageTimes& stageMs,
                   const std::function<void(double)>& progress);
   std::uint64_t selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast, StageTimes& stageMs);
   std::vector<gpu_shared::HtRay> generateRays(const RenderSettings& settings, std::uint64_t firstTarget,
@@ -502,7 +505,7 @@ void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirs
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));
 
   const double share = settings.refineSpp > 0 ? 0.8 : 1.0;  // progress: the refinement takes the rest
-  tracePaths(shape, settings.spp, targets * settings.spp, perBatch, true, settings, stageMs, [&](double done) {
+  tracePaths(shape, settings.spp, targets * settings.spp, perBatch, false, settings, stageMs, [&](double done) {
     if (settings.progress) settings.progress(done * share);
   });
   if (settings.refineSpp > 0) {
@@ -513,7 +516,7 @@ void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirs
       f.dims.z = settings.refineSpp;
       f.refineInfo.w = settings.spp;  // != 0: trace the listed targets, and keep the base samples in their mean
       const std::uint64_t refineBatch = std::min(perBatch / settings.refineSpp * settings.refineSpp, refined * settings.refineSpp);
-      tracePaths(shape, settings.refineSpp, refined * settings.refineSpp, refineBatch, false, settings, stageMs,
+      tracePaths(shape, settings.refineSpp, refined * settings.refineSpp, refineBatch, true, settings, stageMs,
                  [&](double done) {
                    if (settings.progress) settings.progress(share + done * (1.0 - share));
                  });
@@ -533,7 +536,7 @@ void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirs
 }
 
 void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std::uint64_t totalPaths,
-                                std::uint64_t perBatch, bool clearShadowSlots, const RenderSettings& settings,
+                                std::uint64_t perBatch, bool refining, const RenderSettings& settings,
                                 StageTimes& stageMs, const std::function<void(double)>& progress) {
   const SceneFeatures& feat = scene.features();
   const bool all = settings.forceAllFeatures;
@@ -541,17 +544,16 @@ void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std:
   const bool mirror = feat.mirrors || all, glass = feat.glass || all, textures = (feat.textures && scene.textureCount() > 0) || all;
   const std::uint32_t depthPasses = (mirror || glass) ? settings.maxDepth + 1 : 1;
 
-  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(shape));
+  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(shape, refining));
   const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest, traceSpec({}));
   const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
   const std::vector<std::uint32_t> shadeFeatures = {lights, mirror, glass, textures};
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
-  const bool refining = frameBlock().refineInfo.w != 0u;
   const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {shape.model, refining});
 
   const VkBuffer args = counters.handle();
-  bool clear = clearShadowSlots;
+  bool clear = !refining;
   for (std::uint64_t begin = 0; begin < totalPaths; begin += perBatch) {
     const auto count = static_cast<std::uint32_t>(std::min<std::uint64_t>(perBatch, totalPaths - begin));
     const auto batchFirst = static_cast<std::uint32_t>(begin);

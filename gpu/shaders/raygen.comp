@@ -13,6 +13,8 @@ layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
 // The lenticular panel's Gen3 cell layout, folded into the code (lenticular_model.h HT_LENTICULAR_CELL_MODE).
 layout(constant_id = 1) const int LENTICULAR_CELL_MODE = 0;
 layout(constant_id = 2) const int LENTICULAR_CELL_COUNT = 0;
+// The refinement pass's pipeline (paths of listed targets): the base pass then has no list load to run masked.
+layout(constant_id = 3) const bool REFINING = false;
 #define HT_LENTICULAR_CELL_MODE(p) LENTICULAR_CELL_MODE
 #define HT_LENTICULAR_CELL_COUNT(p) LENTICULAR_CELL_COUNT
 #include "camera_models/lenticular_model.h"
@@ -44,7 +46,7 @@ void main() {
   uint path = pc.batchFirst + i;
   // While refined targets are traced (adaptive_refinement.h), path p is sample p % spp of the (p / spp)-th listed
   // target; its samples are those of a frame rendered at this spp.
-  uint target = FRAME.refineInfo.w != 0u ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + path / spp] : path / spp;
+  uint target = REFINING ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + path / spp] : path / spp;
   uint s = path % spp;
   uint perPixel = ht_model_has_subpixel_targets(MODEL) ? 3u : 1u;
   uint pixel = target / perPixel;
