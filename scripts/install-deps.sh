@@ -14,6 +14,8 @@ PKGS=(
   libglm-dev libopenimageio-dev openimageio-tools libtinygltf-dev nlohmann-json3-dev
   # tests, benchmarks, comparator ray tracer
   libgtest-dev libgmock-dev libbenchmark-dev libembree-dev libtbb-dev
+  # SHA-256 of rendered frames in tests (OpenSSL libcrypto)
+  libssl-dev
   # test mesh: the Stanford bunny (69,666 triangles), /usr/share/glmark2/models/bunny.obj
   glmark2-data
   # benchmark meshes (CGAL armadillo, refined_elephant: scripts/fetch-meshes.sh) and plots (scripts/bench.sh)
