@@ -3,8 +3,8 @@
 # loader, in one folder that travels to a GPU machine (issue 5: "runnable on an NVIDIA GPU machine too"):
 #   scripts/bundle-bench.sh [DIR]          (default .bench-bundle/, git-ignored; ~50 MiB)
 # There: DIR/run holotrace-bench-traversal --meshes DIR/assets/bunny.obj ...   (sets LD_LIBRARY_PATH; the SPIR-V
-# kernels are embedded in the binaries). The Vulkan loader and the NVIDIA ICD come from the GPU machine
-# (/work/.library/device/README.md says how to bring the loader where it is missing).
+# kernels are embedded in the binaries). The Vulkan loader (libvulkan.so.1) and the NVIDIA ICD come from the GPU
+# machine: where the loader is missing, copy Debian's libvulkan1 library into DIR/lib as well.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="${1:-$root/.bench-bundle}"
