@@ -16,7 +16,7 @@ for candidate in /usr/share/doc/libcgal-dev/data.tar.gz /usr/share/doc/libcgal-d
   if [[ -f "$candidate" ]]; then tarball="$candidate"; break; fi
 done
 if [[ -z "$tarball" ]]; then
-  echo "fetch-meshes.sh: CGAL data tarball not found; install libcgal-demo (sudo scripts/install-deps.sh)" >&2
+  echo "fetch-meshes.sh: CGAL data tarball not found; install libcgal-demo (scripts/install-deps.sh, as root)" >&2
   exit 1
 fi
 mkdir -p "$root/assets"

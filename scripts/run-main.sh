@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job: install the Debian packages, build holotrace (Release, Ninja, into build/), and render the
 # default frame (Looking Glass Portrait panel, builtin:showcase scene) to out/portrait_showcase.{png,exr}.
-# Usage (from anywhere): sudo bash scripts/run-main.sh [extra `holotrace render` options]
+# Usage (from anywhere, as root): bash scripts/run-main.sh [extra `holotrace render` options]
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"

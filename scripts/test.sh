@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Setup + tests: install the Debian packages, build Release (build/, GCC) and ASan+UBSan (build-asan/, clang), run
 # ctest on both, then a short libFuzzer run (scripts/fuzz.sh, build-fuzz/). Exit status 0 only if all three pass.
-# Usage: sudo bash scripts/test.sh
+# Usage (as root): bash scripts/test.sh
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
