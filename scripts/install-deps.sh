@@ -16,6 +16,8 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev libembree-dev libtbb-dev
   # SHA-256 of rendered frames in tests (OpenSSL libcrypto)
   libssl-dev
+  # repository checks in ctest (tests/repo: doc references, module boundaries)
+  python3
   # test mesh: the Stanford bunny (69,666 triangles), /usr/share/glmark2/models/bunny.obj
   glmark2-data
   # benchmark meshes (CGAL armadillo, refined_elephant: scripts/fetch-meshes.sh) and plots (scripts/bench.sh)
