@@ -18,7 +18,7 @@ namespace ht::test {
 namespace {
 
 // A 96x64 panel with the Portrait's phase rates (the test panel of tests/server) and a BGR variant.
-DisplayConfig smallPanel(bool bgr = false, bool flipX = false) {
+DisplayConfig rateTestPanel(bool bgr = false, bool flipX = false) {
   return parseDisplayConfig(std::string(R"({"name": "small", "calibration": {"pitch": 52.59, "slope": -7.21,
       "center": 0.40, "viewCone": 40, "invView": 1, "DPI": 324, "screenW": 96, "screenH": 64, "flipImageX": )") +
                                 (flipX ? "1" : "0") + R"(, "flipImageY": 0, "flipSubp": )" + (bgr ? "1" : "0") + "}}",
@@ -65,7 +65,7 @@ TEST(QuiltInterleave, NearestFilterShowsTheViewThePhaseAddresses) {
 // Views whose value is their index i: each filter's output is its blend formula evaluated at z = t N, exactly.
 TEST(QuiltInterleave, FiltersBlendTheViewsAsTheirFormulasSay) {
   for (const bool bgr : {false, true}) {
-    const DisplayConfig display = smallPanel(bgr);
+    const DisplayConfig display = rateTestPanel(bgr);
     const gpu_shared::LenticularParams params = makeLenticularParams(display, Bounds3{});
     const std::uint32_t n = 12, tile = 3, w = 96, h = 64;
     const std::vector<float> views = uniformViewStack(tile, tile, n, [](std::uint32_t i) { return float(i); });
@@ -98,7 +98,7 @@ TEST(QuiltInterleave, FiltersBlendTheViewsAsTheirFormulasSay) {
 // A quilt image (3 x 2 tiles, view 0 bottom-left, rows stored top first) interleaves exactly like the same views as
 // a stack; the unused remainder of the quilt ("view portion" < 1) is never read.
 TEST(QuiltInterleave, QuiltImageTilesAreFoundFromTheBottomLeft) {
-  const DisplayConfig display = smallPanel();
+  const DisplayConfig display = rateTestPanel();
   const gpu_shared::LenticularParams params = makeLenticularParams(display, Bounds3{});
   const std::uint32_t tileW = 5, tileH = 4, cols = 3, rows = 2, n = cols * rows;
   const QuiltLayout layout = makeQuiltLayout(cols, rows, cols * tileW + 2, rows * tileH + 1, 1.5);
@@ -132,7 +132,7 @@ TEST(QuiltInterleave, QuiltImageTilesAreFoundFromTheBottomLeft) {
 // Neighbouring views of 0 and 1: nearest-view output is exactly 0 or 1 everywhere, so no sample took a pixel of the
 // next tile (the vendor's GL sampler would blend across the tile border at the edge pixels).
 TEST(QuiltInterleave, SamplesStayInsideTheirTile) {
-  const DisplayConfig display = smallPanel(false, true);  // flipImageX mirrors u: edges on both sides are sampled
+  const DisplayConfig display = rateTestPanel(false, true);  // flipImageX mirrors u: edges on both sides are sampled
   const gpu_shared::LenticularParams params = makeLenticularParams(display, Bounds3{});
   const QuiltLayout layout = makeQuiltLayout(4, 3, 4 * 7, 3 * 5, 1.5);
   std::vector<float> quilt(std::size_t(layout.quiltWidth) * layout.quiltHeight * 4, 1.0f);
@@ -170,7 +170,7 @@ TEST(QuiltInterleave, ImagesOfTheWrongSizeAreErrors) {
   EXPECT_THROW(quiltImageViews(makeQuiltLayout(2, 2, 6, 4, 1.0), pixels), Error);
   QuiltViews empty = viewStackViews(5, 4, 1, pixels);
   empty.tileTopLeft.clear();
-  const auto params = makeLenticularParams(smallPanel(), Bounds3{});
+  const auto params = makeLenticularParams(rateTestPanel(), Bounds3{});
   EXPECT_THROW(interleaveQuilt(empty, params, QuiltViewFilter::Nearest), Error);
   QuiltViews outside = viewStackViews(5, 4, 1, pixels);
   outside.tileTopLeft[0] = {1, 0};  // a 5-wide tile at x = 1 leaves a 5-wide image
