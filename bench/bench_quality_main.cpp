@@ -17,9 +17,9 @@
 #include "bench/image_metrics.h"
 #include "bench/quality_options.h"
 #include "bench/quality_points.h"
-#include "bench/quilt_interleave.h"
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_params.h"
+#include "camera_models/quilt_interleave.h"
 #include "camera_models/quilt_layout.h"
 #include "camera_models/quilt_setup.h"
 #include "common/error.h"
@@ -168,7 +168,7 @@ void measureQuilt(const Context& c, const DisplayConfig& display, const QuiltLay
     std::cout << "  quilt " << name << " spp " << spp << "..." << std::endl;
     const gpu::RenderSettings s = settings(c.options, spp, 0);
     const auto frame = c.renderer.renderQuilt(params, s);
-    const QuiltViews views{frame.width, frame.height, frame.views, frame.rgba};
+    const QuiltViews views = viewStackViews(frame.width, frame.height, frame.views, frame.rgba);
     Retime& retime = retimes.emplace_back([&c, params, s] { return c.renderer.renderQuilt(params, s).totalMs; });
     for (QuiltViewFilter filter : kFilters) {
       const auto start = Clock::now();

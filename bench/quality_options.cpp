@@ -40,7 +40,7 @@ const char* const kHelp =
     "  adaptive  the direct path at BASE spp, then REFINE spp on the targets whose sRGB contrast to a neighbour\n"
     "          reaches CONTRAST (RenderSettings::refineSpp, gpu/adaptive_refinement.h)\n"
     "  quilt   lenticular displays only: Renderer::renderQuilt (device default layout, and scaled by --quilt-scale) + the vendor interleave on\n"
-    "          the CPU (bench/quilt_interleave.h) with the nearest, vendor-lerp and centred-lerp view filters\n"
+    "          the CPU (camera_models/quilt_interleave.h) with the nearest, vendor-lerp and centred-lerp view filters\n"
     "Per point: ms/frame (render wall time incl. readback; the quilt's CPU interleave is reported apart), RMSE, PSNR, SSIM on sRGB-encoded [0,1] values, and PSNR\n"
     "corrected for the reference's own noise (MSE - MSE(half A, half B)/4). Summary: at the quilt's time, how many dB\n"
     "the direct path and the adaptive path (the Pareto front of adaptive and direct points) gain (log-time\n"

@@ -16,16 +16,18 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev libembree-dev libtbb-dev
   # SHA-256 of rendered frames in tests (OpenSSL libcrypto)
   libssl-dev
-  # repository checks in ctest (tests/repo: doc references, module boundaries)
-  python3
   # test mesh: the Stanford bunny (69,666 triangles), /usr/share/glmark2/models/bunny.obj
   glmark2-data
   # benchmark meshes (CGAL armadillo, refined_elephant: scripts/fetch-meshes.sh) and plots (scripts/bench.sh)
   libcgal-demo gnuplot-nox
   # libFuzzer targets of the parsers (tests/fuzz, scripts/fuzz.sh): clang 14 and its runtime (libFuzzer, ASan)
   clang libclang-rt-14-dev
-  # holotraced and its protocol (gRPC 1.51 + protobuf 3.21, docs/service.md §4)
+  # holotraced and its protocol (gRPC 1.51 + protobuf 3.21, docs/service.md §4); protobuf-compiler-grpc also brings
+  # grpc_python_plugin, which generates the Python client's stubs at build time
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
+  # the Python client (clients/python) and its tests/examples: Debian's Python 3 with gRPC, protobuf and numpy
+  # (frames arrive as numpy arrays); no PyPI. python3 also runs the repository checks (tests/repo)
+  python3 python3-grpcio python3-protobuf python3-numpy
 )
 if [[ "${HOLOTRACE_WITH_SERVICE:-0}" == 1 ]]; then
   PKGS+=(libusb-1.0-0-dev)

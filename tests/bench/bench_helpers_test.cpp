@@ -1,6 +1,6 @@
 // The building blocks of holotrace-bench-quality and -traversal, checked against values worked out by hand: image
-// metrics of known errors, the quilt interleave picking the view the phase addresses, and Embree's tree holding every
-// triangle exactly once with bounds that contain it.
+// metrics of known errors and Embree's tree holding every triangle exactly once with bounds that contain it (the
+// quilt interleave moved to camera_models: tests/camera_models/quilt_interleave_test.cpp).
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -10,10 +10,6 @@
 #include "bench/embree_bvh_build.h"
 #include "bench/image_metrics.h"
 #include "bench/quality_points.h"
-#include "bench/quilt_interleave.h"
-#include "camera_models/display_config.h"
-#include "camera_models/lenticular_model.h"
-#include "camera_models/lenticular_params.h"
 #include "common/error.h"
 #include "scene/scene.h"
 
@@ -42,34 +38,6 @@ TEST(ImageMetrics, AKnownDisplayReferredErrorGivesItsPsnr) {
   EXPECT_NEAR(m.mse, 0.01, 1e-6);
   EXPECT_NEAR(m.psnrDb, 20.0, 1e-3);
   EXPECT_THROW(compareImages(uniformImage(16, 12, 0.0f), uniformImage(16, 11, 0.0f), 16, 12), Error);
-}
-
-// Views of uniform value (i + 0.5)/N: with the nearest filter every subpixel must show the view its own phase t
-// addresses, floor(t N).
-TEST(QuiltInterleave, NearestFilterShowsTheViewThePhaseAddresses) {
-  const DisplayConfig display = builtinDisplay("portrait");
-  const gpu_shared::LenticularParams params = makeLenticularParams(display, Bounds3{});
-  const std::uint32_t n = 48, tile = 4;
-  std::vector<float> views;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const std::vector<float> v = uniformImage(tile, tile, (float(i) + 0.5f) / float(n));
-    views.insert(views.end(), v.begin(), v.end());
-  }
-  const std::vector<float> panel = interleaveQuilt({tile, tile, n, views}, params, QuiltViewFilter::Nearest);
-  const auto w = static_cast<std::uint32_t>(params.panel.x), h = static_cast<std::uint32_t>(params.panel.y);
-  ASSERT_EQ(panel.size(), std::size_t(w) * h * 4);
-  std::size_t wrong = 0;
-  for (std::uint32_t y = 0; y < h; y += 7) {
-    for (std::uint32_t x = 0; x < w; x += 5) {
-      for (std::uint32_t c = 0; c < 3; ++c) {
-        const float t = gpu_shared::lenticular_view_phase(params, x, y, c, glm::vec2(0.5f));
-        const std::uint32_t view = std::min(n - 1, static_cast<std::uint32_t>(t * float(n)));
-        const float got = panel[((std::size_t(h - 1 - y)) * w + x) * 4 + c];  // row 0 = top
-        if (std::fabs(got - (float(view) + 0.5f) / float(n)) > 1e-6f) ++wrong;
-      }
-    }
-  }
-  EXPECT_EQ(wrong, 0u);
 }
 
 QualityPoint point(const char* path, std::uint32_t spp, double ms, double psnr, std::uint32_t refineSpp = 0) {

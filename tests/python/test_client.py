@@ -1,0 +1,178 @@
+"""holotrace_client against a real holotraced (daemon.py: temporary unix socket and a loopback TCP port, 64x48
+lenticular panel, 3x2 capture grid, 3-projector wall, spp 1): every RPC, the pixel formats against each other and
+against the daemon's own PNG encoder, latest-frame-wins streaming, capture progress, scene edits and typed errors."""
+
+import os
+import time
+import unittest
+
+import numpy as np
+
+from daemon import Daemon
+from demo_model import demo_glb
+from holotrace_client import (Client, InvalidArgument, NotFound, PermissionDenied, decode_png, read_png,
+                              rotation_y, srgb_encode, translation)
+
+
+class DaemonTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.daemon = Daemon(tcp=True).__enter__()
+        cls.client = Client(cls.daemon.target)
+        cls.scene = cls.client.upload_scene(demo_glb(), "demo.glb")
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.client.close()
+        cls.daemon.__exit__(None, None, None)
+
+    def fresh_scene(self):
+        """A session of its own (edits are per session), of the same bytes (the daemon shares the BVH)."""
+        return self.client.load_scene("demo.glb")
+
+    # ---- displays and scenes -----------------------------------------------------------------------------------
+
+    def test_displays_and_display_details(self):
+        by_id = {d.id: d for d in self.client.displays()}
+        tiny = by_id["tiny"]
+        self.assertEqual((tiny.model, tiny.panel_width, tiny.panel_height), ("lenticular", 64, 48))
+        self.assertEqual((by_id["rig"].views, by_id["wall"].views), (6, 3))
+        self.assertIn("builtin:portrait", by_id)
+        info = self.client.display("tiny")
+        self.assertAlmostEqual(info.optics["pitch"], 52.59)
+        self.assertEqual(info.optics["dpi"], 324)
+        self.assertIn("LKG-TEST-3", info.calibration_json)
+        self.assertIsNone(self.client.display("rig").optics)
+        with self.assertRaises(NotFound) as caught:
+            self.client.display("nope")
+        self.assertIn("nope", caught.exception.details)
+
+    def test_load_and_upload(self):
+        cube = self.client.load_scene("cube.obj")
+        self.assertEqual(cube.triangles, 12)
+        self.assertEqual(self.scene.triangles, 48)  # 4 boxes
+        self.assertEqual(self.scene.nodes, ["model", "floor"])
+        self.assertEqual(self.scene.lights, 1)
+        again = self.client.load_scene("demo.glb")  # the same bytes as the upload
+        self.assertTrue(again.reused)
+        self.assertNotEqual(again.scene_id, self.scene.scene_id)
+        with self.assertRaises(PermissionDenied):
+            self.client.load_scene("../holotraced.json")
+        with self.assertRaises(PermissionDenied):
+            self.client.load_scene("/etc/passwd")
+        with self.assertRaises(InvalidArgument):
+            self.client.load_scene("missing.obj")
+        with self.assertRaises(InvalidArgument):
+            self.client.upload_scene(b"not a scene", "notes.txt")
+        with self.assertRaises(InvalidArgument):
+            self.client.upload_scene(b"glTF\x02\x00\x00\x00garbage")  # GLB magic, broken container
+
+    def test_loopback_tcp_target(self):
+        with Client(self.daemon.tcp_target) as tcp:
+            self.assertIn("tiny", [d.id for d in tcp.displays()])
+
+    # ---- frames ------------------------------------------------------------------------------------------------
+
+    def test_render_formats_agree(self):
+        rgba8 = self.client.render(self.scene, "tiny", spp=1)
+        self.assertEqual((rgba8.shape, rgba8.dtype), ((1, 48, 64, 4), np.uint8))
+        self.assertTrue(np.all(rgba8[..., 3] == 255))
+        self.assertGreater(rgba8[..., :3].std(), 5.0)  # a picture, not a flat fill
+        half = self.client.render(self.scene, "tiny", spp=1, format="rgba16f")
+        self.assertEqual((half.shape, half.dtype), ((1, 48, 64, 4), np.float16))
+        self.assertTrue(np.all(np.isfinite(half)))
+        # The same frame (same seed) once sRGB-encoded by the daemon, once linear: within one code after encoding.
+        diff = np.abs(srgb_encode(half[..., :3].astype(np.float32)).astype(int) - rgba8[..., :3])
+        self.assertLessEqual(diff.max(), 1)
+
+    def test_multi_view_frames_and_the_daemons_png(self):
+        views = self.client.render(self.scene, "rig", spp=1)
+        self.assertEqual(views.shape, (6, 16, 24, 4))
+        self.assertFalse(np.array_equal(views[0], views[5]))  # cameras 0.1 apart see the model differently
+        self.assertEqual(self.client.render(self.scene, "wall", spp=1).shape, (3, 12, 20, 4))
+        # The daemon's PNG (its own encoder) of the same frame is the 3x2 quilt of those views, view 0 bottom-left.
+        quilt = decode_png(self.client.render_png(self.scene, "rig", spp=1))
+        self.assertEqual(quilt.shape[:2], (32, 72))
+        for view in range(6):
+            column, row_from_bottom = view % 3, view // 3
+            top = (1 - row_from_bottom) * 16
+            tile = quilt[top:top + 16, column * 24:(column + 1) * 24, :3]
+            self.assertLessEqual(np.abs(tile.astype(int) - views[view, :, :, :3]).max(), 1, f"view {view}")
+
+    def test_request_errors(self):
+        with self.assertRaises(InvalidArgument) as caught:
+            self.client.render(self.scene, "tiny", spp=100000)
+        self.assertIn("render.spp", caught.exception.details)
+        with self.assertRaises(NotFound):
+            self.client.render("s999-0000000000000000", "tiny")
+        with self.assertRaises(NotFound):
+            self.client.render(self.scene, "nope")
+        with self.assertRaises(InvalidArgument):
+            self.client.render(self.scene, "wall", quilt=True)  # quilt cameras exist for lenticular displays only
+
+    def test_stream_hands_out_the_newest_frame(self):
+        with self.client.stream(self.scene, "tiny", fps=20, spp=1, frames=4) as stream:
+            ids = []
+            for frame in stream:
+                ids.append(frame.frame_id)
+                self.assertEqual(frame.pixels.shape, (1, 48, 64, 4))
+                if len(ids) > 1:
+                    # 0.6 s at 20 fps is ~12 frames: the ones this reader slept through were replaced, not queued.
+                    self.assertGreaterEqual(frame.skipped + frame.dropped_frames, 1)
+                time.sleep(0.6)
+            self.assertEqual(len(ids), 4)
+            self.assertEqual(ids, sorted(ids))
+            self.assertGreater(stream.received, 4)
+        self.assertTrue(stream.closed)
+        deadline = time.monotonic() + 10
+        while self.client.status().active_streams and time.monotonic() < deadline:
+            time.sleep(0.05)
+        self.assertEqual(self.client.status().active_streams, 0)  # the cancel reached the daemon
+
+    def test_stream_errors_arrive_as_types(self):
+        with self.client.stream(self.scene, "nope", fps=5) as stream:
+            with self.assertRaises(NotFound):
+                next(stream)
+
+    def test_capture_reports_progress_and_writes_complete_files(self):
+        seen = []
+        done = self.client.capture(self.scene, "rig", "take", frames=2, progress=seen.append)
+        self.assertEqual(seen, done)
+        pngs = [p.file for p in done if p.file.endswith(".png")]
+        self.assertEqual(pngs, ["take_f0000_qs3x2a1.5.png", "take_f0001_qs3x2a1.5.png"])
+        self.assertEqual([p.frames_done for p in done if p.file.endswith(".png")], [1, 2])
+        for name in pngs:
+            self.assertEqual(read_png(os.path.join(self.daemon.output_root, name)).shape[:2], (32, 72))
+        with self.assertRaises(PermissionDenied):
+            self.client.capture(self.scene, "rig", "../escape")
+
+    # ---- scene edits -------------------------------------------------------------------------------------------
+
+    def test_update_scene_moves_nodes_and_lights_for_this_session_only(self):
+        scene = self.fresh_scene()
+        before = self.client.render(scene, "tiny", spp=1)
+        update = self.client.update_scene(scene, nodes={"model": translation(0.3, 0.0, 0.0) @ rotation_y(0.7)})
+        self.assertGreater(update.rebuild_ms, 0.0)
+        moved = self.client.render(scene, "tiny", spp=1)
+        self.assertGreater(np.mean(np.any(moved != before, axis=-1)), 0.05)
+        # Another session of the same content keeps the model where it was.
+        np.testing.assert_array_equal(self.client.render(self.fresh_scene(), "tiny", spp=1), before)
+        self.client.update_scene(scene, lights={0: {"intensity": 0.0}})
+        dark = self.client.render(scene, "tiny", spp=1)
+        self.assertLess(dark[..., :3].mean(), moved[..., :3].mean())
+        with self.assertRaises(InvalidArgument) as caught:
+            self.client.update_scene(scene, nodes={"no-such-node": translation(0, 0, 0)})
+        self.assertIn("no-such-node", caught.exception.details)
+        with self.assertRaises(InvalidArgument):
+            self.client.update_scene(scene, lights={5: {"intensity": 1.0}})
+
+    def test_closed_client(self):
+        with Client(self.daemon.target) as client:
+            self.assertTrue(client.displays())
+        self.assertTrue(client.closed)
+        with self.assertRaises(ValueError):
+            client.load_scene("cube.obj")
+
+
+if __name__ == "__main__":
+    unittest.main()
