@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "frame_io/frame_package.h"
+
 namespace ht::server {
 
 // The calls a FileSink makes on its open temp file (return -1 and set errno on failure, like the system calls).
@@ -34,9 +36,16 @@ class FileSink {
   // the temp file is removed and `name` is untouched.
   void writeFile(const std::string& name, std::span<const std::uint8_t> bytes);
 
+  // The files of one frame (frame_io::packageFrame) as a set: every file is written and fsynced under its temp name
+  // before the first rename, so a full disk or any write error leaves none of them (and names untouched). If a rename
+  // fails, the files of the set already renamed are removed too: the set is there whole or not at all. Throws as
+  // writeFile.
+  void writeFiles(std::span<const frame_io::FrameFile> files);
+
  private:
   int openTemp(const std::string& tempName);
   int writeAll(int fd, std::span<const std::uint8_t> bytes);  // 0 or the errno
+  int writeTemp(const std::string& temp, std::span<const std::uint8_t> bytes);  // 0 or the errno; fd closed
   FileOps ops_;
   int rootFd_ = -1;
 };

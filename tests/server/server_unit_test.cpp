@@ -57,6 +57,14 @@ TEST(FileSinkTest, WritesCompleteFilesOnlyBeneathTheRootItOpened) {
   }
 }
 
+TEST(FileSinkTest, AFileSetAppearsWhole) {
+  TempDir dir;
+  FileSink sink(dir.path / "out");
+  sink.writeFiles({{{"q.png", {1, 2, 3}}, {"q.json", {'{', '}'}}}});
+  EXPECT_EQ(readAll(dir.path / "out" / "q.png"), std::string("\x01\x02\x03"));
+  EXPECT_EQ(readAll(dir.path / "out" / "q.json"), "{}");
+}
+
 TEST(DaemonConfigTest, ParsesPathsAndLimits) {
   const DaemonConfig c = parseDaemonConfig(
       R"({"scene_root": "s", "output_root": "/o", "limits": {"max_clients": 3, "max_scene_bytes": 1000}})", "t.json",
