@@ -10,10 +10,10 @@
 #include <filesystem>
 #include <functional>
 #include <span>
-#include <stdexcept>
 #include <string>
 
 #include "frame_io/frame_package.h"
+#include "server/errors.h"
 
 namespace ht::server {
 
@@ -48,13 +48,6 @@ class FileSink {
   int writeTemp(const std::string& temp, std::span<const std::uint8_t> bytes);  // 0 or the errno; fd closed
   FileOps ops_;
   int rootFd_ = -1;
-};
-
-// The disk or quota is full, or the file exceeds the file-size limit (EFBIG: RLIMIT_FSIZE, filesystem maximum):
-// the file was not written, nothing partial remains (-> RESOURCE_EXHAUSTED).
-class DiskFull : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
 };
 
 }  // namespace ht::server
