@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/srgb.h"
 
 namespace ht::bench {
 namespace {
@@ -16,15 +17,11 @@ constexpr int kRadius = 5;  // 11 taps
 constexpr double kSigma = 1.5;
 constexpr double kC1 = 0.01 * 0.01, kC2 = 0.03 * 0.03;
 
-double encodeSrgb(float linear) {
-  const double x = std::clamp(double(linear), 0.0, 1.0);
-  return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
-}
-
-// One channel of the image, sRGB-encoded, as doubles.
+// One channel of the image, sRGB-encoded (the encoding PNG output and the refinement kernel use, common/srgb.h), as
+// doubles for the sums.
 std::vector<double> channel(std::span<const float> rgba, std::size_t pixels, int c) {
   std::vector<double> out(pixels);
-  for (std::size_t i = 0; i < pixels; ++i) out[i] = encodeSrgb(rgba[4 * i + c]);
+  for (std::size_t i = 0; i < pixels; ++i) out[i] = gpu_shared::ht_srgb_encode(rgba[4 * i + c]);
   return out;
 }
 

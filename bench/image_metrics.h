@@ -1,7 +1,8 @@
 // image_metrics.h - full-reference image error: RMSE, PSNR and SSIM of a test image against a reference.
 //
 // Both images are linear RGBA float (RenderResult layout); the metrics are computed on DISPLAY-REFERRED values:
-// each RGB channel clamped to [0, 1] and sRGB-encoded (IEC 61966-2-1), i.e. what the panel shows. Peak = 1.
+// each RGB channel clamped to [0, 1] and sRGB-encoded in float (common/srgb.h, as PNG output), i.e. what the panel
+// shows. Peak = 1.
 //   RMSE = sqrt(mean over pixels and R, G, B of (a - b)^2);  PSNR = -10 log10(MSE)
 //   SSIM (Wang, Bovik, Sheikh, Simoncelli 2004): 11-tap Gaussian window, sigma 1.5, K1 = 0.01, K2 = 0.03, per
 //   channel, mean over all window positions (borders clamped) and the three channels.

@@ -34,8 +34,9 @@ InProcessRun timeFrames(server::RenderWorker& worker, const server::FrameJob& ba
   for (std::uint64_t i = 0; i < frames; ++i) {
     job.seed = static_cast<std::uint32_t>(i);
     const auto frame = server::renderFrameJob(worker, "baseline", job);
-    const auto bytes = server::encodeFrame(frame, server::FrameEncoding::Rgba8Srgb);
-    run.frames += bytes.empty() ? 0 : 1;
+    const auto encoded =
+        server::encodeFrame(frame, server::FrameEncoding::Rgba8Srgb, {job.display->config, std::nullopt});
+    run.frames += encoded.bytes.empty() ? 0 : 1;
   }
   run.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.cpuSeconds = server::readProcessStats(::getpid()).cpuSeconds - cpuBefore;

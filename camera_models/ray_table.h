@@ -1,5 +1,5 @@
 // ray_table.h - a display calibrated per pixel (model "ray-table", docs/configs.md): one ray (origin, direction) per
-// pixel, read from a file (cli/ray_table_exr.h; camera_models does not depend on an image library). The in-memory
+// pixel, read from a file (frame_io/ray_table_exr.h; camera_models does not depend on an image library). The in-memory
 // table with its validation, the GPU block (ray_table_params.h, consumed by
 // ray_table_model.h) and a double-precision reference of the interpolation.
 #pragma once

@@ -11,7 +11,7 @@ namespace ht {
 
 // "rayTable": {"file": "table.exr", "units": 1.0}. The file path is resolved against the config file's directory.
 struct RayTableConfig {
-  std::filesystem::path file;  // the ray table (EXR, cli/ray_table_exr.h)
+  std::filesystem::path file;  // the ray table (EXR, frame_io/ray_table_exr.h)
   double units = 1.0;          // world units per table unit (origins are scaled by it), > 0
 };
 

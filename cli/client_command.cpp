@@ -13,6 +13,7 @@
 
 #include "cli/arguments.h"
 #include "common/error.h"
+#include "frame_io/atomic_output_file.h"
 #include "holotrace/v1/holotrace.grpc.pb.h"
 
 namespace ht::cli {
@@ -187,8 +188,9 @@ int render(Stub& stub, const ParsedArguments& a, std::ostream& out) {
   if (!got) throw IoError(std::string(kCommand) + ": the daemon sent an incomplete frame");
   printFrame(out, header);
   for (const auto& s : header.stages()) out << "  " << s.name() << " " << s.ms() << " ms\n";
-  if (auto file = a.text("--out")) {
-    std::ofstream(*file, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (auto file = a.text("--out")) {  // atomically, as `holotrace render` writes: never a partial PNG
+    const frame_io::OutputFile png{*file, {bytes.begin(), bytes.end()}};
+    frame_io::writeFilesAtomically({&png, 1});
     out << "wrote " << *file << "\n";
   }
   return 0;

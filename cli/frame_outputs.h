@@ -1,26 +1,22 @@
-// frame_outputs.h - writes a rendered frame in the form its display needs: one image (native panel, LCD, pinhole),
-// a quilt (quilt cameras, capture grids: standard `_qs{cols}x{rows}a{aspect}` name plus JSON metadata, embedded and
-// as a sidecar), a per-view PNG sequence (projector images, or any multi-view frame on request), and an OpenEXR file
-// with the multiView attribute for every multi-view frame.
+// frame_outputs.h - `holotrace render`'s output files: the frame packaged by frame_io (frame_io/frame_package.h: one
+// image, a quilt + its metadata, one PNG per view, a multiView EXR) and written atomically, every file of the frame as
+// one set (frame_io/atomic_output_file.h).
 #pragma once
-#include <filesystem>
-#include <optional>
 #include <ostream>
-#include <string>
 
 #include "camera_models/display_config.h"
 #include "cli/output_paths.h"
-#include "cli/view_layout.h"
-#include "gpu/display_camera.h"
+#include "frame_io/frame_package.h"
 #include "gpu/renderer.h"
-#include "gpu/view_mosaic.h"
 
 namespace ht::cli {
 
-// The quilt file name: `path` unchanged if it already carries a `_qs` tag, else the tag is appended to its stem.
-std::filesystem::path quiltFilePath(const std::filesystem::path& path, const QuiltLayout& layout);
+// Throws UsageError ("holotrace render: --layout quilt: ...") when the layout cannot be written for this display, so
+// the command can refuse it before rendering.
+void checkViewLayout(const frame_io::FrameDisplay& display, std::uint32_t views, frame_io::ViewLayout layout);
 
+// Packages the frame for -o (PNG) and --exr (EXR), writes all files, then prints one line per format.
 void writeFrameOutputs(std::ostream& out, const OutputPaths& paths, const gpu::RenderResult& frame,
-                       const DisplayConfig& display, const gpu::DisplayCamera& camera, ViewLayout layout);
+                       const frame_io::FrameDisplay& display, frame_io::ViewLayout layout);
 
 }  // namespace ht::cli

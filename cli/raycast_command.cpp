@@ -4,10 +4,10 @@
 #include <chrono>
 
 #include "cli/arguments.h"
-#include "cli/atomic_output_file.h"
 #include "cli/cli_app.h"
 #include "cli/rays_file.h"
 #include "common/error.h"
+#include "frame_io/atomic_output_file.h"
 #include "gpu/renderer.h"
 #include "gpu/vulkan_context.h"
 #include "scene/scene.h"
@@ -51,7 +51,7 @@ int runRaycast(std::span<const std::string> argv, std::ostream& out) {
   const std::string raysPath = required(args, "--rays");
   const std::string hitsPath = required(args, "--output");
   const auto device = args.unsignedValue("--device", 0, 255);
-  prepareOutputDirectory(hitsPath);  // fail before the work, not after it
+  frame_io::prepareOutputDirectory(hitsPath);  // fail before the work, not after it
 
   const auto rays = readRaysFile(raysPath);
   const Scene scene = loadScene(sceneSpec);

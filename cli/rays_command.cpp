@@ -6,10 +6,10 @@
 
 #include "camera_models/lenticular_model.h"
 #include "cli/arguments.h"
-#include "cli/atomic_output_file.h"
 #include "cli/cli_app.h"
-#include "cli/ray_table_exr.h"
 #include "common/error.h"
+#include "frame_io/atomic_output_file.h"
+#include "frame_io/ray_table_exr.h"
 #include "gpu/display_camera.h"
 #include "gpu/renderer.h"
 #include "gpu/vulkan_context.h"
@@ -87,12 +87,14 @@ int runRays(std::span<const std::string> argv, std::ostream& out) {
   const auto output = args.text("--output");
   if (!output || output->empty()) throw UsageError(usageMessage(args.command(), "missing --output FILE.exr"));
   const auto device = args.unsignedValue("--device", 0, 255);
-  prepareOutputDirectory(*output);
+  frame_io::prepareOutputDirectory(*output);
 
   const DisplayConfig display = resolveDisplay(args.textOr("--display", "builtin:portrait"));
   const Scene scene = loadScene(args.textOr("--scene", "builtin:showcase"));
   std::shared_ptr<const RayTable> inputTable;
-  if (display.model == DisplayModel::RayTable) inputTable = std::make_shared<RayTable>(loadDisplayRayTable(display));
+  if (display.model == DisplayModel::RayTable) {
+    inputTable = std::make_shared<RayTable>(frame_io::loadDisplayRayTable(display));
+  }
   const gpu::DisplayCamera camera = gpu::makeDisplayCamera(
       display, scene.bounds(), args.has("--quilt") ? gpu::CameraPath::Quilt : gpu::CameraPath::Native, inputTable);
   const TableLayout layout(camera.shape);
@@ -131,7 +133,7 @@ int runRays(std::span<const std::string> argv, std::ostream& out) {
   if (const auto* lenticular = std::get_if<gpu_shared::LenticularParams>(&camera.camera)) {
     phase = subpixelPhases(*lenticular, camera.shape.width, camera.shape.height);
   }
-  writeRayTableExr(*output, table, phase);
+  frame_io::writeRayTableExr(*output, table, phase);
   out << "ray generation " << gpuMs << " ms GPU (" << (gpuMs > 0 ? double(targets) / (gpuMs * 1e3) : 0.0)
       << " Mrays/s)\nwrote " << *output << " (" << table.width << "x" << table.height << " entries"
       << (phase.empty() ? "" : ", with view phase") << ") in " << msSince(start) << " ms total\n";

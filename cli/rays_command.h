@@ -1,6 +1,6 @@
 // rays_command.h - `holotrace rays`: dump the per-(sub)pixel primary rays a display config produces (origin,
-// direction, and for lenticular panels the view phase) as an OpenEXR ray table (cli/ray_table_exr.h), so a user can
-// check a calibration or feed the table to other tools (it reads back as a "ray-table" display).
+// direction, and for lenticular panels the view phase) as an OpenEXR ray table (frame_io/ray_table_exr.h), so a user
+// can check a calibration or feed the table to other tools (it reads back as a "ray-table" display).
 #pragma once
 #include <ostream>
 #include <span>

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <string>
 
-#include "cli/atomic_output_file.h"
 #include "common/error.h"
+#include "frame_io/atomic_output_file.h"
 
 namespace ht::cli {
 namespace {
@@ -43,7 +43,7 @@ std::string readAll(const std::filesystem::path& path) {
 
 // Writes `bytes` to `path` through a temporary file renamed into place.
 void writeAll(const std::filesystem::path& path, const std::string& bytes) {
-  AtomicOutputFile file(path);
+  frame_io::AtomicOutputFile file(path);
   {
     std::ofstream out(file.tempPath(), std::ios::binary | std::ios::trunc);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));

@@ -11,14 +11,14 @@
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_params.h"
 #include "camera_models/pinhole_params.h"
-#include "cli/atomic_output_file.h"
 #include "cli/cli_app.h"
 #include "cli/frame_outputs.h"
 #include "cli/output_paths.h"
-#include "cli/ray_table_exr.h"
 #include "cli/render_report.h"
 #include "cli/view_phase_debug.h"
 #include "common/error.h"
+#include "frame_io/atomic_output_file.h"
+#include "frame_io/ray_table_exr.h"
 #include "gpu/display_camera.h"
 #include "gpu/renderer.h"
 #include "gpu/vulkan_context.h"
@@ -98,8 +98,7 @@ int runViewPhaseDebug(std::ostream& out, const RenderOptions& options, const Dis
   const gpu::RenderResult frame = renderViewPhaseDebug(makeLenticularParams(display, Bounds3{}));
   out << "debug views: channel value = view phase t of the subpixel (0 = leftmost view), no tracing, "
       << formatMs(frame.totalMs) << "\n";
-  const gpu::DisplayCamera camera{gpu_shared::LenticularParams{}, {}, std::nullopt};
-  writeFrameOutputs(out, paths, frame, display, camera, ViewLayout::Auto);
+  writeFrameOutputs(out, paths, frame, {display, std::nullopt}, frame_io::ViewLayout::Auto);
   out << "total " << formatMs(msSince(start)) << "\n";
   return kExitOk;
 }
@@ -112,8 +111,8 @@ int runRender(std::span<const std::string> args, std::ostream& out) {
 
   const DisplayConfig display = resolveDisplay(options.displaySpec);
   const OutputPaths paths = resolveOutputPaths(options, display.name);
-  if (paths.png) prepareOutputDirectory(*paths.png);  // fail before the render, not after it
-  if (paths.exr) prepareOutputDirectory(*paths.exr);
+  if (paths.png) frame_io::prepareOutputDirectory(*paths.png);  // fail before the render, not after it
+  if (paths.exr) frame_io::prepareOutputDirectory(*paths.exr);
   out << "display: " << display.name << " (" << displayModelName(display.model) << ", " << options.displaySpec
       << ")\n";
 
@@ -123,15 +122,19 @@ int runRender(std::span<const std::string> args, std::ostream& out) {
   const Scene scene = loadScene(options.sceneSpec);
   const double loadMs = msSince(loadStart);
   std::shared_ptr<const RayTable> rayTable;
-  if (display.model == DisplayModel::RayTable) rayTable = std::make_shared<RayTable>(loadDisplayRayTable(display));
+  if (display.model == DisplayModel::RayTable) {
+    rayTable = std::make_shared<RayTable>(frame_io::loadDisplayRayTable(display));
+  }
   const gpu::DisplayCamera camera = makeDisplayCamera(display, scene.bounds(), options.cameraPath, rayTable);
+  const frame_io::FrameDisplay frameDisplay{display, camera.quilt};
+  checkViewLayout(frameDisplay, camera.shape.views, options.layout);  // before the render, not after it
 
   gpu::VulkanContext context({options.deviceIndex, options.validation});
   printDevice(out, context.device());
   const auto renderer = buildRenderer(out, context, scene, loadMs);
 
   const gpu::RenderResult frame = renderAndReport(out, *renderer, camera, makeSettings(options, display));
-  writeFrameOutputs(out, paths, frame, display, camera, options.layout);
+  writeFrameOutputs(out, paths, frame, frameDisplay, options.layout);
   if (options.validation) out << "validation messages: " << context.validationMessageCount() << "\n";
   out << "total " << formatMs(msSince(start)) << "\n";
   return kExitOk;

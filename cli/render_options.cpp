@@ -76,7 +76,7 @@ RenderOptions parseRenderOptions(std::span<const std::string> args) {
   options.noSpecialize = parsed.has("--no-specialize");
   if (parsed.has("--quilt")) options.cameraPath = gpu::CameraPath::Quilt;
   if (auto text = parsed.text("--layout")) {
-    auto layout = parseViewLayout(*text);
+    auto layout = frame_io::parseViewLayout(*text);
     if (!layout) throw UsageError(usageMessage(kCommand, "option '--layout' = '" + *text + "': expected auto, quilt or views"));
     options.layout = *layout;
   }

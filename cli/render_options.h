@@ -6,7 +6,7 @@
 #include <span>
 #include <string>
 
-#include "cli/view_layout.h"
+#include "frame_io/view_layout.h"
 #include "gpu/display_camera.h"
 #include "gpu/renderer.h"
 
@@ -27,7 +27,7 @@ struct RenderOptions {
   std::uint32_t seed = 0;
   bool noSpecialize = false;
   gpu::CameraPath cameraPath = gpu::CameraPath::Native;  // --quilt: the lenticular display's quilt cameras
-  ViewLayout layout = ViewLayout::Auto;
+  frame_io::ViewLayout layout = frame_io::ViewLayout::Auto;
   gpu::SampleFilter filter = gpu::SampleFilter::Box;
   bool debugViews = false;                       // --debug views: no tracing, subpixels coloured by view phase
 };

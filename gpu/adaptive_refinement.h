@@ -16,17 +16,12 @@
 #ifndef HT_ADAPTIVE_REFINEMENT_H
 #define HT_ADAPTIVE_REFINEMENT_H
 #include "common/glsl_cpp.h"
+#include "common/srgb.h"
 
 HT_SHARED_BEGIN
 
-// sRGB transfer function (IEC 61966-2-1) of a linear value clamped to [0, 1].
-HT_INLINE float ht_srgb_encode(float linear) {
-  float x = clamp(linear, 0.0f, 1.0f);
-  return x <= 0.0031308f ? 12.92f * x : 1.055f * pow(x, 1.0f / 2.4f) - 0.055f;
-}
-
 // Largest sRGB difference between `value` and the neighbour values (linear); absent neighbours pass the value
-// itself. NaN values (never written by resolve, which zeroes them) would compare as no contrast.
+// itself. NaN values (never written by resolve, which zeroes them) would encode as 0.
 HT_INLINE float ht_refine_contrast(float value, float left, float right, float below, float above) {
   float v = ht_srgb_encode(value);
   float d = max(abs(v - ht_srgb_encode(left)), abs(v - ht_srgb_encode(right)));

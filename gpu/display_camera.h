@@ -26,7 +26,7 @@ struct DisplayCamera {
 };
 
 // Throws ConfigError when `path` is Quilt and the display is not lenticular, or when a ray-table display comes
-// without its table (the caller reads the file named by config.rayTable: cli/ray_table_exr.h).
+// without its table (the caller reads the file named by config.rayTable: frame_io/ray_table_exr.h).
 DisplayCamera makeDisplayCamera(const DisplayConfig& config, const Bounds3& sceneBounds,
                                 CameraPath path = CameraPath::Native,
                                 std::shared_ptr<const RayTable> rayTable = nullptr);

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "camera_models/embedded_display_configs.h"
-#include "cli/ray_table_exr.h"
+#include "frame_io/ray_table_exr.h"
 #include "common/error.h"
 
 namespace ht::server {
@@ -45,7 +45,7 @@ std::size_t DisplayRegistry::reload(std::ostream& log) {
         const std::string id = entry.path().stem().string();
         RegisteredDisplay display{id, loadDisplayConfig(entry.path()), readText(entry.path()), nullptr};
         if (display.config.model == DisplayModel::RayTable) {
-          display.rayTable = std::make_shared<const RayTable>(cli::loadDisplayRayTable(display.config));
+          display.rayTable = std::make_shared<const RayTable>(frame_io::loadDisplayRayTable(display.config));
         }
         (*map)[id] = std::make_shared<const RegisteredDisplay>(std::move(display));
       } catch (const Error& e) {

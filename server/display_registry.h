@@ -12,6 +12,7 @@
 
 #include "camera_models/display_config.h"
 #include "camera_models/ray_table.h"
+#include "server/errors.h"
 
 namespace ht::server {
 
@@ -20,12 +21,6 @@ struct RegisteredDisplay {
   DisplayConfig config;
   std::string sourceText;  // the config file (or embedded config) verbatim
   std::shared_ptr<const RayTable> rayTable;  // model "ray-table": its table, read when the display is registered
-};
-
-// An unknown display id (-> NOT_FOUND).
-class UnknownDisplay : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
 };
 
 class DisplayRegistry {

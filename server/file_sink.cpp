@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <vector>
 
 #include "common/error.h"
 
@@ -65,17 +66,41 @@ int FileSink::writeAll(int fd, std::span<const std::uint8_t> bytes) {
   return 0;
 }
 
-void FileSink::writeFile(const std::string& name, std::span<const std::uint8_t> bytes) {
-  const std::string temp = tempNameFor(name);
+int FileSink::writeTemp(const std::string& temp, std::span<const std::uint8_t> bytes) {
   const int fd = openTemp(temp);
-  if (fd < 0) throwWriteError(name, errno);
+  if (fd < 0) return errno;
   int err = writeAll(fd, bytes);
   if (err == 0 && ops_.fsync(fd) != 0) err = errno;  // NFS and quotas may report ENOSPC/EDQUOT only here
   if (::close(fd) != 0 && err == 0) err = errno;
-  if (err == 0 && ::renameat(rootFd_, temp.c_str(), rootFd_, name.c_str()) != 0) err = errno;
-  if (err != 0) {
-    ::unlinkat(rootFd_, temp.c_str(), 0);
-    throwWriteError(name, err);
+  if (err != 0) ::unlinkat(rootFd_, temp.c_str(), 0);
+  return err;
+}
+
+void FileSink::writeFile(const std::string& name, std::span<const std::uint8_t> bytes) {
+  const frame_io::FrameFile file{name, {bytes.begin(), bytes.end()}};
+  writeFiles({&file, 1});
+}
+
+void FileSink::writeFiles(std::span<const frame_io::FrameFile> files) {
+  std::vector<std::string> temps;
+  const auto removeTemps = [&](std::size_t from) {
+    for (std::size_t i = from; i < temps.size(); ++i) ::unlinkat(rootFd_, temps[i].c_str(), 0);
+  };
+  for (const frame_io::FrameFile& file : files) {
+    const std::string temp = tempNameFor(file.name);
+    if (const int err = writeTemp(temp, file.bytes); err != 0) {
+      removeTemps(0);
+      throwWriteError(file.name, err);
+    }
+    temps.push_back(temp);
+  }
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (::renameat(rootFd_, temps[i].c_str(), rootFd_, files[i].name.c_str()) != 0) {
+      const int err = errno;
+      removeTemps(i);
+      for (std::size_t k = 0; k < i; ++k) ::unlinkat(rootFd_, files[k].name.c_str(), 0);
+      throwWriteError(files[i].name, err);
+    }
   }
 }
 

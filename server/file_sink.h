@@ -10,8 +10,10 @@
 #include <filesystem>
 #include <functional>
 #include <span>
-#include <stdexcept>
 #include <string>
+
+#include "frame_io/frame_package.h"
+#include "server/errors.h"
 
 namespace ht::server {
 
@@ -34,18 +36,18 @@ class FileSink {
   // the temp file is removed and `name` is untouched.
   void writeFile(const std::string& name, std::span<const std::uint8_t> bytes);
 
+  // The files of one frame (frame_io::packageFrame) as a set: every file is written and fsynced under its temp name
+  // before the first rename, so a full disk or any write error leaves none of them (and names untouched). If a rename
+  // fails, the files of the set already renamed are removed too: the set is there whole or not at all. Throws as
+  // writeFile.
+  void writeFiles(std::span<const frame_io::FrameFile> files);
+
  private:
   int openTemp(const std::string& tempName);
   int writeAll(int fd, std::span<const std::uint8_t> bytes);  // 0 or the errno
+  int writeTemp(const std::string& temp, std::span<const std::uint8_t> bytes);  // 0 or the errno; fd closed
   FileOps ops_;
   int rootFd_ = -1;
-};
-
-// The disk or quota is full, or the file exceeds the file-size limit (EFBIG: RLIMIT_FSIZE, filesystem maximum):
-// the file was not written, nothing partial remains (-> RESOURCE_EXHAUSTED).
-class DiskFull : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
 };
 
 }  // namespace ht::server

@@ -3,9 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "camera_models/quilt_layout.h"
-#include "cli/image_file_writer.h"
-#include "gpu/view_mosaic.h"
+#include "frame_io/frame_package.h"
 #include "server/frame_encoding.h"
 #include "server/frame_job.h"
 #include "server/frame_sender.h"
@@ -24,14 +22,14 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame, v1::PixelFormat format,
-                           double queueMs) {
+v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame, const EncodedFrame& encoded,
+                           v1::PixelFormat format, double queueMs) {
   v1::FrameHeader header;
   header.set_frame_id(frameId);
-  header.set_width(frame.width);
-  header.set_height(frame.height);
+  header.set_width(encoded.width);
+  header.set_height(encoded.height);
   header.set_format(format == v1::PIXEL_FORMAT_UNSPECIFIED ? v1::PIXEL_FORMAT_RGBA8 : format);
-  header.set_views(frame.views);
+  header.set_views(encoded.views);
   header.set_render_ms(frame.totalMs);
   header.set_queue_ms(queueMs);
   for (const auto& stage : frame.stages) {
@@ -46,13 +44,13 @@ v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame
 bool renderAndSend(ServiceState& state, const std::string& client, const FrameJob& job, v1::PixelFormat format,
                    std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer) {
   const auto queued = Clock::now();
-  gpu::RenderResult frame = renderFrameJob(state.worker, client, job);
+  const gpu::RenderResult frame = renderFrameJob(state.worker, client, job);
   const double queueMs = std::max(0.0, msBetween(queued, Clock::now()) - frame.totalMs);
-  if (frame.views > 1 && format == v1::PIXEL_FORMAT_PNG) frame = gpu::singleImage(frame, jobCamera(job).quilt);
-  const auto bytes = encodeFrame(frame, checkPixelFormat(format));
-  v1::FrameHeader header = makeHeader(state.nextFrameId++, frame, format, queueMs);
+  const DisplayConfig display = displayForSession(job.display->config, *job.session);
+  const EncodedFrame encoded = encodeFrame(frame, checkPixelFormat(format), {display, jobCamera(job).quilt});
+  v1::FrameHeader header = makeHeader(state.nextFrameId++, frame, encoded, format, queueMs);
   header.set_dropped_frames(dropped);
-  return sendFrame(writer, std::move(header), bytes);
+  return sendFrame(writer, std::move(header), encoded.bytes);
 }
 
 // Sleeps until `due` in short slices, so a cancelled call or a shutdown frees its slot within ~20 ms.
@@ -68,48 +66,33 @@ std::string captureStem(const std::string& name, std::uint32_t index) {
   return name + suffix;
 }
 
-std::string viewSuffix(std::uint32_t view, std::uint32_t views) {
-  const std::size_t digits = std::max<std::size_t>(2, std::to_string(views - 1).size());
-  const std::string number = std::to_string(view);
-  return "_v" + std::string(digits - number.size(), '0') + number;
+frame_io::FrameFormat captureFormat(v1::CaptureFormat format) {
+  switch (format) {
+    case v1::CAPTURE_FORMAT_UNSPECIFIED:
+    case v1::CAPTURE_FORMAT_PNG: return frame_io::FrameFormat::Png;
+    case v1::CAPTURE_FORMAT_EXR: return frame_io::FrameFormat::Exr;
+    default: throw BadRequest("format", "unknown capture format " + std::to_string(format));
+  }
 }
 
-struct CaptureFile {
-  std::string name;
-  std::vector<std::uint8_t> bytes;
-};
+frame_io::ViewLayout captureLayout(v1::CaptureLayout layout) {
+  switch (layout) {
+    case v1::CAPTURE_LAYOUT_AUTO: return frame_io::ViewLayout::Auto;
+    case v1::CAPTURE_LAYOUT_QUILT: return frame_io::ViewLayout::Quilt;
+    case v1::CAPTURE_LAYOUT_VIEWS: return frame_io::ViewLayout::Views;
+    default: throw BadRequest("layout", "unknown capture layout " + std::to_string(layout));
+  }
+}
 
-// The files of one captured frame (proto CaptureLayout): one image; or for a multi-view frame a multiView EXR,
-// a quilt PNG + its JSON metadata, or one PNG per view.
-std::vector<CaptureFile> captureFiles(const gpu::RenderResult& frame, const FrameJob& job, const std::string& stem,
-                                      v1::CaptureFormat format, v1::CaptureLayout layout) {
-  const bool exr = format == v1::CAPTURE_FORMAT_EXR;
-  if (frame.views == 1) return {{stem + (exr ? ".exr" : ".png"), encodeFrame(frame, exr ? FrameEncoding::ExrHalf : FrameEncoding::Png8Srgb)}};
-  const gpu::DisplayCamera camera = jobCamera(job);
-  if (exr) {
-    std::vector<std::string> names;
-    for (std::uint32_t v = 0; v < frame.views; ++v) names.push_back("view" + viewSuffix(v, frame.views).substr(2));
-    return {{stem + ".exr", cli::encodeMultiViewExr(frame.width, frame.height, frame.rgba, names, cli::ImageFormat::ExrHalf)}};
-  }
-  if (layout == v1::CAPTURE_LAYOUT_QUILT && !camera.quilt) {
-    throw BadRequest("layout", "the views of display '" + job.display->id + "' do not form a quilt; use CAPTURE_LAYOUT_VIEWS");
-  }
-  if (camera.quilt && layout != v1::CAPTURE_LAYOUT_VIEWS) {
-    const QuiltLayout& q = *camera.quilt;
-    const std::string quiltStem = stem + formatQuiltName(q.columns, q.rows, q.aspect);
-    const std::string meta = gpu::quiltMetadataJson(displayForSession(job.display->config, *job.session), camera);
-    return {{quiltStem + ".png", encodeFrame(gpu::singleImage(frame, q), FrameEncoding::Png8Srgb)},
-            {quiltStem + ".json", std::vector<std::uint8_t>(meta.begin(), meta.end())}};
-  }
-  std::vector<CaptureFile> files;
-  const std::size_t floats = std::size_t(frame.width) * frame.height * 4;
-  for (std::uint32_t v = 0; v < frame.views; ++v) {
-    gpu::RenderResult view = frame;
-    view.views = 1;
-    view.rgba.assign(frame.rgba.begin() + std::ptrdiff_t(v * floats), frame.rgba.begin() + std::ptrdiff_t((v + 1) * floats));
-    files.push_back({stem + viewSuffix(v, frame.views) + ".png", encodeFrame(view, FrameEncoding::Png8Srgb)});
-  }
-  return files;
+// The files of one captured frame (proto CaptureLayout), packaged as `holotrace render` packages them.
+std::vector<frame_io::FrameFile> captureFiles(const gpu::RenderResult& frame, const FrameJob& job,
+                                              const std::string& stem, frame_io::FrameFormat format,
+                                              frame_io::ViewLayout layout) {
+  const DisplayConfig display = displayForSession(job.display->config, *job.session);
+  const std::string name = stem + (format == frame_io::FrameFormat::Exr ? ".exr" : ".png");
+  return frame_io::packageFrame({frame.width, frame.height, frame.views, frame.rgba}, {display, jobCamera(job).quilt},
+                                layout, format, name)
+      .files;
 }
 
 }  // namespace
@@ -167,22 +150,25 @@ grpc::Status HolotraceService::Capture(grpc::ServerContext* context, const v1::C
       throw LimitExceeded("frames = " + std::to_string(frames) + " (limits.max_capture_frames = " +
                           std::to_string(state_.config.limits.maxCaptureFrames) + ")");
     }
-    if (request->format() != v1::CAPTURE_FORMAT_UNSPECIFIED && request->format() != v1::CAPTURE_FORMAT_PNG &&
-        request->format() != v1::CAPTURE_FORMAT_EXR) {
-      throw BadRequest("format", "unknown capture format");
-    }
-    if (!v1::CaptureLayout_IsValid(request->layout())) throw BadRequest("layout", "unknown capture layout");
+    const frame_io::FrameFormat format = captureFormat(request->format());
+    const frame_io::ViewLayout layout = captureLayout(request->layout());
     FrameJob job = checkRenderRequest(state_, request->render());
+    const gpu::DisplayCamera camera = jobCamera(job);
+    if (!frame_io::layoutAllowed({job.display->config, camera.quilt}, camera.shape.views, layout)) {
+      throw BadRequest("layout", "the views of display '" + job.display->id +
+                                     "' do not form a quilt; use CAPTURE_LAYOUT_VIEWS");
+    }
     StreamSlot slot(state_);
     const std::string client = clientKey(*context);
     for (std::uint32_t i = 0; i < frames; ++i) {
-      if (context->IsCancelled()) throw ClientGone("capture cancelled after " + std::to_string(i) + " files");
-      if (state_.shuttingDown) throw ShuttingDown("shutting down after " + std::to_string(i) + " complete files");
+      if (context->IsCancelled()) throw ClientGone("capture cancelled after " + std::to_string(i) + " complete frames");
+      if (state_.shuttingDown) throw ShuttingDown("shutting down after " + std::to_string(i) + " complete frames");
       job.seed = request->render().seed() + i;
       const gpu::RenderResult frame = renderFrameJob(state_.worker, client, job);
-      for (const CaptureFile& file :
-           captureFiles(frame, job, captureStem(request->name(), i), request->format(), request->layout())) {
-        state_.outputSink.writeFile(file.name, file.bytes);
+      const std::vector<frame_io::FrameFile> files =
+          captureFiles(frame, job, captureStem(request->name(), i), format, layout);
+      state_.outputSink.writeFiles(files);  // the frame's files whole or not at all
+      for (const frame_io::FrameFile& file : files) {
         v1::CaptureProgress progress;
         progress.set_frames_done(i + 1);
         progress.set_frames_total(frames);

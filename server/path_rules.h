@@ -2,28 +2,11 @@
 // "Output confinement"). Violations throw AccessDenied (-> PERMISSION_DENIED) or BadRequest (-> INVALID_ARGUMENT).
 #pragma once
 #include <filesystem>
-#include <stdexcept>
 #include <string>
 
+#include "server/errors.h"
+
 namespace ht::server {
-
-// A client asked for something outside the daemon's roots (`..`, absolute path).
-class AccessDenied : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-// A request field is malformed; `field` names it.
-class BadRequest : public std::runtime_error {
- public:
-  BadRequest(const std::string& field, const std::string& problem) : std::runtime_error(field + ": " + problem) {}
-};
-
-// A request exceeds a configured limit (-> RESOURCE_EXHAUSTED).
-class LimitExceeded : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // A name that may become one path component: [A-Za-z0-9._-], 1..100 chars, not "." or "..", no leading '.'.
 void checkFileNameComponent(const std::string& field, const std::string& name);

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "gpu/vulkan_context.h"
+#include "server/errors.h"
 
 namespace ht::server {
 
@@ -24,12 +25,6 @@ struct WorkerStats {
   double lastFrameMs = 0.0;
   double meanFrameMs = 0.0;
   std::uint32_t queued = 0;
-};
-
-// The daemon is stopping: the job never ran (-> UNAVAILABLE).
-class ShuttingDown : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
 };
 
 class RenderWorker {

@@ -15,6 +15,7 @@
 #include "camera_models/display_config.h"
 #include "gpu/renderer.h"
 #include "scene/scene.h"
+#include "server/errors.h"
 #include "server/render_worker.h"
 
 namespace ht::server {
@@ -35,12 +36,6 @@ struct SceneSession {
   CameraPlacement cameraOverride;  // target / size set by UpdateScene (unset = display's own)
   std::optional<double> observerDistance, observerHeight;  // tracked HPO observer (UpdateScene)
   bool reused = false;
-};
-
-// The handle names no loaded scene (-> NOT_FOUND).
-class UnknownScene : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
 };
 
 class SceneLibrary {

@@ -1,61 +1,66 @@
 // status_mapping.cpp - see status_mapping.h.
 #include "server/status_mapping.h"
 
+#include <array>
 #include <new>
 
-#include "common/error.h"
-#include "server/display_registry.h"
-#include "server/file_sink.h"
-#include "server/path_rules.h"
-#include "server/render_worker.h"
-#include "server/scene_library.h"
-
 namespace ht::server {
+namespace {
+
+using grpc::StatusCode;
+
+template <class E>
+bool is(const Error& error) {
+  return dynamic_cast<const E*>(&error) != nullptr;
+}
+
+struct StatusRule {
+  bool (*matches)(const Error&);
+  StatusCode code;
+};
+
+// First match wins: a derived type comes before its base (DiskFull is an IoError).
+constexpr std::array kRules = {
+    StatusRule{is<AccessDenied>, StatusCode::PERMISSION_DENIED},
+    StatusRule{is<BadRequest>, StatusCode::INVALID_ARGUMENT},
+    StatusRule{is<LimitExceeded>, StatusCode::RESOURCE_EXHAUSTED},
+    StatusRule{is<DiskFull>, StatusCode::RESOURCE_EXHAUSTED},
+    StatusRule{is<UnknownDisplay>, StatusCode::NOT_FOUND},
+    StatusRule{is<UnknownScene>, StatusCode::NOT_FOUND},
+    StatusRule{is<ShuttingDown>, StatusCode::UNAVAILABLE},
+    StatusRule{is<ClientGone>, StatusCode::CANCELLED},
+    StatusRule{is<ConfigError>, StatusCode::INVALID_ARGUMENT},
+    StatusRule{is<SceneError>, StatusCode::INVALID_ARGUMENT},
+    StatusRule{is<UsageError>, StatusCode::INVALID_ARGUMENT},
+    StatusRule{is<GpuError>, StatusCode::INTERNAL},
+    StatusRule{is<IoError>, StatusCode::INTERNAL},
+};
+
+}  // namespace
+
+StatusCode statusCodeOf(const Error& error) {
+  for (const StatusRule& rule : kRules) {
+    if (rule.matches(error)) return rule.code;
+  }
+  return StatusCode::INTERNAL;
+}
 
 grpc::Status statusFromException(std::exception_ptr error) {
-  using grpc::Status;
-  using grpc::StatusCode;
   try {
     std::rethrow_exception(error);
-  } catch (const AccessDenied& e) {
-    return Status(StatusCode::PERMISSION_DENIED, e.what());
-  } catch (const BadRequest& e) {
-    return Status(StatusCode::INVALID_ARGUMENT, e.what());
-  } catch (const LimitExceeded& e) {
-    return Status(StatusCode::RESOURCE_EXHAUSTED, e.what());
-  } catch (const DiskFull& e) {
-    return Status(StatusCode::RESOURCE_EXHAUSTED, e.what());
-  } catch (const UnknownDisplay& e) {
-    return Status(StatusCode::NOT_FOUND, e.what());
-  } catch (const UnknownScene& e) {
-    return Status(StatusCode::NOT_FOUND, e.what());
-  } catch (const ShuttingDown& e) {
-    return Status(StatusCode::UNAVAILABLE, e.what());
-  } catch (const ClientGone& e) {
-    return Status(StatusCode::CANCELLED, e.what());
-  } catch (const ConfigError& e) {
-    return Status(StatusCode::INVALID_ARGUMENT, e.what());
-  } catch (const SceneError& e) {
-    return Status(StatusCode::INVALID_ARGUMENT, e.what());
   } catch (const GpuError& e) {
-    return Status(StatusCode::INTERNAL, std::string("GPU: ") + e.what());
-  } catch (const IoError& e) {
-    return Status(StatusCode::INTERNAL, e.what());
-  } catch (const std::bad_alloc&) {
-    return Status(StatusCode::RESOURCE_EXHAUSTED, "out of memory");
-  } catch (const std::exception& e) {
-    return Status(StatusCode::INTERNAL, e.what());
-  } catch (...) {
-    return Status(StatusCode::INTERNAL, "unknown error");
+    return grpc::Status(statusCodeOf(e), std::string("GPU: ") + e.what());
+  } catch (const Error& e) { return grpc::Status(statusCodeOf(e), e.what()); } catch (const std::bad_alloc&) {
+    return grpc::Status(StatusCode::RESOURCE_EXHAUSTED, "out of memory");
+  } catch (const std::exception& e) { return grpc::Status(StatusCode::INTERNAL, e.what()); } catch (...) {
+    return grpc::Status(StatusCode::INTERNAL, "unknown error");
   }
 }
 
 grpc::Status guarded(const std::function<grpc::Status()>& body) {
   try {
     return body();
-  } catch (...) {
-    return statusFromException(std::current_exception());
-  }
+  } catch (...) { return statusFromException(std::current_exception()); }
 }
 
 }  // namespace ht::server

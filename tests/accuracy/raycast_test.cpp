@@ -8,7 +8,7 @@
 #include <limits>
 #include <sstream>
 
-#include "../cli/temp_directory.h"
+#include "tests/common/temp_directory.h"
 #include "bvh/cpu_traversal.h"
 #include "cli/cli_app.h"
 #include "cli/rays_file.h"
@@ -23,7 +23,7 @@ namespace {
 
 using gpu_shared::HtHit;
 using gpu_shared::HtRay;
-using test::TempDirectory;
+using ht::test::TempDirectory;
 
 std::vector<HtRay> sampleRays() {
   const float inf = std::numeric_limits<float>::infinity();

@@ -1,6 +1,5 @@
 // end_to_end_test.cpp - the `holotrace` binary as a user runs it (on lavapipe in CI): a real render of the
 // Portrait panel, and bad inputs that must fail with exit 1, the file named on stderr, and no output file.
-#include <OpenImageIO/imageio.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -10,9 +9,11 @@
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_params.h"
 #include "camera_models/capture_grid_setup.h"
-#include "cli/ray_table_exr.h"
+#include "frame_io/image_reading.h"
+#include "frame_io/pixel_encoding.h"
+#include "frame_io/ray_table_exr.h"
 #include "process_runner.h"
-#include "temp_directory.h"
+#include "tests/common/temp_directory.h"
 
 #ifndef HOLOTRACE_EXE
 #error "HOLOTRACE_EXE must be defined by tests/cli/CMakeLists.txt"
@@ -36,20 +37,17 @@ struct ImageSize {
 };
 
 ImageSize inspect(const fs::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) return {};
-  const OIIO::ImageSpec spec = in->spec();
-  std::vector<std::uint8_t> pixels(std::size_t(spec.width) * spec.height * spec.nchannels);
-  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data());
+  const frame_io::ImageFile image = frame_io::readImageFile(path);
   std::set<std::uint32_t> distinct;
-  for (std::size_t i = 0; i + 2 < pixels.size(); i += spec.nchannels) {
-    distinct.insert(std::uint32_t(pixels[i]) << 16 | std::uint32_t(pixels[i + 1]) << 8 | pixels[i + 2]);
+  for (std::size_t i = 0; i + 2 < image.rgba.size(); i += 4) {
+    const std::uint32_t r = frame_io::srgbEncode8(image.rgba[i]), g = frame_io::srgbEncode8(image.rgba[i + 1]);
+    distinct.insert(r << 16 | g << 8 | frame_io::srgbEncode8(image.rgba[i + 2]));
   }
-  return {spec.width, spec.height, spec.nchannels, distinct.size()};
+  return {int(image.width), int(image.height), int(image.channelNames.size()), distinct.size()};
 }
 
 TEST(CliEndToEnd, RendersThePortraitPanelToDefaultNamedPngAndExr) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const ProcessResult r = holotrace({"render", "--scene", "builtin:plain", "--spp", "1", "--out-dir", dir.path()});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_THAT(r.out, HasSubstr("device:"));
@@ -69,7 +67,7 @@ TEST(CliEndToEnd, RendersThePortraitPanelToDefaultNamedPngAndExr) {
 }
 
 TEST(CliEndToEnd, PinholeDisplayRendersAnOrdinaryImageOfItsSize) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const fs::path config = dir.path() / "preview.json";
   std::ofstream(config) << R"({"name": "preview", "model": "pinhole", "spp": 1,
                                "pinhole": {"width": 96, "height": 64, "fovyDeg": 50}})";
@@ -85,7 +83,7 @@ TEST(CliEndToEnd, PinholeDisplayRendersAnOrdinaryImageOfItsSize) {
 }
 
 TEST(CliEndToEnd, MissingDisplayFileExitsOneNamingItAndWritesNothing) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const fs::path missing = dir.path() / "no-such-display.json";
   const ProcessResult r = holotrace({"render", "--display", missing, "--spp", "1", "--out-dir", dir.path() / "out"});
   EXPECT_EQ(r.exitCode, 1) << r.out;
@@ -94,7 +92,7 @@ TEST(CliEndToEnd, MissingDisplayFileExitsOneNamingItAndWritesNothing) {
 }
 
 TEST(CliEndToEnd, InvalidDisplayFileExitsOneNamingFileAndField) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const fs::path config = dir.path() / "broken.json";
   std::ofstream(config) << R"({"name": "broken", "model": "lenticular", "spp": 0})";
   const ProcessResult r = holotrace({"render", "--display", config, "-o", dir.path() / "x.png"});
@@ -104,7 +102,7 @@ TEST(CliEndToEnd, InvalidDisplayFileExitsOneNamingFileAndField) {
 }
 
 TEST(CliEndToEnd, MissingSceneFileExitsOneNamingItAndWritesNothing) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const ProcessResult r =
       holotrace({"render", "--scene", dir.path() / "no-such-scene.glb", "--spp", "1", "--out-dir", dir.path()});
   EXPECT_EQ(r.exitCode, 1) << r.out;
@@ -113,7 +111,7 @@ TEST(CliEndToEnd, MissingSceneFileExitsOneNamingItAndWritesNothing) {
 }
 
 TEST(CliEndToEnd, UnwritableOutputFailsBeforeRendering) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   std::ofstream(dir.path() / "blocker") << "a file where the output directory should be";
   const fs::path output = dir.path() / "blocker" / "frame.png";
   const ProcessResult r = holotrace({"render", "--scene", "builtin:plain", "--spp", "1", "-o", output});
@@ -145,14 +143,14 @@ TEST(CliEndToEnd, BadDeviceIndexExitsOne) {
 }
 
 // Writes a display config into `dir` and returns its path.
-fs::path writeConfig(const test::TempDirectory& dir, const std::string& name, const std::string& json) {
+fs::path writeConfig(const ht::test::TempDirectory& dir, const std::string& name, const std::string& json) {
   const fs::path path = dir.path() / (name + ".json");
   std::ofstream(path) << json;
   return path;
 }
 
 TEST(CliEndToEnd, CaptureGridWritesATaggedQuiltWithMetadataAndAMultiViewExr) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const fs::path config = writeConfig(dir, "rig", R"({"name": "rig", "model": "capture-grid", "spp": 1,
       "captureGrid": {"columns": 4, "rows": 2, "spacing": [0.1, 0.1], "distance": 3, "window": {"width": 2.4,
       "height": 1.8}, "image": {"width": 32, "height": 24}}})");
@@ -166,14 +164,13 @@ TEST(CliEndToEnd, CaptureGridWritesATaggedQuiltWithMetadataAndAMultiViewExr) {
   EXPECT_EQ(quilt.width, 128);
   EXPECT_EQ(quilt.height, 48);
   EXPECT_GE(quilt.distinctPixels, 2u);  // the unlit sphere (ambient only) and the background
-  auto exr = OIIO::ImageInput::open((dir.path() / "cap.exr").string());
-  ASSERT_TRUE(exr);
-  EXPECT_EQ(exr->spec().nchannels, 32);
-  EXPECT_NE(exr->spec().find_attribute("multiView"), nullptr);
+  const frame_io::ImageHeader exr = frame_io::readImageHeader(dir.path() / "cap.exr");
+  EXPECT_EQ(exr.channelNames.size(), 32u);
+  EXPECT_EQ(exr.views, 8u);
 }
 
 TEST(CliEndToEnd, ProjectorArrayWritesOneImagePerProjector) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const fs::path config = writeConfig(dir, "wall", R"({"name": "wall", "model": "projector-array", "spp": 2,
       "projectorArray": {"screen": {"width": 160, "height": 90}, "observerDistance": 300, "observerHeight": 0,
       "angularScattering": "auto", "image": {"width": 40, "height": 20},
@@ -187,7 +184,7 @@ TEST(CliEndToEnd, ProjectorArrayWritesOneImagePerProjector) {
 }
 
 TEST(CliEndToEnd, IntegralPanelRendersItsLcdImage) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const fs::path config = writeConfig(dir, "lenslets", R"({"name": "lenslets", "model": "integral", "spp": 1,
       "integral": {"panelWidth": 96, "panelHeight": 64, "pixelPitch": 0.1, "lensPitch": 1.0, "gap": 3.0,
       "focalLength": 3.0, "viewerDistance": 600, "frontPlane": 600}})");
@@ -201,7 +198,7 @@ TEST(CliEndToEnd, IntegralPanelRendersItsLcdImage) {
 }
 
 TEST(CliEndToEnd, QuiltPathRendersThePortraitQuiltAtItsDefaultSize) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const ProcessResult r = holotrace({"render", "--quilt", "--scene", "builtin:sphere", "--spp", "1", "--depth", "0",
                                      "-o", (dir.path() / "q.png").string()});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
@@ -212,7 +209,7 @@ TEST(CliEndToEnd, QuiltPathRendersThePortraitQuiltAtItsDefaultSize) {
 }
 
 TEST(CliEndToEnd, QuiltPathOfANonLenticularDisplayIsAConfigError) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const ProcessResult r = holotrace({"render", "--quilt", "--display", "builtin:capture-8x6", "--out-dir",
                                      dir.path().string()});
   EXPECT_EQ(r.exitCode, 1);
@@ -223,17 +220,14 @@ TEST(CliEndToEnd, QuiltPathOfANonLenticularDisplayIsAConfigError) {
 
 // --debug views: channel c of pixel (x, y) = the view phase of subpixel (x, y, c), from the shared model code.
 TEST(CliEndToEnd, DebugViewsWritesTheSubpixelViewPhasesWithoutTracing) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const fs::path exr = dir.path() / "phase.exr";
   const ProcessResult r = holotrace({"render", "--debug", "views", "--exr", exr.string()});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_THAT(r.out, Not(HasSubstr("device:")));
-  auto in = OIIO::ImageInput::open(exr.string());
-  ASSERT_TRUE(in);
-  const OIIO::ImageSpec spec = in->spec();
-  ASSERT_EQ(spec.width, 1536);
-  std::vector<float> pixels(std::size_t(spec.width) * spec.height * 4);
-  ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pixels.data()));
+  const frame_io::ImageFile image = frame_io::readImageFile(exr);
+  ASSERT_EQ(image.width, 1536u);
+  const std::vector<float>& pixels = image.rgba;
   // Independent check of the classic phase formula (optics.md §3.1) at a few subpixels, half-float precision.
   const DisplayConfig display = builtinDisplay("portrait");
   const LenticularShaderValues v = lenticularShaderValues(*display.calibration);
@@ -256,7 +250,7 @@ TEST(CliEndToEnd, DebugViewsWritesTheSubpixelViewPhasesWithoutTracing) {
 // (written independently of the float code), and the file reads back as a "ray-table" display that renders and
 // reproduces the same table bit for bit.
 TEST(CliEndToEnd, RaysDumpsTheTableAndItReadsBackAsARayTableDisplay) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const fs::path config = writeConfig(dir, "rig", R"({"name": "rig", "model": "capture-grid", "spp": 1,
       "camera": {"target": [0, 0, 0]},
       "captureGrid": {"columns": 3, "rows": 2, "spacing": [0.1, 0.1], "distance": 3, "window": {"width": 2.4,
@@ -264,7 +258,7 @@ TEST(CliEndToEnd, RaysDumpsTheTableAndItReadsBackAsARayTableDisplay) {
   const fs::path table = dir.path() / "rig_rays.exr";
   ProcessResult r = holotrace({"rays", "--display", config.string(), "--scene", "builtin:sphere", "-o", table.string()});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
-  const RayTable rays = readRayTableExr(table);
+  const RayTable rays = frame_io::readRayTableExr(table);
   ASSERT_EQ(rays.width, 192u);  // the 6 views side by side (they fit the 16384-entry limit)
   ASSERT_EQ(rays.height, 24u);
   const DisplayConfig display = loadDisplayConfig(config);
@@ -291,13 +285,13 @@ TEST(CliEndToEnd, RaysDumpsTheTableAndItReadsBackAsARayTableDisplay) {
   r = holotrace({"rays", "--display", tableDisplay.string(), "--scene", "builtin:sphere", "-o",
                  (dir.path() / "again.exr").string()});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
-  const RayTable again = readRayTableExr(dir.path() / "again.exr");
+  const RayTable again = frame_io::readRayTableExr(dir.path() / "again.exr");
   EXPECT_EQ(again.origins, rays.origins);
   EXPECT_EQ(again.directions, rays.directions);
 }
 
 TEST(CliEndToEnd, RayTableDisplayWithAMissingFileNamesTheField) {
-  test::TempDirectory dir;
+  ht::test::TempDirectory dir;
   const fs::path config = writeConfig(dir, "table", R"({"name": "table", "model": "ray-table",
       "rayTable": {"file": "nowhere.exr"}})");
   const ProcessResult r = holotrace({"render", "--display", config.string(), "--out-dir", dir.path().string()});

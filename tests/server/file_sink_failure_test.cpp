@@ -91,6 +91,17 @@ TEST_F(FileSinkFailureTest, EdquotAtFsyncIsDiskFull) {
   EXPECT_EQ(readSinkFile(root() / "frame.png"), "old contents");
 }
 
+// A frame's files as one set (Capture): the disk fills up in the third file; none of the three appears, the old file
+// of the first name keeps its contents, no temp file remains.
+TEST_F(FileSinkFailureTest, FullDiskInTheMiddleOfAFileSetLeavesNoneOfIt) {
+  FileSink sink(root(), failingWrite(450'000, ENOSPC));  // two complete 200 kB files, then the third fails
+  const std::vector<frame_io::FrameFile> files = {
+      {"frame.png", bytes_}, {"frame.json", bytes_}, {"frame_v02.png", bytes_}};
+  EXPECT_THROW(sink.writeFiles(files), DiskFull);
+  EXPECT_EQ(entries(root()), std::vector<std::string>{"frame.png"});
+  EXPECT_EQ(readSinkFile(root() / "frame.png"), "old contents");
+}
+
 TEST_F(FileSinkFailureTest, OtherWriteErrorsAreInternalAndAlsoLeaveNothing) {
   FileSink sink(root(), failingWrite(0, EIO));
   EXPECT_EQ(codeOf([&] { sink.writeFile("new.png", bytes_); }), grpc::StatusCode::INTERNAL);

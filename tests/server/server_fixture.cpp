@@ -131,6 +131,22 @@ grpc::Status renderOne(v1::Holotrace::Stub& stub, const v1::RenderRequest& reque
   return reader->Finish();
 }
 
+grpc::Status captureFrame(v1::Holotrace::Stub& stub, const std::string& name, const v1::RenderRequest& render,
+                          v1::CaptureFormat format, v1::CaptureLayout layout, std::vector<std::string>& files) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(300));
+  v1::CaptureRequest request;
+  *request.mutable_render() = render;
+  request.set_name(name);
+  request.set_frames(1);
+  request.set_format(format);
+  request.set_layout(layout);
+  auto reader = stub.Capture(&context, request);
+  v1::CaptureProgress progress;
+  while (reader->Read(&progress)) files.push_back(progress.file());
+  return reader->Finish();
+}
+
 bool isCompletePng(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};

@@ -55,6 +55,10 @@ v1::RenderRequest tinyRequest(const std::string& sceneId, v1::PixelFormat format
 // Renders one frame; returns the final status.
 grpc::Status renderOne(v1::Holotrace::Stub& stub, const v1::RenderRequest& request, ReceivedFrame* frame = nullptr);
 
+// One Capture of one frame; returns the final status and appends the files it reported to `files`.
+grpc::Status captureFrame(v1::Holotrace::Stub& stub, const std::string& name, const v1::RenderRequest& render,
+                          v1::CaptureFormat format, v1::CaptureLayout layout, std::vector<std::string>& files);
+
 bool isCompletePng(const std::filesystem::path& file);  // signature + IEND trailer
 
 // One in-process daemon per test suite (started in SetUpTestSuite), a client stub and a loaded builtin:plain scene

@@ -419,21 +419,6 @@ v1::RenderRequest multiViewRequest(const std::string& sceneId, const std::string
   return request;
 }
 
-grpc::Status captureAs(v1::Holotrace::Stub& stub, const std::string& name, const v1::RenderRequest& render,
-                       v1::CaptureFormat format, v1::CaptureLayout layout, std::vector<std::string>* files) {
-  grpc::ClientContext context;
-  v1::CaptureRequest request;
-  *request.mutable_render() = render;
-  request.set_name(name);
-  request.set_frames(1);
-  request.set_format(format);
-  request.set_layout(layout);
-  auto reader = stub.Capture(&context, request);
-  v1::CaptureProgress progress;
-  while (reader->Read(&progress)) files->push_back(progress.file());
-  return reader->Finish();
-}
-
 TEST_F(ServerTest, MultiViewFramesCarryEveryViewAndPngIsTheQuilt) {
   ReceivedFrame frame;
   ASSERT_TRUE(renderOne(*stub_, multiViewRequest(sceneId_, "rig", v1::PIXEL_FORMAT_RGBA8), &frame).ok());
@@ -451,21 +436,21 @@ TEST_F(ServerTest, MultiViewFramesCarryEveryViewAndPngIsTheQuilt) {
 
 TEST_F(ServerTest, CaptureWritesQuiltPerViewAndMultiViewFiles) {
   std::vector<std::string> files;
-  ASSERT_TRUE(captureAs(*stub_, "rigq", multiViewRequest(sceneId_, "rig", v1::PIXEL_FORMAT_RGBA8),
-                        v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_AUTO, &files).ok());
+  ASSERT_TRUE(captureFrame(*stub_, "rigq", multiViewRequest(sceneId_, "rig", v1::PIXEL_FORMAT_RGBA8),
+                        v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_AUTO, files).ok());
   ASSERT_EQ(files, (std::vector<std::string>{"rigq_f0000_qs3x2a1.5.png", "rigq_f0000_qs3x2a1.5.json"}));
   EXPECT_TRUE(isCompletePng(files_->outputRoot() / files[0]));
   files.clear();
-  ASSERT_TRUE(captureAs(*stub_, "walls", multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8),
-                        v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_AUTO, &files).ok());
+  ASSERT_TRUE(captureFrame(*stub_, "walls", multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8),
+                        v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_AUTO, files).ok());
   EXPECT_EQ(files, (std::vector<std::string>{"walls_f0000_v00.png", "walls_f0000_v01.png", "walls_f0000_v02.png"}));
   files.clear();
-  ASSERT_TRUE(captureAs(*stub_, "wallx", multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8),
-                        v1::CAPTURE_FORMAT_EXR, v1::CAPTURE_LAYOUT_AUTO, &files).ok());
+  ASSERT_TRUE(captureFrame(*stub_, "wallx", multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8),
+                        v1::CAPTURE_FORMAT_EXR, v1::CAPTURE_LAYOUT_AUTO, files).ok());
   EXPECT_EQ(files, (std::vector<std::string>{"wallx_f0000.exr"}));
   files.clear();
-  EXPECT_EQ(captureAs(*stub_, "wallq", multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8),
-                      v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_QUILT, &files).error_code(),
+  EXPECT_EQ(captureFrame(*stub_, "wallq", multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8),
+                      v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_QUILT, files).error_code(),
             StatusCode::INVALID_ARGUMENT);
   EXPECT_FALSE(std::filesystem::exists(files_->outputRoot() / "wallq_f0000.png"));
 }

@@ -9,6 +9,7 @@
 #include "server/file_sink.h"
 #include "server/listen_address.h"
 #include "server/path_rules.h"
+#include "server/status_mapping.h"
 #include "tests/server/server_fixture.h"
 
 namespace ht::server::test {
@@ -55,6 +56,39 @@ TEST(FileSinkTest, WritesCompleteFilesOnlyBeneathTheRootItOpened) {
   for (const auto& e : std::filesystem::directory_iterator(dir.path / "moved")) {
     EXPECT_NE(e.path().filename().string().front(), '.') << "temp file left: " << e.path();
   }
+}
+
+TEST(FileSinkTest, AFileSetAppearsWhole) {
+  TempDir dir;
+  FileSink sink(dir.path / "out");
+  sink.writeFiles({{{"q.png", {1, 2, 3}}, {"q.json", {'{', '}'}}}});
+  EXPECT_EQ(readAll(dir.path / "out" / "q.png"), std::string("\x01\x02\x03"));
+  EXPECT_EQ(readAll(dir.path / "out" / "q.json"), "{}");
+}
+
+// Every server error is an ht::Error and maps to its status by type; the derived DiskFull wins over its base IoError.
+TEST(StatusMappingTest, EveryErrorTypeHasItsCode) {
+  using grpc::StatusCode;
+  EXPECT_EQ(statusCodeOf(AccessDenied("a")), StatusCode::PERMISSION_DENIED);
+  EXPECT_EQ(statusCodeOf(BadRequest("field", "b")), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(statusCodeOf(LimitExceeded("c")), StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(statusCodeOf(DiskFull("d")), StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(statusCodeOf(UnknownDisplay("e")), StatusCode::NOT_FOUND);
+  EXPECT_EQ(statusCodeOf(UnknownScene("f")), StatusCode::NOT_FOUND);
+  EXPECT_EQ(statusCodeOf(ShuttingDown("g")), StatusCode::UNAVAILABLE);
+  EXPECT_EQ(statusCodeOf(ClientGone("h")), StatusCode::CANCELLED);
+  EXPECT_EQ(statusCodeOf(ConfigError("f.json", "spp", "0", ">= 1")), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(statusCodeOf(SceneError("s.obj", "bad")), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(statusCodeOf(UsageError("layout")), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(statusCodeOf(GpuError("lost")), StatusCode::INTERNAL);
+  EXPECT_EQ(statusCodeOf(IoError("io")), StatusCode::INTERNAL);
+  EXPECT_EQ(statusCodeOf(Error("other")), StatusCode::INTERNAL);
+  EXPECT_EQ(BadRequest("render.spp", "too big").field(), "render.spp");
+  const grpc::Status gpu = statusFromException(std::make_exception_ptr(GpuError("device lost")));
+  EXPECT_EQ(gpu.error_message(), "GPU: device lost");
+  const grpc::Status disk = statusFromException(std::make_exception_ptr(DiskFull("output disk full")));
+  EXPECT_EQ(disk.error_code(), StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(disk.error_message(), "output disk full");
 }
 
 TEST(DaemonConfigTest, ParsesPathsAndLimits) {

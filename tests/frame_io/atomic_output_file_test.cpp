@@ -1,5 +1,6 @@
-// atomic_output_file_test.cpp - temp-then-rename output files and the early output-directory check.
-#include "cli/atomic_output_file.h"
+// atomic_output_file_test.cpp - temp-then-rename output files, file sets that appear whole or not at all, and the
+// early output-directory check.
+#include "frame_io/atomic_output_file.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -8,9 +9,9 @@
 #include <iterator>
 
 #include "common/error.h"
-#include "temp_directory.h"
+#include "tests/common/temp_directory.h"
 
-namespace ht::cli {
+namespace ht::frame_io {
 namespace {
 
 namespace fs = std::filesystem;
@@ -23,7 +24,7 @@ std::string contents(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-TEST(CliAtomicOutputFile, CommitMovesTheTemporaryFileIntoPlace) {
+TEST(AtomicOutputFile, CommitMovesTheTemporaryFileIntoPlace) {
   test::TempDirectory dir;
   const fs::path target = dir.path() / "result.txt";
   {
@@ -38,7 +39,7 @@ TEST(CliAtomicOutputFile, CommitMovesTheTemporaryFileIntoPlace) {
   EXPECT_THAT(dir.entries(), ElementsAre("result.txt"));
 }
 
-TEST(CliAtomicOutputFile, WithoutCommitNothingIsLeftAndOldFileSurvives) {
+TEST(AtomicOutputFile, WithoutCommitNothingIsLeftAndOldFileSurvives) {
   test::TempDirectory dir;
   const fs::path target = dir.path() / "result.txt";
   std::ofstream(target) << "previous";
@@ -50,7 +51,7 @@ TEST(CliAtomicOutputFile, WithoutCommitNothingIsLeftAndOldFileSurvives) {
   EXPECT_THAT(dir.entries(), ElementsAre("result.txt"));
 }
 
-TEST(CliAtomicOutputFile, PrepareOutputDirectoryCreatesParentsOrNamesTheProblem) {
+TEST(AtomicOutputFile, PrepareOutputDirectoryCreatesParentsOrNamesTheProblem) {
   test::TempDirectory dir;
   prepareOutputDirectory(dir.path() / "x" / "y" / "frame.png");
   EXPECT_TRUE(fs::is_directory(dir.path() / "x" / "y"));
@@ -68,5 +69,30 @@ TEST(CliAtomicOutputFile, PrepareOutputDirectoryCreatesParentsOrNamesTheProblem)
   EXPECT_THROW(AtomicOutputFile(""), IoError);
 }
 
+std::vector<std::uint8_t> bytesOf(const std::string& text) { return {text.begin(), text.end()}; }
+
+TEST(AtomicOutputFile, FileSetAppearsWholeWithNoTemporaryLeft) {
+  test::TempDirectory dir;
+  const std::vector<OutputFile> files = {{dir.path() / "q.png", bytesOf("quilt")},
+                                         {dir.path() / "q.json", bytesOf("{}")},
+                                         {dir.path() / "exr" / "q.exr", bytesOf("views")}};
+  writeFilesAtomically(files);
+  EXPECT_THAT(dir.entries(), ElementsAre("exr", "q.json", "q.png"));
+  EXPECT_EQ(contents(dir.path() / "q.png"), "quilt");
+  EXPECT_EQ(contents(dir.path() / "exr" / "q.exr"), "views");
+}
+
+TEST(AtomicOutputFile, FileSetWithOneUnwritableFileWritesNoneOfThem) {
+  test::TempDirectory dir;
+  std::ofstream(dir.path() / "q.png") << "previous";
+  std::ofstream(dir.path() / "blocker") << "a file where a directory is needed";
+  const std::vector<OutputFile> files = {{dir.path() / "q.png", bytesOf("quilt")},
+                                         {dir.path() / "q.json", bytesOf("{}")},
+                                         {dir.path() / "blocker" / "q.exr", bytesOf("views")}};
+  EXPECT_THROW(writeFilesAtomically(files), IoError);
+  EXPECT_THAT(dir.entries(), ElementsAre("blocker", "q.png"));
+  EXPECT_EQ(contents(dir.path() / "q.png"), "previous");
+}
+
 }  // namespace
-}  // namespace ht::cli
+}  // namespace ht::frame_io

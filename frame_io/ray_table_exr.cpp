@@ -1,15 +1,16 @@
 // ray_table_exr.cpp - see ray_table_exr.h.
-#include "cli/ray_table_exr.h"
+#include "frame_io/ray_table_exr.h"
 
 #include <OpenImageIO/imageio.h>
 
 #include <array>
 #include <string>
 
-#include "cli/atomic_output_file.h"
 #include "common/error.h"
+#include "frame_io/atomic_output_file.h"
+#include "frame_io/image_encoding.h"
 
-namespace ht::cli {
+namespace ht::frame_io {
 namespace fs = std::filesystem;
 namespace {
 
@@ -37,13 +38,8 @@ void writeRayTableExr(const fs::path& path, const RayTable& table, std::span<con
     throw IoError("cannot write '" + path.string() + "': phase has " + std::to_string(phase.size()) +
                   " values, expected width*height = " + std::to_string(count) + " (or none)");
   const int channels = phase.empty() ? 6 : 7;
-  OIIO::ImageSpec spec(int(table.width), int(table.height), channels, OIIO::TypeDesc::FLOAT);
-  spec.channelnames.assign(kChannels.begin(), kChannels.end());
-  if (!phase.empty()) spec.channelnames.push_back(kRayTablePhaseChannel);
-  spec.alpha_channel = -1;
-  spec.attribute("Software", "holotrace");
-  spec.attribute("compression", "zip");  // lossless: the table reads back bit-exactly
-  spec.attribute("holotrace:content", "ray table: origin, direction per pixel; row 0 = top (y = height - 1)");
+  std::vector<std::string> names(kChannels.begin(), kChannels.end());
+  if (!phase.empty()) names.push_back(kRayTablePhaseChannel);
   // Scanline order, top row first.
   std::vector<float> pixels(count * std::size_t(channels));
   for (std::uint32_t row = 0; row < table.height; ++row) {
@@ -58,18 +54,14 @@ void writeRayTableExr(const fs::path& path, const RayTable& table, std::span<con
       if (!phase.empty()) p[6] = phase[i];
     }
   }
-  AtomicOutputFile file(path);
-  auto out = OIIO::ImageOutput::create("openexr");
-  if (!out) throw IoError("cannot write '" + path.string() + "': no OpenImageIO EXR writer: " + oiioDetail(""));
-  if (!out->open(file.tempPath().string(), spec))
-    throw IoError("cannot write '" + path.string() + "': open: " + oiioDetail(out->geterror()));
-  if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) {
-    const std::string error = oiioDetail(out->geterror());
-    out->close();
-    throw IoError("cannot write '" + path.string() + "': write: " + error);
-  }
-  if (!out->close()) throw IoError("cannot write '" + path.string() + "': close: " + oiioDetail(out->geterror()));
-  file.commit();
+  std::vector<std::uint8_t> bytes;
+  try {  // float32 with lossless zip compression: the table reads back bit-exactly
+    bytes = encodeExrChannels(
+        table.width, table.height, names, pixels, ImageFormat::ExrFloat,
+        {{"holotrace:content", "ray table: origin, direction per pixel; row 0 = top (y = height - 1)"}});
+  } catch (const IoError& e) { throw IoError("cannot write '" + path.string() + "': " + e.what()); }
+  const OutputFile file{path, std::move(bytes)};
+  writeFilesAtomically({&file, 1});
 }
 
 RayTable readRayTableExr(const fs::path& path, std::vector<float>* phase) {
@@ -144,4 +136,4 @@ RayTable loadDisplayRayTable(const DisplayConfig& config) {
   return readRayTableExr(file);
 }
 
-}  // namespace ht::cli
+}  // namespace ht::frame_io

@@ -1,5 +1,5 @@
 // atomic_output_file.cpp - see atomic_output_file.h.
-#include "cli/atomic_output_file.h"
+#include "frame_io/atomic_output_file.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -7,13 +7,15 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <memory>
 #include <string>
 #include <system_error>
 #include <vector>
 
 #include "common/error.h"
 
-namespace ht::cli {
+namespace ht::frame_io {
 namespace fs = std::filesystem;
 namespace {
 
@@ -43,8 +45,8 @@ fs::path createTempFile(const fs::path& target) {
   std::vector<char> buffer(name.begin(), name.end());
   buffer.push_back('\0');
   const int fd = ::mkstemp(buffer.data());
-  if (fd < 0) throwIo(target, "cannot create a temporary file in '" + directoryOf(target).string() + "'",
-                      std::strerror(errno));
+  if (fd < 0)
+    throwIo(target, "cannot create a temporary file in '" + directoryOf(target).string() + "'", std::strerror(errno));
   ::fchmod(fd, 0644);
   ::close(fd);
   return fs::path(buffer.data());
@@ -85,4 +87,16 @@ void AtomicOutputFile::commit() {
   }
 }
 
-}  // namespace ht::cli
+void writeFilesAtomically(std::span<const OutputFile> files) {
+  std::vector<std::unique_ptr<AtomicOutputFile>> temps;
+  for (const OutputFile& file : files) {
+    temps.push_back(std::make_unique<AtomicOutputFile>(file.path));
+    std::ofstream stream(temps.back()->tempPath(), std::ios::binary | std::ios::trunc);
+    stream.write(reinterpret_cast<const char*>(file.bytes.data()), std::streamsize(file.bytes.size()));
+    stream.flush();
+    if (!stream) throwIo(file.path, "write failed", "disk full or I/O error");
+  }
+  for (const auto& temp : temps) temp->commit();
+}
+
+}  // namespace ht::frame_io

@@ -1,11 +1,11 @@
 // ray_table_exr_test.cpp - ray-table EXR files: bit-exact round trip (with and without the phase channel), row
 // orientation in the file, and the errors: missing / non-float32 channels, NaN values, oversized tables, missing files.
-#include "cli/ray_table_exr.h"
+#include "frame_io/ray_table_exr.h"
 
-#include <OpenImageIO/imageio.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -14,9 +14,12 @@
 #include <vector>
 
 #include "common/error.h"
-#include "temp_directory.h"
+#include "frame_io/atomic_output_file.h"
+#include "frame_io/image_encoding.h"
+#include "frame_io/image_reading.h"
+#include "tests/common/temp_directory.h"
 
-namespace ht::cli {
+namespace ht::frame_io {
 namespace {
 
 namespace fs = std::filesystem;
@@ -39,17 +42,11 @@ RayTable makeTable(std::uint32_t width, std::uint32_t height) {
 
 bool sameBits(const glm::vec3& a, const glm::vec3& b) { return std::memcmp(&a, &b, sizeof(glm::vec3)) == 0; }
 
-// Writes an EXR with arbitrary channels straight through OIIO (rows as given: row 0 = top).
-void writeRawExr(const fs::path& path, int width, int height, const std::vector<std::string>& names,
-                 const std::vector<float>& pixels, OIIO::TypeDesc type = OIIO::TypeDesc::FLOAT) {
-  OIIO::ImageSpec spec(width, height, int(names.size()), type);
-  spec.channelnames = names;
-  spec.alpha_channel = -1;
-  auto out = OIIO::ImageOutput::create("openexr");
-  ASSERT_TRUE(out);
-  ASSERT_TRUE(out->open(path.string(), spec)) << out->geterror();
-  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) << out->geterror();
-  ASSERT_TRUE(out->close());
+// Writes an EXR with arbitrary channels (rows as given: row 0 = top).
+void writeRawExr(const fs::path& path, std::uint32_t width, std::uint32_t height, const std::vector<std::string>& names,
+                 const std::vector<float>& pixels, ImageFormat format = ImageFormat::ExrFloat) {
+  const OutputFile file{path, encodeExrChannels(width, height, names, pixels, format)};
+  writeFilesAtomically({&file, 1});
 }
 
 const std::vector<std::string> kNames = {"origin.X",    "origin.Y",    "origin.Z",
@@ -69,9 +66,7 @@ std::vector<float> rawPixels() {
 ConfigError readError(const fs::path& path) {
   try {
     readRayTableExr(path);
-  } catch (const ConfigError& e) {
-    return e;
-  }
+  } catch (const ConfigError& e) { return e; }
   ADD_FAILURE() << "read accepted " << path;
   return ConfigError("", "", "", "");
 }
@@ -103,20 +98,21 @@ TEST(RayTableExr, PhaseChannelAndRowOrder) {
   readRayTableExr(dir.path() / "p.exr", &back);
   ASSERT_EQ(back.size(), phase.size());
   for (std::size_t i = 0; i < phase.size(); ++i) EXPECT_EQ(std::memcmp(&back[i], &phase[i], 4), 0) << i;
-  // In the file, scanline 0 is the top row: table row y = height - 1.
-  auto in = OIIO::ImageInput::open((dir.path() / "p.exr").string());
-  ASSERT_TRUE(in);
-  const OIIO::ImageSpec& spec = in->spec();
-  EXPECT_EQ(spec.nchannels, 7);
-  std::vector<float> pixels(std::size_t(spec.width) * spec.height * spec.nchannels);
-  ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
-  const int ox = spec.channelindex("origin.X"), ph = spec.channelindex("phase");
-  ASSERT_GE(ox, 0);
-  ASSERT_GE(ph, 0);
-  EXPECT_EQ(pixels[std::size_t(2) * spec.nchannels + ox], table.origins[table.index(2, 3)].x);
-  EXPECT_EQ(pixels[std::size_t(2) * spec.nchannels + ph], phase[table.index(2, 3)]);
-  EXPECT_EQ(spec.channelformat(ox), OIIO::TypeDesc::FLOAT);
+  // Seven float32 channels in the file.
+  const ImageHeader header = readImageHeader(dir.path() / "p.exr");
+  EXPECT_EQ(header.channelNames.size(), 7u);
+  EXPECT_THAT(header.channelNames, ::testing::Contains("phase"));
+  EXPECT_EQ(std::count(header.channelTypes.begin(), header.channelTypes.end(), SampleType::Float), 7);
   EXPECT_THROW(writeRayTableExr(dir.path() / "bad-phase.exr", table, std::vector<float>(3)), IoError);
+}
+
+// In the file, scanline 0 is the top row: table row y = height - 1 (rawPixels' rows: origin.y = 1 - row).
+TEST(RayTableExr, FirstScanlineIsTheTopRow) {
+  test::TempDirectory dir;
+  writeRawExr(dir.path() / "r.exr", 3, 2, kNames, rawPixels());
+  const RayTable t = readRayTableExr(dir.path() / "r.exr");
+  EXPECT_EQ(t.origins[t.index(2, 1)], glm::vec3(2.0f, 1.0f, 0.0f));  // scanline 0
+  EXPECT_EQ(t.origins[t.index(2, 0)], glm::vec3(2.0f, 0.0f, 0.0f));  // scanline 1
 }
 
 TEST(RayTableExr, MissingChannelIsNamed) {
@@ -136,7 +132,7 @@ TEST(RayTableExr, MissingChannelIsNamed) {
 
 TEST(RayTableExr, HalfChannelsRejected) {
   test::TempDirectory dir;
-  writeRawExr(dir.path() / "h.exr", 3, 2, kNames, rawPixels(), OIIO::TypeDesc::HALF);
+  writeRawExr(dir.path() / "h.exr", 3, 2, kNames, rawPixels(), ImageFormat::ExrHalf);
   const ConfigError e = readError(dir.path() / "h.exr");
   EXPECT_THAT(e.expected(), HasSubstr("float32"));
 }
@@ -184,9 +180,7 @@ TEST(RayTableExr, OversizedAndMissingFiles) {
   try {
     readRayTableExr(dir.path() / "nope.exr");
     ADD_FAILURE() << "read a missing file";
-  } catch (const IoError& error) {
-    EXPECT_THAT(error.what(), HasSubstr("nope.exr"));
-  }
+  } catch (const IoError& error) { EXPECT_THAT(error.what(), HasSubstr("nope.exr")); }
 }
 
 TEST(RayTableExr, LoadedThroughTheDisplayConfig) {
@@ -202,8 +196,8 @@ TEST(RayTableExr, LoadedThroughTheDisplayConfig) {
   const RayTable back = loadDisplayRayTable(config);
   ASSERT_EQ(back.origins.size(), table.origins.size());
   for (std::size_t i = 0; i < table.origins.size(); ++i) EXPECT_TRUE(sameBits(back.origins[i], table.origins[i]));
-  const DisplayConfig missing = parseDisplayConfig(R"({"model": "ray-table", "rayTable": {"file": "gone.exr"}})",
-                                                   "cfg.json", dir.path());
+  const DisplayConfig missing =
+      parseDisplayConfig(R"({"model": "ray-table", "rayTable": {"file": "gone.exr"}})", "cfg.json", dir.path());
   try {
     loadDisplayRayTable(missing);
     ADD_FAILURE() << "loaded a missing table";
@@ -216,4 +210,4 @@ TEST(RayTableExr, LoadedThroughTheDisplayConfig) {
 }
 
 }  // namespace
-}  // namespace ht::cli
+}  // namespace ht::frame_io

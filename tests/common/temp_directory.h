@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-namespace ht::cli::test {
+namespace ht::test {
 
 class TempDirectory {
  public:
@@ -42,4 +42,4 @@ class TempDirectory {
   std::filesystem::path path_;
 };
 
-}  // namespace ht::cli::test
+}  // namespace ht::test

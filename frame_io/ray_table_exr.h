@@ -1,9 +1,9 @@
-// ray_table_exr.h - per-pixel ray tables (camera_models/ray_table.h, model "ray-table") as OpenEXR files. OIIO is
-// allowed in cli/ only, so the file format lives here and camera_models stays free of image libraries.
+// ray_table_exr.h - per-pixel ray tables (camera_models/ray_table.h, model "ray-table") as OpenEXR files. The file
+// format lives in frame_io, so camera_models stays free of image libraries.
 //
 // Layout: one pixel per table entry, float32 channels origin.X, origin.Y, origin.Z, direction.X, direction.Y,
 // direction.Z (+ an optional per-pixel view phase "phase"), lossless zip compression. EXR scanline 0 is the TOP row,
-// i.e. table row y = height - 1 (the table counts y from the bottom, optics.md §0), as for holotrace's images.
+// i.e. table row y = height - 1 (the table counts y from the bottom), as for holotrace's images.
 #pragma once
 #include <filesystem>
 #include <span>
@@ -11,12 +11,12 @@
 
 #include "camera_models/ray_table.h"
 
-namespace ht::cli {
+namespace ht::frame_io {
 
 inline constexpr const char* kRayTablePhaseChannel = "phase";
 
 // Validates the table (RayTable::validate: ConfigError naming the entry), then writes it atomically
-// (cli/atomic_output_file.h: never a partial file). `phase` is empty or width*height values (row-major, y from the
+// (frame_io/atomic_output_file.h: never a partial file). `phase` is empty or width*height values (row-major, y from the
 // bottom, as the table). Throws IoError on write failures or a phase of the wrong size.
 void writeRayTableExr(const std::filesystem::path& path, const RayTable& table, std::span<const float> phase = {});
 
@@ -32,4 +32,4 @@ RayTable readRayTableExr(const std::filesystem::path& path, std::vector<float>* 
 // table file. Throws ConfigError if the config is not a ray-table display.
 RayTable loadDisplayRayTable(const DisplayConfig& config);
 
-}  // namespace ht::cli
+}  // namespace ht::frame_io
