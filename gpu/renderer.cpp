@@ -50,7 +50,7 @@ constexpr std::uint32_t kMaxImageSide = 32768;
 using StageTimes = std::array<double, static_cast<size_t>(Stage::Count)>;
 
 // `spec` (a kernel's own constants, ids 0..) with constant `id` set to `value`, the ids between left 0: the
-// constants common to several kernels sit at fixed high ids (trace_*: 10, shade / gather_direct: 20).
+// constants common to several kernels sit at fixed high ids (gpu/shader_interface.h HT_SPEC_*).
 std::vector<std::uint32_t> withConstant(std::vector<std::uint32_t> spec, std::uint32_t id, std::uint32_t value) {
   spec.resize(std::max<std::size_t>(spec.size(), id + 1), 0u);
   spec[id] = value;
@@ -58,6 +58,13 @@ std::vector<std::uint32_t> withConstant(std::vector<std::uint32_t> spec, std::ui
 }
 
 std::uint32_t groupsFor(std::uint64_t n) { return static_cast<std::uint32_t>((n + HT_WORKGROUP_SIZE - 1) / HT_WORKGROUP_SIZE); }
+
+// A buffer bound as a texel buffer: which binding, which buffer, which texel format.
+struct TexelBinding {
+  std::uint32_t binding;
+  const DeviceBuffer* buffer;
+  VkFormat format;
+};
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -166,6 +173,7 @@ struct Renderer::Impl {
   // Specialisation of raygen: the camera model, then a lenticular panel's Gen3 cell mode and count, so the cell code
   // folds to the panel's own pattern (lenticular_model.h HT_LENTICULAR_CELL_MODE; a CPU driver pays for untaken code),
   // then REFINING for the pass over listed targets.
+  static_assert(gpu_shared::HT_SPEC_MODEL == 0, "raygen, resolve and refine_select take the model as constant 0");
   std::vector<std::uint32_t> raygenSpec(const FrameShape& shape, bool refining = false) const {
     const auto* lenticular = std::get_if<gpu_shared::LenticularParams>(&camera);
     if (!lenticular) return {shape.model, 0u, 0u, refining};
@@ -174,14 +182,14 @@ struct Renderer::Impl {
   }
 
   // Specialisation of the kernels that continue paths (shade, gather_direct): their own constants, then
-  // constant_id 20 = PRIMARY_DEPTH, true for the dispatches at depth 0 (common.glsl queue_path).
+  // PRIMARY_DEPTH, true for the dispatches at depth 0 (common.glsl queue_path).
   static std::vector<std::uint32_t> depthSpec(std::vector<std::uint32_t> own, std::uint32_t depth) {
-    return withConstant(std::move(own), 20, depth == 0 ? 1u : 0u);
+    return withConstant(std::move(own), gpu_shared::HT_SPEC_PRIMARY_DEPTH, depth == 0 ? 1u : 0u);
   }
 
-  // Specialisation of the trace kernels: their own constants, then constant_id 10 = TEXEL_FETCH.
+  // Specialisation of the trace kernels: their own constants, then TEXEL_FETCH.
   std::vector<std::uint32_t> traceSpec(std::vector<std::uint32_t> own) const {
-    return withConstant(std::move(own), 10, bvhTexelsCover ? 1u : 0u);
+    return withConstant(std::move(own), gpu_shared::HT_SPEC_TEXEL_FETCH, bvhTexelsCover ? 1u : 0u);
   }
 
   // Binding HT_BINDING_RAY_TABLE: the ray-table camera's entries (uploaded when the table object changes), else a
@@ -230,19 +238,23 @@ struct Renderer::Impl {
   // while the bound ones still existed, so their handles differ and every view is rebuilt.
   void bindScene() {
     using namespace gpu_shared;
-    bool nodes = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 0, scene.nodes, VK_FORMAT_R32G32B32A32_SFLOAT);
-    descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 1, scene.nodes, VK_FORMAT_R32G32B32A32_UINT);
-    bool tris = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 2, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_SFLOAT);
-    descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 3, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_UINT);
+    bool nodes = descriptors.setUniformTexels(HT_BINDING_BVH_NODES, scene.nodes, VK_FORMAT_R32G32B32A32_SFLOAT);
+    descriptors.setUniformTexels(HT_BINDING_BVH_NODE_UINTS, scene.nodes, VK_FORMAT_R32G32B32A32_UINT);
+    bool tris = descriptors.setUniformTexels(HT_BINDING_BVH_TRIS, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_SFLOAT);
+    descriptors.setUniformTexels(HT_BINDING_BVH_TRI_UINTS, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_UINT);
     bvhTexelsCover = nodes && tris;  // else the trace kernels read the BVH by device address
     descriptors.setUniformBuffer(HT_BINDING_FRAME, frame);
-    const std::pair<const DeviceBuffer*, VkFormat> records[] = {
-        {&scene.vertices, VK_FORMAT_R32G32B32A32_SFLOAT}, {&scene.normals, VK_FORMAT_R32G32B32A32_SFLOAT},
-        {&scene.texcoords, VK_FORMAT_R32G32_SFLOAT},      {&scene.triangles, VK_FORMAT_R32G32B32A32_UINT},
-        {&scene.materials, VK_FORMAT_R32G32B32A32_SFLOAT}, {&scene.lights, VK_FORMAT_R32G32B32A32_SFLOAT},
-        {&scene.textures, VK_FORMAT_R32G32B32A32_UINT},   {&scene.texels, VK_FORMAT_R32G32B32A32_SFLOAT}};
-    for (std::uint32_t k = 0; k < 8; ++k) {
-      if (!descriptors.setUniformTexels(HT_BINDING_SCENE_FIRST + k, *records[k].first, records[k].second)) {
+    const TexelBinding records[] = {
+        {HT_BINDING_VERTICES, &scene.vertices, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {HT_BINDING_NORMALS, &scene.normals, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {HT_BINDING_TEXCOORDS, &scene.texcoords, VK_FORMAT_R32G32_SFLOAT},
+        {HT_BINDING_TRIANGLES, &scene.triangles, VK_FORMAT_R32G32B32A32_UINT},
+        {HT_BINDING_MATERIALS, &scene.materials, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {HT_BINDING_LIGHTS, &scene.lights, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {HT_BINDING_TEXTURES, &scene.textures, VK_FORMAT_R32G32B32A32_UINT},
+        {HT_BINDING_TEXELS, &scene.texels, VK_FORMAT_R32G32B32A32_SFLOAT}};
+    for (const TexelBinding& record : records) {
+      if (!descriptors.setUniformTexels(record.binding, *record.buffer, record.format)) {
         throw GpuError("scene too large for the device's texel buffers (" +
                        std::to_string(vk.info.maxTexelBufferElements) + " elements)");
       }
@@ -252,21 +264,25 @@ struct Renderer::Impl {
   // Per-path state of the current work buffers, plus the frame's outputs.
   void bindState() {
     using namespace gpu_shared;
-    const std::uint32_t b = HT_BINDING_STATE_FIRST;
     const bool freshWork = boundWorkGeneration != work.generation;
     boundWorkGeneration = work.generation;
-    const std::pair<const DeviceBuffer*, VkFormat> state[] = {
-        {&work.rays[0], VK_FORMAT_R32G32B32A32_SFLOAT},    {&work.rays[1], VK_FORMAT_R32G32B32A32_SFLOAT},
-        {&work.queuePath[0], VK_FORMAT_R32_UINT},          {&work.queuePath[1], VK_FORMAT_R32_UINT},
-        {&work.hits, VK_FORMAT_R32G32B32A32_UINT},         {&work.radiance, VK_FORMAT_R32G32B32A32_SFLOAT},
-        {&work.throughput, VK_FORMAT_R32G32B32A32_SFLOAT}, {&work.shadowRays, VK_FORMAT_R32G32B32A32_SFLOAT},
-        {&work.shadowContrib, VK_FORMAT_R32G32B32A32_SFLOAT}, {&work.shadowQueue, VK_FORMAT_R32_UINT}};
-    for (std::uint32_t k = 0; k < 10; ++k) descriptors.setStorageTexels(b + k, *state[k].first, state[k].second, freshWork);
+    const TexelBinding state[] = {
+        {HT_BINDING_RAY_QUEUE_0, &work.rays[0], VK_FORMAT_R32G32B32A32_SFLOAT},
+        {HT_BINDING_RAY_QUEUE_1, &work.rays[1], VK_FORMAT_R32G32B32A32_SFLOAT},
+        {HT_BINDING_QUEUE_PATH_0, &work.queuePath[0], VK_FORMAT_R32_UINT},
+        {HT_BINDING_QUEUE_PATH_1, &work.queuePath[1], VK_FORMAT_R32_UINT},
+        {HT_BINDING_HITS, &work.hits, VK_FORMAT_R32G32B32A32_UINT},
+        {HT_BINDING_RADIANCE, &work.radiance, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {HT_BINDING_THROUGHPUT, &work.throughput, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {HT_BINDING_SHADOW_RAYS, &work.shadowRays, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {HT_BINDING_SHADOW_CONTRIB, &work.shadowContrib, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {HT_BINDING_SHADOW_QUEUE, &work.shadowQueue, VK_FORMAT_R32_UINT}};
+    for (const TexelBinding& s : state) descriptors.setStorageTexels(s.binding, *s.buffer, s.format, freshWork);
     const bool freshOutputs = boundOutputGeneration != outputs.generation;
     boundOutputGeneration = outputs.generation;
-    descriptors.setStorageTexels(b + 10, outputs.subpixels, VK_FORMAT_R32_SFLOAT, freshOutputs);
+    descriptors.setStorageTexels(HT_BINDING_SUBPIXELS, outputs.subpixels, VK_FORMAT_R32_SFLOAT, freshOutputs);
     descriptors.setUniformTexels(HT_BINDING_SUBPIXEL_TEXELS, outputs.subpixels, VK_FORMAT_R32_SFLOAT, freshOutputs);
-    descriptors.setStorageTexels(b + 11, outputs.image, VK_FORMAT_R32G32B32A32_SFLOAT, freshOutputs);
+    descriptors.setStorageTexels(HT_BINDING_OUTPUT_IMAGE, outputs.image, VK_FORMAT_R32G32B32A32_SFLOAT, freshOutputs);
     descriptors.flush();
   }
 

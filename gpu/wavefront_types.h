@@ -10,6 +10,7 @@
 #ifndef HT_WAVEFRONT_TYPES_H
 #define HT_WAVEFRONT_TYPES_H
 #include "common/glsl_cpp.h"
+#include "gpu/shader_interface.h"
 #include "camera_models/camera_params.h"
 #include "camera_models/capture_grid_params.h"
 #include "camera_models/integral_params.h"
@@ -106,15 +107,6 @@ struct FrameBlock {
   RayTableParams rayTable;
   ProjectorArrayParams projectors;
 };
-
-// Descriptor set 0 (gpu/shaders/common.glsl, gpu/shaders/bvh_access.glsl).
-HT_CONST uint HT_BINDING_BVH_FIRST = 0u;       // 0-3: BVH node / triangle texel views
-HT_CONST uint HT_BINDING_FRAME = 4u;           // uniform buffer: FrameBlock
-HT_CONST uint HT_BINDING_STATE_FIRST = 5u;     // 5-16: per-path state, storage texel buffers
-HT_CONST uint HT_BINDING_SCENE_FIRST = 17u;    // 17-24: scene records, uniform texel buffers
-HT_CONST uint HT_BINDING_RAY_TABLE = 25u;      // uniform texel buffer: ray-table entries (origin, direction)
-HT_CONST uint HT_BINDING_SUBPIXEL_TEXELS = 26u; // uniform texel buffer: read-only view of the subpixel buffer
-HT_CONST uint HT_BINDING_COUNT = 27u;
 
 // Push constants of every pass (40 B of the 128 B guaranteed). The BVH addresses sit here, not in the
 // FrameBlock, so the traversal loop reads them without an extra dependent load per node fetch.

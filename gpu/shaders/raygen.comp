@@ -9,7 +9,7 @@
 #include "camera_models/footprint_sampling.h"
 #include "camera_models/capture_grid_model.h"
 #include "camera_models/integral_model.h"
-layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
+layout(constant_id = HT_SPEC_MODEL) const uint MODEL = HT_MODEL_LENTICULAR;
 // The lenticular panel's Gen3 cell layout, folded into the code (lenticular_model.h HT_LENTICULAR_CELL_MODE).
 layout(constant_id = 1) const int LENTICULAR_CELL_MODE = 0;
 layout(constant_id = 2) const int LENTICULAR_CELL_COUNT = 0;
