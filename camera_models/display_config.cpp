@@ -32,7 +32,6 @@ std::string_view displayModelName(DisplayModel model) {
 namespace {
 
 constexpr long long kMaxSpp = 4096;
-constexpr long long kMaxImageSize = 32768;
 
 // Our format is strict: every key must be known (detail::rejectUnknownKeys), so a typo is reported, not ignored.
 
@@ -42,23 +41,11 @@ const json& requireObject(const JsonLocation& at, const json& parent, std::strin
   return *field;
 }
 
-bool isAuto(const json& value) { return value.is_string() && value.get<std::string>() == "auto"; }
-
 // [x, y, z] of finite numbers, or "auto" (nullopt) when allowed.
 std::optional<glm::dvec3> readPoint(const JsonLocation& at, const json& object, std::string_view key,
                                     bool allowAuto) {
-  const json* field = detail::findField(object, key);
-  if (field == nullptr || (allowAuto && isAuto(*field))) return std::nullopt;
-  std::string expected = std::string("expected [x, y, z] of finite numbers") + (allowAuto ? " or \"auto\"" : "");
-  if (!field->is_array() || field->size() != 3) detail::throwFieldError(at, key, field, expected);
-  glm::dvec3 point;
-  for (int i = 0; i < 3; ++i) {
-    const json& component = (*field)[static_cast<std::size_t>(i)];
-    if (!component.is_number() || !std::isfinite(component.get<double>()))
-      detail::throwFieldError(at, key, field, expected);
-    point[i] = component.get<double>();
-  }
-  return point;
+  const std::string expected = std::string("expected [x, y, z] of finite numbers") + (allowAuto ? " or \"auto\"" : "");
+  return detail::optionalVector<3>(at, object, key, expected, allowAuto);
 }
 
 double readAngle(const JsonLocation& at, const json& object, std::string_view key, double fallback) {
@@ -73,7 +60,7 @@ CameraPlacement readCamera(const JsonLocation& at, const json& camera) {
   CameraPlacement placement;
   placement.target = readPoint(at, camera, "target", true);
   const json* size = detail::findField(camera, "size");
-  if (size != nullptr && !isAuto(*size)) {
+  if (size != nullptr && !detail::isAuto(*size)) {
     const std::string expected = "expected a focal-rectangle height > 0 (world units) or \"auto\"";
     double value = detail::requireNumber(at, camera, "size", false, expected);
     if (!(value > 0.0)) detail::throwFieldError(at, "size", size, expected);
@@ -91,10 +78,8 @@ CameraPlacement readCamera(const JsonLocation& at, const json& camera) {
 PinholeSettings readPinhole(const JsonLocation& at, const json& pinhole) {
   detail::rejectUnknownKeys(at, pinhole, {"width", "height", "fovyDeg", "eye", "lookAt", "up", "distortion"});
   PinholeSettings settings;
-  if (auto w = detail::optionalInteger(at, pinhole, "width", false, 1, kMaxImageSize))
-    settings.width = static_cast<std::uint32_t>(*w);
-  if (auto h = detail::optionalInteger(at, pinhole, "height", false, 1, kMaxImageSize))
-    settings.height = static_cast<std::uint32_t>(*h);
+  settings.width = detail::optionalImageSide(at, pinhole, "width");
+  settings.height = detail::optionalImageSide(at, pinhole, "height");
   if (detail::findField(pinhole, "fovyDeg") != nullptr) settings.fovyDeg = readAngle(at, pinhole, "fovyDeg", 45.0);
   settings.eye = readPoint(at, pinhole, "eye", true);
   settings.lookAt = readPoint(at, pinhole, "lookAt", true);

@@ -15,6 +15,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "common/image_limits.h"
 #include "gpu/frame_descriptors.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/device_buffer.h"
@@ -45,7 +46,6 @@ constexpr std::uint32_t kQueryCapacity = 4096;
 constexpr std::uint32_t kMaxSpp = 4096;
 constexpr std::uint32_t kMaxDepth = 32;
 constexpr std::uint64_t kMaxChunkPixels = 8ull << 20;  // pixels of all views rendered by one chunk (output buffers)
-constexpr std::uint32_t kMaxImageSide = 32768;
 
 using StageTimes = std::array<double, static_cast<size_t>(Stage::Count)>;
 
@@ -358,7 +358,7 @@ void checkSettings(const RenderSettings& settings) {
 void checkShape(const FrameShape& shape, std::uint32_t spp) {
   if (shape.width == 0 || shape.height == 0 || shape.width > kMaxImageSide || shape.height > kMaxImageSide) {
     throw GpuError("image size " + std::to_string(shape.width) + "x" + std::to_string(shape.height) +
-                   " out of range [1, 32768]");
+                   " out of range [1, " + std::to_string(kMaxImageSide) + "]");
   }
   if (shape.views == 0) throw GpuError("camera has no views");
   if (shape.targets() * spp >= (1ull << 32)) {

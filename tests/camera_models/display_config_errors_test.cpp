@@ -17,6 +17,7 @@ namespace ht {
 namespace {
 
 using ::testing::HasSubstr;
+using test::catchConfigError;
 using test::fixturePath;
 
 // A valid visual.json with one field replaced (or removed when replacement is empty).
@@ -32,16 +33,6 @@ std::string visualJsonWith(const std::string& key, const std::string& replacemen
     j[key] = nlohmann::json::parse(replacement);
   }
   return j.dump();
-}
-
-ConfigError catchConfigError(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const ConfigError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "expected a ConfigError";
-  return ConfigError("", "", "", "");
 }
 
 ConfigError visualJsonError(const std::string& key, const std::string& replacement) {
