@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include "camera_models/capture_grid_config.h"
+#include "camera_models/display_model.h"
 #include "camera_models/integral_config.h"
 #include "camera_models/lens_settings.h"
 #include "camera_models/looking_glass_calibration.h"
@@ -23,10 +24,6 @@
 #include "camera_models/ray_table_config.h"
 
 namespace ht {
-
-enum class DisplayModel { Lenticular, Pinhole, ProjectorArray, Integral, CaptureGrid, Oblique, RayTable };
-// "lenticular" | "pinhole" | "projector-array" | "integral" | "capture-grid" | "oblique" | "ray-table"
-std::string_view displayModelName(DisplayModel model);
 
 // Where the display's focal rectangle sits in the scene (looking-glass-webxr camera, optics.md §4.3).
 // The display-local frame has its origin at `target` and world-aligned axes (+z toward the viewer).
@@ -51,7 +48,7 @@ struct DisplayConfig {
   std::string name;
   std::string description;
   std::string sourcePath;             // file path, or "builtin:NAME"
-  DisplayModel model = DisplayModel::Lenticular;
+  DisplayModel model = DisplayModel::Lenticular;      // a registry row with inConfigs (display_model_registry.h)
   std::optional<LookingGlassCalibration> calibration;  // required for (and only for) the lenticular model
   CameraPlacement camera;
   std::uint32_t spp = 4;              // default samples per subpixel / pixel, [1, 4096]

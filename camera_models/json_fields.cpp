@@ -161,7 +161,7 @@ std::optional<std::string> optionalString(const JsonLocation& at, const json& ob
   throwFieldError(at, key, field, "expected a string");
 }
 
-void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object, std::initializer_list<std::string_view> allowed) {
+void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object, std::span<const std::string_view> allowed) {
   for (const auto& [key, value] : object.items()) {
     if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
     std::string list;

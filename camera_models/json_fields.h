@@ -62,7 +62,11 @@ std::optional<std::string> optionalString(const JsonLocation& at, const nlohmann
 
 // Throws a ConfigError for the first key of `object` not in `allowed`, listing the allowed keys: typos in our
 // config sections must not pass silently.
-void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object, std::initializer_list<std::string_view> allowed);
+void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object, std::span<const std::string_view> allowed);
+inline void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object,
+                              std::initializer_list<std::string_view> allowed) {
+  rejectUnknownKeys(at, object, std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
 
 // Required finite number > 0; `expected` is the error's "expected ..." text.
 double requirePositiveNumber(const JsonLocation& at, const nlohmann::json& object, std::string_view key,

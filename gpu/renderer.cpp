@@ -11,8 +11,6 @@
 #include <cmath>
 #include <cstring>
 #include <map>
-#include <tuple>
-#include <type_traits>
 #include <utility>
 
 #include "common/image_limits.h"
@@ -370,77 +368,6 @@ void checkShape(const FrameShape& shape, std::uint32_t spp) {
 
 }  // namespace
 
-FrameShape frameShape(const FrameCamera& camera) {
-  using namespace gpu_shared;
-  FrameShape shape;
-  shape.model = static_cast<std::uint32_t>(camera.index());
-  static_assert(std::variant_size_v<FrameCamera> == HT_MODEL_COUNT);
-  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_LENTICULAR, FrameCamera>, LenticularParams>);
-  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_PINHOLE, FrameCamera>, PinholeParams>);
-  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_QUILT, FrameCamera>, QuiltParams>);
-  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_PROJECTOR_ARRAY, FrameCamera>, ProjectorArrayParams>);
-  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_INTEGRAL, FrameCamera>, IntegralParams>);
-  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_CAPTURE_GRID, FrameCamera>, CaptureGridParams>);
-  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_OBLIQUE, FrameCamera>, ObliqueParams>);
-  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_RAY_TABLE, FrameCamera>, RayTableCamera>);
-  auto size = [](float w, float h) { return std::pair{static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)}; };
-  switch (shape.model) {
-    case HT_MODEL_LENTICULAR: {
-      const auto& p = std::get<LenticularParams>(camera);
-      std::tie(shape.width, shape.height) = size(p.panel.x, p.panel.y);
-      shape.targetsPerPixel = 3;
-      break;
-    }
-    case HT_MODEL_PINHOLE: {
-      const auto& p = std::get<PinholeParams>(camera);
-      std::tie(shape.width, shape.height) = size(p.lens.z, p.lens.w);
-      break;
-    }
-    case HT_MODEL_QUILT: {
-      const auto& p = std::get<QuiltParams>(camera);
-      shape.width = static_cast<std::uint32_t>(p.tiles.z);
-      shape.height = static_cast<std::uint32_t>(p.tiles.w);
-      shape.views = static_cast<std::uint32_t>(p.views.x);
-      break;
-    }
-    case HT_MODEL_PROJECTOR_ARRAY: {
-      const auto& p = std::get<ProjectorArrayParams>(camera);
-      std::tie(shape.width, shape.height) = size(p.projector[0][0].w, p.projector[0][1].w);
-      shape.views = static_cast<std::uint32_t>(p.observer.w);
-      if (shape.views > HT_MAX_PROJECTORS) throw GpuError("projector array of " + std::to_string(shape.views) + " projectors exceeds 128");
-      break;
-    }
-    case HT_MODEL_INTEGRAL: {
-      const auto& p = std::get<IntegralParams>(camera);
-      std::tie(shape.width, shape.height) = size(p.panel.x, p.panel.y);
-      shape.targetsPerPixel = 3;
-      break;
-    }
-    case HT_MODEL_CAPTURE_GRID: {
-      const auto& p = std::get<CaptureGridParams>(camera);
-      shape.width = static_cast<std::uint32_t>(p.grid.z);
-      shape.height = static_cast<std::uint32_t>(p.grid.w);
-      shape.views = static_cast<std::uint32_t>(p.grid.x) * static_cast<std::uint32_t>(p.grid.y);
-      break;
-    }
-    case HT_MODEL_OBLIQUE: {
-      const auto& p = std::get<ObliqueParams>(camera);
-      shape.width = static_cast<std::uint32_t>(p.grid.z);
-      shape.height = static_cast<std::uint32_t>(p.grid.w);
-      shape.views = static_cast<std::uint32_t>(p.grid.x) * static_cast<std::uint32_t>(p.grid.y);
-      break;
-    }
-    default: {
-      const auto& p = std::get<RayTableCamera>(camera);
-      if (!p.table) throw GpuError("ray-table camera without a table");
-      shape.width = p.table->width;
-      shape.height = p.table->height;
-      break;
-    }
-  }
-  return shape;
-}
-
 void Renderer::Impl::fillFrame(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
                                const RenderSettings& settings) {
   FrameBlock& f = frameBlock();
@@ -453,17 +380,7 @@ void Renderer::Impl::fillFrame(const FrameShape& shape, std::uint32_t viewFirst,
   f.frame = glm::uvec4(settings.seed, 0u, 0u, 0u);
   f.background = glm::vec4(scene.background(), 0.0f);
   f.ambient = glm::vec4(scene.ambient(), 0.0f);
-  std::visit([&f](const auto& p) {
-    using T = std::decay_t<decltype(p)>;
-    if constexpr (std::is_same_v<T, gpu_shared::LenticularParams>) f.lenticular = p;
-    else if constexpr (std::is_same_v<T, gpu_shared::PinholeParams>) f.pinhole = p;
-    else if constexpr (std::is_same_v<T, gpu_shared::QuiltParams>) f.quilt = p;
-    else if constexpr (std::is_same_v<T, gpu_shared::ProjectorArrayParams>) f.projectors = p;
-    else if constexpr (std::is_same_v<T, gpu_shared::IntegralParams>) f.integral = p;
-    else if constexpr (std::is_same_v<T, gpu_shared::CaptureGridParams>) f.captureGrid = p;
-    else if constexpr (std::is_same_v<T, gpu_shared::ObliqueParams>) f.oblique = p;
-    else f.rayTable = p.params;
-  }, camera);
+  f.camera = cameraBlock(camera);
   bindRayTable();
 }
 

@@ -11,13 +11,8 @@
 #define HT_WAVEFRONT_TYPES_H
 #include "common/glsl_cpp.h"
 #include "gpu/shader_interface.h"
-#include "camera_models/camera_params.h"
-#include "camera_models/capture_grid_params.h"
-#include "camera_models/integral_params.h"
-#include "camera_models/oblique_params.h"
-#include "camera_models/projector_params.h"
-#include "camera_models/quilt_params.h"
-#include "camera_models/ray_table_params.h"
+#include "camera_models/camera_block.h"
+#include "camera_models/model_ids.h"
 
 HT_SHARED_BEGIN
 
@@ -35,22 +30,6 @@ HT_CONST uint HT_MATERIAL_GLASS = 2u;
 HT_CONST uint HT_LIGHT_POINT = 0u;
 HT_CONST uint HT_LIGHT_SPOT = 1u;
 HT_CONST uint HT_LIGHT_DIRECTIONAL = 2u;
-
-// Camera model selected by the raygen specialisation constant. Subpixel models (lenticular, integral) trace each
-// R, G, B subpixel with its own rays and keep one channel per target; the others trace RGB pixels of `views` images.
-HT_CONST uint HT_MODEL_LENTICULAR = 0u;
-HT_CONST uint HT_MODEL_PINHOLE = 1u;
-HT_CONST uint HT_MODEL_QUILT = 2u;
-HT_CONST uint HT_MODEL_PROJECTOR_ARRAY = 3u;
-HT_CONST uint HT_MODEL_INTEGRAL = 4u;
-HT_CONST uint HT_MODEL_CAPTURE_GRID = 5u;
-HT_CONST uint HT_MODEL_OBLIQUE = 6u;
-HT_CONST uint HT_MODEL_RAY_TABLE = 7u;
-HT_CONST uint HT_MODEL_COUNT = 8u;
-
-HT_INLINE bool ht_model_has_subpixel_targets(uint model) {
-  return model == HT_MODEL_LENTICULAR || model == HT_MODEL_INTEGRAL;
-}
 
 struct GpuMaterial {
   vec4 baseColor;  // rgb linear; w = texture index (as float, -1 = none)
@@ -98,14 +77,7 @@ struct FrameBlock {
   uvec4 flags;             // x = scene has vertex normals, y = scene has texcoords
   vec4 background;         // rgb radiance of escaped rays
   vec4 ambient;            // rgb ambient irradiance on diffuse surfaces
-  LenticularParams lenticular;
-  PinholeParams pinhole;
-  QuiltParams quilt;
-  IntegralParams integral;
-  CaptureGridParams captureGrid;
-  ObliqueParams oblique;
-  RayTableParams rayTable;
-  ProjectorArrayParams projectors;
+  CameraBlock camera;      // the frame's camera model's parameters (camera_models/camera_block.h)
 };
 
 // Push constants of every pass (40 B of the 128 B guaranteed). The BVH addresses sit here, not in the

@@ -222,7 +222,7 @@ TEST(DisplayConfigErrors, UnknownModel) {
   ConfigError e = catchConfigError([] { parseDisplayConfig(R"({"model":"holovizio"})", "display.json", ""); });
   EXPECT_EQ(e.field(), "model");
   EXPECT_EQ(e.value(), "\"holovizio\"");
-  EXPECT_THAT(e.expected(), HasSubstr("\"lenticular\" or \"pinhole\""));
+  EXPECT_THAT(e.expected(), HasSubstr("\"lenticular\", \"pinhole\", \"projector-array\""));
 }
 
 TEST(DisplayConfigErrors, DepthinessMakesConeTooWide) {
