@@ -1,5 +1,5 @@
 // bench_quality_main.cpp - holotrace-bench-quality: run time vs error of the direct lenticular path and the quilt
-// path per display (issue 5; method in quality_options.cpp's help text, optics.md §8 "quilt path vs direct").
+// path per display (issue 5; method in quality_options.cpp's help text, docs/OPTICS.md §8 "quilt path vs direct").
 //
 // Every render is timed once per run; --runs N renders every point N times in turn and the comparison uses the
 // medians of same-run ratios (single frames on a shared 2-core host are off by 10-15 %, which moves an

@@ -1,7 +1,7 @@
 // bvh_builder.cpp - binned SAH build (see bvh_builder.h).
 //
 // Per node: bounds pass, binned SAH split search (binned_sah.h), leaf decision, partition, recursion.
-// Leaf rule (C_trav = C_int = 1, tinybvh; bvh.md §8.2): a node with n <= maxLeafSize triangles becomes a
+// Leaf rule (C_trav = C_int = 1, tinybvh; docs/BVH.md §8.2): a node with n <= maxLeafSize triangles becomes a
 // leaf when its leaf cost n*SA(node) does not exceed the best split cost SA(node) + SA(L)*n(L) + SA(R)*n(R);
 // larger nodes are always split (maxLeafSize is a hard limit, so the packed GPU leaf count stays small).
 // Depth bound: a subtree at depth d can hold at most maxLeafSize * 2^(maxDepth - d) triangles. When the SAH

@@ -1,16 +1,16 @@
 // bvh_traversal.h - robust closest-hit and any-hit BVH traversal, one source for the CPU reference (C++) and the
 // GPU compute kernel (GLSL).
 //
-// Structure: Aila & Laine 2009 "while-while" loop (bvh.md §2.4, §4): an inner loop descends through inner
+// Structure: Aila & Laine 2009 "while-while" loop (docs/BVH.md §2.4, §4): an inner loop descends through inner
 // nodes, testing BOTH child boxes of a 64 B GpuBvhNode at once (slab_test.h) and visiting the nearer child
 // first while the farther one goes onto a private stack of HT_BVH_MAX_DEPTH entries; a second loop tests the
 // triangles of the leaf reached (watertight_triangle.h). The builder bounds the leaf depth by
 // HT_BVH_MAX_DEPTH and at most one entry is pushed per level, so the stack cannot overflow; a push onto a
-// full stack is nevertheless reported as overflow, never dropped (bvh.md §2.2 caveat on tinybvh's shaders).
+// full stack is nevertheless reported as overflow, never dropped (docs/BVH.md §2.2 caveat on tinybvh's shaders).
 //
 // Step counting: every iteration of every loop increments `steps`; once steps exceed `stepLimit` the
 // traversal stops with overflow = true. lavapipe silently ends a shader's loops after 65,535 iterations in
-// total per invocation (toolchain.md §0), so the GPU kernel passes a limit below that and the host turns
+// total per invocation (docs/TOOLCHAIN.md §0), so the GPU kernel passes a limit below that and the host turns
 // overflow into an error instead of a silent miss. Rays with a NaN/Inf origin or direction, a zero direction
 // or NaN tmin/tmax return a miss after 0 steps.
 //

@@ -1,4 +1,4 @@
-// gpu_layout.cpp - see gpu_layout.h. Node layout: Aila & Laine 2009 "Compact2" (bvh.md §2.4, §3, gpu_node.h).
+// gpu_layout.cpp - see gpu_layout.h. Node layout: Aila & Laine 2009 "Compact2" (docs/BVH.md §2.4, §3, gpu_node.h).
 #include "bvh/gpu_layout.h"
 
 #include <limits>

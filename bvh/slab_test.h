@@ -1,6 +1,6 @@
 // slab_test.h - conservative ray / box slab test for the two child boxes of a GpuBvhNode (C++ and GLSL).
 //
-// Robustness measures (bvh.md §5.2):
+// Robustness measures (docs/BVH.md §5.2):
 //  * safe reciprocal: |d| below 1e-18 is replaced by +-1e-18 keeping the sign (also of -0), so 1/d is finite
 //    and (plane - o) * (1/d) never evaluates 0 * inf = NaN when the origin lies on a slab plane.
 //    Semantics of Embree's zero_fix (common/math/vec3fa.h, min_rcp_input = 1e-18); tinybvh safercp is the

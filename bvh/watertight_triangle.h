@@ -1,7 +1,7 @@
 // watertight_triangle.h - watertight ray/triangle intersection (C++ and GLSL).
 //
 // Algorithm: Woop, Benthin, Wald, "Watertight Ray/Triangle Intersection", JCGT 2(1) 2013, with the details of
-// pbrt-v3 src/shapes/triangle.cpp (bvh.md §5.1):
+// pbrt-v3 src/shapes/triangle.cpp (docs/BVH.md §5.1):
 //  1. per ray: kz = argmax |D|, kx = kz+1 mod 3, ky = kx+1 mod 3; Sx = Dx/Dz, Sy = Dy/Dz, Sz = 1/Dz (indices
 //     permuted). Both windings are accepted (pbrt-v3), so kx/ky are not swapped for Dz < 0.
 //  2. translate each vertex by -O and shear: x = P[kx] - Sx*P[kz], y = P[ky] - Sy*P[kz] (P = vertex - O).

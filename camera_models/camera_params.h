@@ -8,7 +8,7 @@ HT_SHARED_BEGIN
 
 HT_CONST uint HT_MAX_SUBPIXEL_CELLS = 4u;
 
-// Looking Glass lenticular panel, direct per-subpixel model (optics.md §2, §3, §9 M2).
+// Looking Glass lenticular panel, direct per-subpixel model (docs/OPTICS.md §2, §3, §9 M2).
 struct LenticularParams {
   vec4 phase;         // x pitch_s (lenses across panel width), y tilt, z subp (u units, signed), w center
   vec4 panel;         // x screenW (px), y screenH (px), z invView (0/1), w flipSubp (0/1)
@@ -27,7 +27,7 @@ struct LensDistortion {
   vec4 tangential;
 };
 
-// Pinhole camera (optics.md §9 M0), optionally through a distorting lens.
+// Pinhole camera (docs/OPTICS.md §9 M0), optionally through a distorting lens.
 struct PinholeParams {
   mat4 cameraToWorld; // camera looks down -z, +y up
   vec4 lens;          // x tan(fovy/2), y aspect (W/H), z image width (px), w image height (px)

@@ -1,5 +1,5 @@
 // capture_grid_config.h - the "captureGrid" section of a display config (model "capture-grid", docs/configs.md): a
-// regular camera array for offline light-field capture, two-plane (light slab) parametrisation (optics.md §9 M5).
+// regular camera array for offline light-field capture, two-plane (light slab) parametrisation (docs/OPTICS.md §9 M5).
 //
 // World units, display-local frame placed at camera.target (world-aligned axes): the focal window (u, v) is centred
 // on the origin in the plane z = 0, the camera plane (s, t) is z = distance (toward the viewer, +z).

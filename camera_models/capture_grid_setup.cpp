@@ -45,7 +45,7 @@ glm::dvec3 CaptureGridReference::cameraPosition(std::uint32_t view) const {
 }
 
 ReferenceRay CaptureGridReference::ray(std::uint32_t x, std::uint32_t y, std::uint32_t view, glm::dvec2 xi) const {
-  // Levoy & Hanrahan 1996 light slab (optics.md §9 M5): through (s, t) on the camera plane and (u, v) on the window.
+  // Levoy & Hanrahan 1996 light slab (docs/OPTICS.md §9 M5): through (s, t) on the camera plane and (u, v) on the window.
   const glm::dvec3 o = cameraPosition(view);
   const glm::dvec3 p = target_ + glm::dvec3(((x + xi.x) / grid_.imageWidth - 0.5) * grid_.windowWidth,
                                             ((y + xi.y) / grid_.imageHeight - 0.5) * grid_.windowHeight, 0.0);

@@ -28,7 +28,7 @@ enum class DisplayModel { Lenticular, Pinhole, ProjectorArray, Integral, Capture
 // "lenticular" | "pinhole" | "projector-array" | "integral" | "capture-grid" | "oblique" | "ray-table"
 std::string_view displayModelName(DisplayModel model);
 
-// Where the display's focal rectangle sits in the scene (looking-glass-webxr camera, optics.md §4.3).
+// Where the display's focal rectangle sits in the scene (looking-glass-webxr camera, docs/OPTICS.md §4.3).
 // The display-local frame has its origin at `target` and world-aligned axes (+z toward the viewer).
 struct CameraPlacement {
   std::optional<glm::dvec3> target;  // world position of the focal-rectangle centre; nullopt = "auto" (bounds centre)
@@ -37,7 +37,7 @@ struct CameraPlacement {
   double depthiness = 1.0;           // multiplies viewCone (webxr uses 1.25 by default; we default to 1.0)
 };
 
-// Pinhole camera (model "pinhole", optics.md §9 M0); also the preview camera of a lenticular display.
+// Pinhole camera (model "pinhole", docs/OPTICS.md §9 M0); also the preview camera of a lenticular display.
 struct PinholeSettings {
   std::optional<std::uint32_t> width, height;  // image size in pixels; nullopt = panel size or 1280x720
   std::optional<double> fovyDeg;               // vertical fov in degrees; nullopt = camera.fovyDeg (lenticular) or 45

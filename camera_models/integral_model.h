@@ -1,6 +1,6 @@
-// integral_model.h - primary rays of an integral-imaging / microlens panel (shared C++/GLSL), model M4 of optics.md §9.
+// integral_model.h - primary rays of an integral-imaging / microlens panel (shared C++/GLSL), model M4 of docs/OPTICS.md §9.
 //
-// Geometry (optics.md §7, display-local, z toward the viewer): lens plane z = 0, LCD z = -g. Pixel (x, y) (y from
+// Geometry (docs/OPTICS.md §7, display-local, z toward the viewer): lens plane z = 0, LCD z = -g. Pixel (x, y) (y from
 // the bottom) sits at p = ((x + 0.5 - W/2)*pp, (y + 0.5 - H/2)*pp) (sample position xi instead of 0.5 in "centre"
 // mode). Its lens is the nearest lens centre of the rotated, offset grid (lens index = round(R^-1 (p - offset)/pitch),
 // the simulator's round(EIShiftInv + EIOrientationInv*p)): c = offset + R*pitch*index. Sample point on the lens:
@@ -8,9 +8,9 @@
 // TLBurnett3/LightField Src/HogelDef/Plane.cpp) or s = c + R*pitch*(xi - 0.5) ("LensletAverage", aperture).
 // Emission slope (per unit z toward the viewer) through a thin lens, ray-transfer form theta' = theta - h/f:
 //   e_tan = (s - p)/g - (s - c)/f
-// (optics.md §7 notes the simulator's d_tan = (p - s)/g - (s - c)/f has the opposite lens-term sign in its PupilCenter
+// (docs/OPTICS.md §7 notes the simulator's d_tan = (p - s)/g - (s - c)/f has the opposite lens-term sign in its PupilCenter
 // comment; this sign collimates every aperture sample when g = f, tested in tests/camera_models).
-// Front-plane form for scenes in front of and behind the screen (optics.md §7 [derived], §9 M4): e = normalize(e_tan,
+// Front-plane form for scenes in front of and behind the screen (docs/OPTICS.md §7 [derived], §9 M4): e = normalize(e_tan,
 // 1), origin = (s, 0) + e*(zFront/e.z) on the plane z = zFront, dir = -e (into the display). zFront = L reproduces
 // the simulator's viewer-plane origin (s - d_tan*L, 0).
 #ifndef HT_INTEGRAL_MODEL_H

@@ -6,7 +6,7 @@
 
 HT_SHARED_BEGIN
 
-// Integral-imaging panel (optics.md §7, §9 M4); lengths in display units.
+// Integral-imaging panel (docs/OPTICS.md §7, §9 M4); lengths in display units.
 struct IntegralParams {
   vec4 panel;         // x LCD width (px), y LCD height (px), z pixel pitch, w sampling (0 lens centre, 1 aperture)
   vec4 lens;          // x lens pitch, y focal length f, z gap g, w front plane z (rays start there)

@@ -66,7 +66,7 @@ glm::dvec2 IntegralReference::pixelPosition(std::uint32_t x, std::uint32_t y, gl
 }
 
 glm::dvec2 IntegralReference::lensCentre(glm::dvec2 q) const {
-  // Lens index = round(R^-1 (q - offset) / pitch) (optics.md §7).
+  // Lens index = round(R^-1 (q - offset) / pitch) (docs/OPTICS.md §7).
   const glm::dvec2 grid = glm::transpose(rotation_) * (q - integral_.lensOffset) / integral_.lensPitch;
   const glm::dvec2 index(std::floor(grid.x + 0.5), std::floor(grid.y + 0.5));
   return integral_.lensOffset + rotation_ * (index * integral_.lensPitch);

@@ -1,4 +1,4 @@
-// looking_glass_calibration.cpp - visual.json parsing and validation (optics.md §1).
+// looking_glass_calibration.cpp - visual.json parsing and validation (docs/OPTICS.md §1).
 #include "camera_models/looking_glass_calibration.h"
 
 #include <cmath>

@@ -24,7 +24,7 @@ struct ObliqueGeometry {
 ObliqueGeometry resolveObliqueGeometry(const DisplayConfig& config, const Bounds3& sceneBounds);
 gpu_shared::ObliqueParams makeObliqueParams(const DisplayConfig& config, const Bounds3& sceneBounds);
 
-// optics.md §9 M6 in double (formulas and sources in oblique_model.h).
+// docs/OPTICS.md §9 M6 in double (formulas and sources in oblique_model.h).
 class ObliqueReference {
  public:
   ObliqueReference(const DisplayConfig& config, const Bounds3& sceneBounds);

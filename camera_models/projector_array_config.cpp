@@ -18,7 +18,7 @@ namespace {
 
 constexpr long long kMaxImageSize = 32768;
 
-// [x, y, z], finite, z < 0: projectors sit behind the screen (optics.md §9 M3, P_k.z < 0).
+// [x, y, z], finite, z < 0: projectors sit behind the screen (docs/OPTICS.md §9 M3, P_k.z < 0).
 glm::dvec3 readPosition(const JsonLocation& at, const json& object) {
   const std::string expected = "expected [x, y, z] of finite numbers (display units) with z < 0 (behind the screen)";
   const json* field = detail::findField(object, "position");
@@ -108,7 +108,7 @@ ProjectorArrayConfig::Lens readLens(const JsonLocation& at, const json* lens) {
 
 std::array<double, 9> linearProjectorMapping(double screenWidth, double screenHeight, std::uint32_t width,
                                              std::uint32_t height) {
-  // Doronin RenderProjector (optics.md §6): S = (-Sw/2 + Sw*(i+0.5)/W, -Sh/2 + Sh*(j+0.5)/H) with j from the bottom;
+  // Doronin RenderProjector (docs/OPTICS.md §6): S = (-Sw/2 + Sw*(i+0.5)/W, -Sh/2 + Sh*(j+0.5)/H) with j from the bottom;
   // (i+0.5, j+0.5) is the pixel position here, so the matrix acts on (px, py, 1).
   return {screenWidth / width, 0.0, -0.5 * screenWidth, 0.0, screenHeight / height, -0.5 * screenHeight,
           0.0, 0.0, 1.0};

@@ -1,5 +1,5 @@
 // projector_array_config.h - the "projectorArray" section of a display config (model "projector-array",
-// docs/configs.md): a HoloVizio-class horizontal-parallax-only (HPO) projector array (optics.md §6, §9 M3).
+// docs/configs.md): a HoloVizio-class horizontal-parallax-only (HPO) projector array (docs/OPTICS.md §6, §9 M3).
 //
 // Geometry is in display units (e.g. mm) in the display-local frame: screen = plane z = 0 centred on the origin,
 // +x right, +y up, +z toward the viewer; projectors behind the screen (z < 0); observer line z = observerDistance,
@@ -24,7 +24,7 @@ struct ProjectorConfig {
   glm::dvec3 position{0.0};              // display units, z < 0
   std::uint32_t width = 0, height = 0;   // image size in pixels
   // Row-major 3x3 homography from pixel coordinates (px, py, 1) (py from the bottom, pixel centres at +0.5) to
-  // homogeneous screen coordinates; nullopt = linear: the image fills the screen (optics.md §6, Doronin
+  // homogeneous screen coordinates; nullopt = linear: the image fills the screen (docs/OPTICS.md §6, Doronin
   // RenderProjector: S = (-Sw/2 + Sw*px/W, -Sh/2 + Sh*py/H)).
   std::optional<std::array<double, 9>> homography;
 };

@@ -1,4 +1,4 @@
-// quilt_layout.cpp - quilt names, tile layout and device defaults (see quilt_layout.h; optics.md §4.1, §4.2).
+// quilt_layout.cpp - quilt names, tile layout and device defaults (see quilt_layout.h; docs/OPTICS.md §4.1, §4.2).
 #include "camera_models/quilt_layout.h"
 
 #include <charconv>
@@ -93,7 +93,7 @@ QuiltLayout defaultQuiltLayout(const DisplayConfig& config) {
   const double aspect = double(c.screenW) / double(c.screenH);
   const bool gen3 = c.cellPatternMode != 0;
   const auto is = [&](std::uint32_t w, std::uint32_t h) { return c.screenW == w && c.screenH == h; };
-  // optics.md §4.2 (LKG-Toolkit HardCodedLKGDeviceTemplates.cs; looking-glass-webxr quiltResolution).
+  // docs/OPTICS.md §4.2 (LKG-Toolkit HardCodedLKGDeviceTemplates.cs; looking-glass-webxr quiltResolution).
   if (is(1536, 2048)) return makeQuiltLayout(8, 6, 3360, 3360, aspect);             // Portrait
   if (is(1440, 2560)) return makeQuiltLayout(11, 6, 4092, 4092, aspect);            // Go
   if (gen3 && is(3840, 2160)) return makeQuiltLayout(7, 7, 6000, 6000, aspect);     // 16" Gen3 landscape

@@ -1,4 +1,4 @@
-// renderer.cpp - the wavefront frame loop (bvh.md §7): batches of paths go through raygen, then per bounce
+// renderer.cpp - the wavefront frame loop (docs/BVH.md §7): batches of paths go through raygen, then per bounce
 // trace_closest -> shade -> [trace_any -> gather_direct], then resolve; the frame ends with interleave.
 // Batches are submitted one by one (bounded memory, progress reports); within a batch the GPU drives its own
 // queues through indirect dispatches.

@@ -1,9 +1,9 @@
 // wavefront_types.h - data shared by the host (C++) and every wavefront pass (GLSL): the per-frame block of
 // buffer device addresses and parameters, scene records (materials, lights, texture directory) and the
 // layout of the queues. All buffers are reached through VK_KHR_buffer_device_address, so no buffer is bound
-// through a descriptor and lavapipe's 128 MiB maxStorageBufferRange (toolchain.md §4, P10) does not apply.
+// through a descriptor and lavapipe's 128 MiB maxStorageBufferRange (docs/TOOLCHAIN.md §4, P10) does not apply.
 //
-// Pass order per batch of paths (bvh.md §7, "proposed holotrace passes"):
+// Pass order per batch of paths (docs/BVH.md §7, "proposed holotrace passes"):
 //   raygen -> [trace_closest -> shade -> (prepare -> trace_any -> gather_direct)? -> prepare]* -> resolve
 // and once per frame: interleave. Queues are compacted with atomic counters; a `prepare` invocation turns a
 // counter into vkCmdDispatchIndirect arguments, so an empty queue dispatches zero workgroups.

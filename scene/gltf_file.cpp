@@ -1,5 +1,5 @@
 // gltf_file.cpp - GLB container checks, JSON pre-checks, confined file access and checked image decoding
-// around tinygltf 2.7.0 (Debian 12; known issues listed in docs/service.md §6).
+// around tinygltf 2.7.0 (Debian 12; known issues listed in docs/SERVICE.md §6).
 #include "scene/gltf_file.h"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // scene_limits.h - caps the loaders enforce before allocating, so a hostile or broken file is refused with a
-// SceneError instead of exhausting memory (docs/service.md §6 "Loader limits").
+// SceneError instead of exhausting memory (docs/SERVICE.md §6 "Loader limits").
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 // daemon_config.h - holotraced's configuration file (JSON, docs/SERVICE.md "Configuration"). Every limit has a
-// default and is enforced before anything is allocated (docs/service.md §6 "Limits at the API edge").
+// default and is enforced before anything is allocated (docs/SERVICE.md §6 "Limits at the API edge").
 #pragma once
 #include <cstdint>
 #include <filesystem>

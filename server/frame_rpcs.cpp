@@ -111,7 +111,7 @@ grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v
 
 // Frames on a fixed clock (frame k due at start + k/fps). A frame is rendered only when the previous one has been
 // written, so a slow client is never queued old frames: it gets the newest, and dropped_frames counts the ticks
-// it missed (latest-frame-wins, docs/service.md §4 "Backpressure").
+// it missed (latest-frame-wins, docs/SERVICE.md §4 "Backpressure").
 grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const v1::StreamRequest* request,
                                             grpc::ServerWriter<v1::FramePart>* writer) {
   return guarded([&] {

@@ -158,7 +158,7 @@ grpc::Status HolotraceService::UploadScene(grpc::ServerContext* context,
     }
     if (context->IsCancelled()) throw ClientGone("upload cancelled");
     if (bytes.size() != total) throw BadRequest("data", "fewer bytes than info.total_bytes");
-    // The loaders read files: the bytes go to a private file named by their hash (docs/service.md §6).
+    // The loaders read files: the bytes go to a private file named by their hash (docs/SERVICE.md §6).
     const std::string name = "upload-" + contentHash(bytes) + ext;
     state_.uploadSink.writeFile(name, bytes);
     const auto path = state_.config.workDir / name;

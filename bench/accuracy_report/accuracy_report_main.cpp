@@ -37,7 +37,7 @@ moves.
 - **holotrace CPU**: `bvh/cpu_traversal.h`, the same C++/GLSL source as the kernel, run on the host.
 - **holotrace GPU**: `gpu::Renderer::traceClosest` (Vulkan compute; lavapipe here).
 - **Embree 3 robust**: Embree 3.13.5 with `RTC_SCENE_FLAG_ROBUST` (the anchor). Embree verify's watertight test
-  (tutorials/verify/verify.cpp, bvh.md §6) tolerates a miss rate of 0.002 % on random interior rays; holotrace
+  (tutorials/verify/verify.cpp, docs/BVH.md §6) tolerates a miss rate of 0.002 % on random interior rays; holotrace
   tolerates none.
 - **naive MT**: textbook Möller-Trumbore (JGT 1997) behind a padded BVH2, with the paper's |det| < 1e-6 rejection
   and without any epsilon: the control, what a tracer without Woop's watertight test does.
@@ -70,7 +70,7 @@ are dropped at build: the mesh must stay closed anyway), scale 2 at Embree verif
 - **Embree robust mode leaks rays aimed exactly at vertices** (per-kind table) although it is watertight for
   random directions; every holotrace/Embree disagreement is classified edge-or-vertex, none interior.
 - **The naive Möller-Trumbore control** leaks 1-5 % of vertex/edge rays at every scale, and with the paper's
-  1e-6 determinant epsilon it misses everything at scales <= 1e-2 (the scale dependence of bvh.md §5.4).
+  1e-6 determinant epsilon it misses everything at scales <= 1e-2 (the scale dependence of docs/BVH.md §5.4).
 
 )";
 

@@ -1,6 +1,6 @@
 // Watertightness: rays starting inside closed icospheres and tori never miss, on the CPU reference and the
 // GPU kernel, with the mesh at the origin, translated up to 1e6 and to Embree verify's centre, and scaled
-// 1e-4 … 1e4 (bvh.md §6). The anchors (robust Embree, naive Möller-Trumbore controls) and all six meshes
+// 1e-4 … 1e4 (docs/BVH.md §6). The anchors (robust Embree, naive Möller-Trumbore controls) and all six meshes
 // run in bench/accuracy_report; here only the control's ability to leak is checked.
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ class Watertight : public ::testing::TestWithParam<Placement> {};
 
 TEST_P(Watertight, RaysFromInsideClosedMeshesNeverMiss) {
   const Placement& placement = GetParam();
-  // 200k rays per mesh and placement in Release (bvh.md §6: Embree verify tolerates 0.002 % misses; we
+  // 200k rays per mesh and placement in Release (docs/BVH.md §6: Embree verify tolerates 0.002 % misses; we
   // tolerate none). CI takes the finest icosphere and torus; bench/accuracy_report runs all closedMeshes().
   const uint32_t count = test::scaledCount(200000);
   for (const TestMesh& local : {icosphere(5), torus(192, 96)}) {

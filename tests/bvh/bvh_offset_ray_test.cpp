@@ -18,7 +18,7 @@ using namespace gpu_shared;
 TEST(BvhOffsetRay, ConstantsAreThoseOfTheChapter) {
   EXPECT_EQ(HT_OFFSET_ORIGIN, 1.0f / 32.0f);
   EXPECT_EQ(HT_OFFSET_FLOAT_SCALE, 1.0f / 65536.0f);
-  EXPECT_NE(HT_OFFSET_FLOAT_SCALE, 1.0f / 65535.0f);  // a port seen in the wild used 1/65535 (bvh.md §5.3)
+  EXPECT_NE(HT_OFFSET_FLOAT_SCALE, 1.0f / 65535.0f);  // a port seen in the wild used 1/65535 (docs/BVH.md §5.3)
   EXPECT_EQ(HT_OFFSET_INT_SCALE, 256.0f);
 }
 

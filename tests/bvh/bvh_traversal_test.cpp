@@ -173,7 +173,7 @@ TEST(BvhTraversal, NanAndInfRaysMissImmediately) {
   EXPECT_FALSE(ok.overflow);
 }
 
-// Embree verify's watertight test (bvh.md §6): rays from inside a closed sphere centred far from the origin
+// Embree verify's watertight test (docs/BVH.md §6): rays from inside a closed sphere centred far from the origin
 // must all hit; here also near the origin and for axis-aligned directions.
 TEST(BvhTraversal, ClosedSphereDoesNotLeak) {
   const uint32_t rays = test::scaled(200000, 20000);

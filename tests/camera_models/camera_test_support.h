@@ -24,7 +24,7 @@ inline Bounds3 testBounds() {
   return b;
 }
 
-// Synthetic 8K (7680x4320) lenticular panel in the style of the 32" Gen3 units: Gen3 lens parameters (optics.md §1.1,
+// Synthetic 8K (7680x4320) lenticular panel in the style of the 32" Gen3 units: Gen3 lens parameters (docs/OPTICS.md §1.1,
 // LKG-J pitch and slope) scaled to an 8K panel; pitch_s is about 1190 lenses, so phi reaches ~1200.
 // cellMode 0 = classic; 2 = the LKG-J template cells.
 inline DisplayConfig eightKDisplay(int cellMode, bool flipX = false, bool flipSubp = false, bool invView = true) {

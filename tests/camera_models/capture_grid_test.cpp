@@ -1,4 +1,4 @@
-// Two-plane capture grid (optics.md §9 M5, Levoy & Hanrahan 1996). Checks written without the model code: each ray
+// Two-plane capture grid (docs/OPTICS.md §9 M5, Levoy & Hanrahan 1996). Checks written without the model code: each ray
 // starts at its camera (s, t) on the camera plane and crosses the focal window at its pixel's (u, v); one row of the
 // grid with ds = D tan(theta) spacing reproduces the M1 quilt cameras; float vs double over whole images; bad
 // sections are ConfigErrors.

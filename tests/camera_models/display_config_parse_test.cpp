@@ -1,4 +1,4 @@
-// Parsing of good inputs: every visual.json fixture of optics.md §1.1, both CellPatternMode casings, bare vs wrapped
+// Parsing of good inputs: every visual.json fixture of docs/OPTICS.md §1.1, both CellPatternMode casings, bare vs wrapped
 // numbers, booleans, flips, our display-config format, and the built-in (embedded) displays.
 #include <fstream>
 #include <sstream>

@@ -1,4 +1,4 @@
-// Integral imaging / microlens panels (optics.md §7, §9 M4). Checks written without the model code: in the pinhole
+// Integral imaging / microlens panels (docs/OPTICS.md §7, §9 M4). Checks written without the model code: in the pinhole
 // ("centre") case each ray is the line through its LCD pixel and the nearest lens centre (found here by brute force);
 // with g = f a thin lens collimates every aperture sample of a pixel (ray transfer, which fixes the lens-term sign);
 // rays start on the front plane; bad sections are ConfigErrors; float vs double over whole panels incl. corners.

@@ -1,4 +1,4 @@
-// Raw -> shader values (optics.md §2 worked examples), camera resolution (optics.md §4.3) and the LenticularParams /
+// Raw -> shader values (docs/OPTICS.md §2 worked examples), camera resolution (docs/OPTICS.md §4.3) and the LenticularParams /
 // PinholeParams blocks.
 #include <cmath>
 #include <numbers>
@@ -17,7 +17,7 @@ namespace {
 using test::fixturePath;
 using test::loadFixture;
 
-// The worked examples of optics.md §2 are quoted to a given number of digits: compare to half a unit of the last one.
+// The worked examples of docs/OPTICS.md §2 are quoted to a given number of digits: compare to half a unit of the last one.
 TEST(CameraModelsShaderValues, PortraitPr56WorkedExample) {
   LenticularShaderValues v = lenticularShaderValues(*loadFixture("portrait_pr56_visual.json").calibration);
   EXPECT_NEAR(v.pitch, 246.973, 0.0005);
@@ -30,7 +30,7 @@ TEST(CameraModelsShaderValues, Gen1OriginalWorkedExample) {
   LenticularShaderValues v = lenticularShaderValues(*loadFixture("gen1_8.9_original_visual.json").calibration);
   EXPECT_NEAR(v.pitch, 370.625, 0.0005);
   EXPECT_NEAR(v.tilt, 0.11982, 0.000005);
-  // Close to the hand-entered pitch 370.66407267416486 of lonetech/LookingGlass quiltshader.glsl (optics.md §2).
+  // Close to the hand-entered pitch 370.66407267416486 of lonetech/LookingGlass quiltshader.glsl (docs/OPTICS.md §2).
   EXPECT_NEAR(v.pitch, 370.66407267416486, 0.05);
 }
 
@@ -41,7 +41,7 @@ TEST(CameraModelsShaderValues, GoTemplateWorkedExample) {
 }
 
 TEST(CameraModelsShaderValues, TaurayFormulaAgrees) {
-  // vga-group/tauray src/looking_glass.cc: corrected_pitch = W/dpi*pitch*sin(atan(|slope|)) (optics.md §2).
+  // vga-group/tauray src/looking_glass.cc: corrected_pitch = W/dpi*pitch*sin(atan(|slope|)) (docs/OPTICS.md §2).
   for (const char* name : {"portrait_pr56_visual.json", "gen1_8.9_original_visual.json", "go_template_visual.json"}) {
     const LookingGlassCalibration c = *loadFixture(name).calibration;
     const double tauray = c.screenW / c.DPI * c.pitch * std::sin(std::atan(std::fabs(c.slope)));
@@ -154,7 +154,7 @@ TEST(CameraModelsPinhole, MatchesM0InDouble) {
       glm::vec2 xi(unit(rng), unit(rng));
       glm::vec3 o, d;
       gpu_shared::pinhole_ray(p, x, y, xi, o, d);
-      // optics.md §9 M0, camera looking down -z from (0,1,5): camera axes equal world axes.
+      // docs/OPTICS.md §9 M0, camera looking down -z from (0,1,5): camera axes equal world axes.
       glm::dvec3 expected = glm::normalize(glm::dvec3((2.0 * (x + xi.x) / 640.0 - 1.0) * aspect * tanHalf,
                                                       (2.0 * (y + xi.y) / 480.0 - 1.0) * tanHalf, -1.0));
       EXPECT_LT(test::angleBetween(glm::dvec3(d), expected), 1e-6);

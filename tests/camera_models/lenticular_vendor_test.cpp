@@ -1,6 +1,6 @@
-// The shared float model against the VENDOR SHADER formula, re-implemented here from optics.md §3 (not from
+// The shared float model against the VENDOR SHADER formula, re-implemented here from docs/OPTICS.md §3 (not from
 // lenticular_model.h): holoplaycore.js `GetSubpixelViews` (§3.1) and the Gen3 cell variant `GetCellForPixel` /
-// `GetPixelShift` (§3.2), on the real calibrations of optics.md §1.1, at every subpixel of each panel.
+// `GetPixelShift` (§3.2), on the real calibrations of docs/OPTICS.md §1.1, at every subpixel of each panel.
 #include <cmath>
 #include <cstdio>
 
@@ -144,7 +144,7 @@ TEST(CameraModelsVendor, Gen3PortraitCellsEveryOtherRow) {
   expectMatchesVendor(loadFixture("gen3_16_portrait_lowercase_visual.json"), 66, 2);
 }
 
-// flipSubp (BGR): output R takes the phase of subpixel 2 and B of subpixel 0 (HoloPlayCore ri/bi, optics.md §3.1).
+// flipSubp (BGR): output R takes the phase of subpixel 2 and B of subpixel 0 (HoloPlayCore ri/bi, docs/OPTICS.md §3.1).
 TEST(CameraModelsVendor, FlipSubpSwapsRedAndBlue) {
   DisplayConfig config = loadFixture("portrait_pr56_visual.json");
   DisplayConfig bgr = config;
@@ -182,7 +182,7 @@ TEST(CameraModelsVendor, InvViewZeroIsHoloplayJsOrder) {
   EXPECT_LT(maxError, kModelPhaseBound);
 }
 
-// The footprint is 1/3 px wide: across it the phase changes by pitch_s*subp (optics.md §9 M2, w_t), decreasing
+// The footprint is 1/3 px wide: across it the phase changes by pitch_s*subp (docs/OPTICS.md §9 M2, w_t), decreasing
 // with invView. Along y the footprint spans one pixel: tilt*pitch_s/H.
 TEST(CameraModelsVendor, FootprintPhaseWidth) {
   DisplayConfig config = loadFixture("portrait_pr56_visual.json");

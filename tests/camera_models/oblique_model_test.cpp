@@ -1,4 +1,4 @@
-// Oblique (sheared orthographic) direction camera (optics.md §9 M6, Burnett "Oblique Slice and Dice"). The float
+// Oblique (sheared orthographic) direction camera (docs/OPTICS.md §9 M6, Burnett "Oblique Slice and Dice"). The float
 // shared header (run as C++) against the double reference over whole images and an 8K x 8K image; consistency checks
 // written without the model code (parallel rays per view, each ray crosses its window point, starts on z = zFront,
 // view angles evenly spaced in angle); placement defaults; bad sections are ConfigErrors.

@@ -1,4 +1,4 @@
-// Quilt names, tile layout and device defaults (optics.md §4.1, §4.2): name tags round-trip and malformed tags are
+// Quilt names, tile layout and device defaults (docs/OPTICS.md §4.1, §4.2): name tags round-trip and malformed tags are
 // ConfigErrors; view 0 is the bottom-left tile and views run left to right, then upward.
 #include <string>
 

@@ -1,4 +1,4 @@
-// The quilt cameras (optics.md §9 M1): the shared float quilt_ray against the lenticular model at each view's bin
+// The quilt cameras (docs/OPTICS.md §9 M1): the shared float quilt_ray against the lenticular model at each view's bin
 // centre (the direct path reproduces the quilt path there, §9 M2) and against the independent double reference over
 // whole tiles, including the corners of an 8K panel's default quilt.
 #include <algorithm>
@@ -95,7 +95,7 @@ TEST(QuiltModel, FloatMatchesDoubleReferenceEightK) {
   EXPECT_LE(maxOrigin, 1e-6 * sceneScale);
 }
 
-// View 0 is the leftmost camera (optics.md §4.1): origins move right with the view index; the centre pair straddles x=0.
+// View 0 is the leftmost camera (docs/OPTICS.md §4.1): origins move right with the view index; the centre pair straddles x=0.
 TEST(QuiltModel, ViewsRunLeftToRight) {
   const DisplayConfig config = builtinDisplay("portrait");
   const QuiltLayout layout = defaultQuiltLayout(config);

@@ -228,7 +228,7 @@ TEST(CliEndToEnd, DebugViewsWritesTheSubpixelViewPhasesWithoutTracing) {
   const frame_io::ImageFile image = frame_io::readImageFile(exr);
   ASSERT_EQ(image.width, 1536u);
   const std::vector<float>& pixels = image.rgba;
-  // Independent check of the classic phase formula (optics.md §3.1) at a few subpixels, half-float precision.
+  // Independent check of the classic phase formula (docs/OPTICS.md §3.1) at a few subpixels, half-float precision.
   const DisplayConfig display = builtinDisplay("portrait");
   const LenticularShaderValues v = lenticularShaderValues(*display.calibration);
   for (std::uint32_t x : {0u, 700u, 1535u}) {

@@ -212,7 +212,7 @@ TEST_F(GpuCameraRays, ProjectorWallThroughDistortingLenses) {
 }
 
 // Independent of the model code: a scattered ray still passes through its projector's screen point S (the rotation
-// axis is vertical through S) and keeps its vertical slope (the scattering is horizontal only, optics.md §6).
+// axis is vertical through S) and keeps its vertical slope (the scattering is horizontal only, docs/OPTICS.md §6).
 TEST_F(GpuCameraRays, ProjectorScatteredRaysPassThroughTheScreen) {
   const DisplayConfig config = builtinDisplay("holovizio-wall-70");
   const ProjectorArrayReference reference(config, bounds_);

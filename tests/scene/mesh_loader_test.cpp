@@ -129,7 +129,7 @@ TEST(SceneMeshFiles, Glmark2BunnyLoadsQuickly) {
   const std::clock_t c0 = std::clock();
   const Scene s = loadScene(bunny);
   const double ms = 1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
-  EXPECT_EQ(s.triangles.size(), 69666u);  // docs/toolchain.md §7: 34,835 v / 69,666 tris
+  EXPECT_EQ(s.triangles.size(), 69666u);  // docs/TOOLCHAIN.md §7: 34,835 v / 69,666 tris
   EXPECT_EQ(s.positions.size(), 34835u);
   EXPECT_FALSE(s.bounds().empty());
   std::printf("bunny: %zu triangles in %.1f ms CPU\n", s.triangles.size(), ms);

@@ -3,7 +3,7 @@
 // A closed mesh is one whose triangles share every edge with exactly one other triangle, so a ray starting
 // strictly inside must hit it: a miss is a leak of the intersection code. Placements follow Embree verify's
 // watertight test (tutorials/verify/verify.cpp: sphere of radius 2 centred at (148376, 1234, -223423),
-// bvh.md §6) and the scale sweep of bvh.md §6 ("scales from 1e-3 to 1e5", widened here to 1e-4 … 1e4).
+// docs/BVH.md §6) and the scale sweep of docs/BVH.md §6 ("scales from 1e-3 to 1e5", widened here to 1e-4 … 1e4).
 #pragma once
 #include <cstdint>
 #include <string>
