@@ -99,7 +99,8 @@ int runBenchmark(const BenchOptions& options) {
 }  // namespace ht::bench
 
 int main(int argc, char** argv) {
-  return ht::bench::benchMain(argc, argv, "holotrace-bench-primary",
-                              [](const std::vector<std::string>& a, std::string* help) { return ht::bench::parseBenchOptions(a, help); },
-                              [](const auto& options) { return ht::bench::runBenchmark(options); });
+  return ht::bench::benchMain(
+      argc, argv, "holotrace-bench-primary",
+      [](const std::vector<std::string>& a, std::string* help) { return ht::bench::parseBenchOptions(a, help); },
+      [](const auto& options) { return ht::bench::runBenchmark(options); });
 }

@@ -23,8 +23,8 @@ struct GpuBvhNode {
   uvec4 link;
 };
 
-HT_CONST uint HT_TRI_STRIDE = 3u;      // vec4s per triangle slot
-HT_CONST uint HT_BVH_MAX_DEPTH = 64u;  // builder guarantee; traversal stack size
+HT_CONST uint HT_TRI_STRIDE = 3u;                // vec4s per triangle slot
+HT_CONST uint HT_BVH_MAX_DEPTH = 64u;            // builder guarantee; traversal stack size
 HT_CONST uint HT_TRAVERSAL_STEP_LIMIT = 60000u;  // < lavapipe's 65,535 loop budget (docs/TOOLCHAIN.md §0)
 
 HT_SHARED_END

@@ -16,9 +16,9 @@
 
 HT_SHARED_BEGIN
 
-HT_CONST float HT_OFFSET_ORIGIN = 0.03125f;          // origin(): 1/32
+HT_CONST float HT_OFFSET_ORIGIN = 0.03125f;                // origin(): 1/32
 HT_CONST float HT_OFFSET_FLOAT_SCALE = 1.52587890625e-5f;  // float_scale(): 1/65536
-HT_CONST float HT_OFFSET_INT_SCALE = 256.0f;         // int_scale()
+HT_CONST float HT_OFFSET_INT_SCALE = 256.0f;               // int_scale()
 
 // One component: p moved int(256*n) ULPs towards the sign of n, or by n/65536 close to zero.
 HT_INLINE float ht_offset_component(float p, float n) {

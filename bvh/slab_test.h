@@ -39,8 +39,8 @@ HT_INLINE float ht_safe_rcp(float x) {
 // Per-ray data of the slab test, computed once per ray.
 struct HtSlabRay {
   vec3 origin;
-  vec3 invDir;   // ht_safe_rcp of each direction component
-  bool negX;     // direction component < 0 (the near plane is the box's hi plane)
+  vec3 invDir;  // ht_safe_rcp of each direction component
+  bool negX;    // direction component < 0 (the near plane is the box's hi plane)
   bool negY;
   bool negZ;
   float tmin;
@@ -83,8 +83,8 @@ HT_INLINE void ht_slab_boxes(HT_IN(HtSlabRay) r, vec4 c0xy, vec4 c1xy, vec4 c01z
 }
 
 // Tests BOTH child boxes of a node against the ray segment [r.tmin, tmax]; returns the entry distances.
-HT_INLINE void ht_slab_node(HT_IN(HtSlabRay) r, HT_IN(GpuBvhNode) n, float tmax, HT_OUT(bool) hit0,
-                            HT_OUT(bool) hit1, HT_OUT(float) tEnter0, HT_OUT(float) tEnter1) {
+HT_INLINE void ht_slab_node(HT_IN(HtSlabRay) r, HT_IN(GpuBvhNode) n, float tmax, HT_OUT(bool) hit0, HT_OUT(bool) hit1,
+                            HT_OUT(float) tEnter0, HT_OUT(float) tEnter1) {
   ht_slab_boxes(r, n.c0xy, n.c1xy, n.c01z, tmax, hit0, hit1, tEnter0, tEnter1);
 }
 

@@ -25,9 +25,9 @@ HT_SHARED_BEGIN
 
 // Per-ray precomputation of the watertight test (done once per ray).
 struct HtWatertightRay {
-  uint kx, ky, kz;  // permutation: kz = dominant direction axis
-  float Sx, Sy, Sz; // shear constants
-  float ox, oy, oz; // origin permuted as (O[kx], O[ky], O[kz])
+  uint kx, ky, kz;   // permutation: kz = dominant direction axis
+  float Sx, Sy, Sz;  // shear constants
+  float ox, oy, oz;  // origin permuted as (O[kx], O[ky], O[kz])
   float tmin;
 };
 
@@ -103,8 +103,8 @@ HT_INLINE bool ht_confirm_t_double(HT_IN(HtWatertightRay) r, vec3 a, vec3 b, vec
 // Watertight intersection of the ray with triangle (a, b, c) within [tmin, tmax].
 // On a hit returns true with t and the barycentrics u (of b) and v (of c); otherwise returns false and
 // leaves t = tmax, u = v = 0.
-HT_INLINE bool ht_intersect_triangle(HT_IN(HtWatertightRay) r, vec3 a, vec3 b, vec3 c, float tmax,
-                                     HT_OUT(float) t, HT_OUT(float) u, HT_OUT(float) v) {
+HT_INLINE bool ht_intersect_triangle(HT_IN(HtWatertightRay) r, vec3 a, vec3 b, vec3 c, float tmax, HT_OUT(float) t,
+                                     HT_OUT(float) u, HT_OUT(float) v) {
   t = tmax;
   u = 0.0f;
   v = 0.0f;

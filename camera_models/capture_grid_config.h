@@ -14,11 +14,11 @@
 namespace ht {
 
 struct CaptureGridConfig {
-  std::uint32_t columns = 0, rows = 0;        // cameras, [1, 1024] each
-  glm::dvec2 spacing{0.0};                    // camera pitch in s and t (world units), > 0
-  double distance = 0.0;                      // camera plane to focal plane (world units), > 0
-  double windowWidth = 0.0, windowHeight = 0.0;  // focal window (shared (u, v) rectangle, world units), > 0
-  std::uint32_t imageWidth = 0, imageHeight = 0; // pixels per camera image
+  std::uint32_t columns = 0, rows = 0;            // cameras, [1, 1024] each
+  glm::dvec2 spacing{0.0};                        // camera pitch in s and t (world units), > 0
+  double distance = 0.0;                          // camera plane to focal plane (world units), > 0
+  double windowWidth = 0.0, windowHeight = 0.0;   // focal window (shared (u, v) rectangle, world units), > 0
+  std::uint32_t imageWidth = 0, imageHeight = 0;  // pixels per camera image
 };
 
 // Parses and validates the section; `at` is its location ("captureGrid"). Throws ConfigError.

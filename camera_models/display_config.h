@@ -44,17 +44,17 @@ struct PinholeSettings {
   std::optional<glm::dvec3> eye;               // nullopt = "auto"
   std::optional<glm::dvec3> lookAt;            // nullopt = "auto" (target / bounds centre)
   glm::dvec3 up{0.0, 1.0, 0.0};
-  LensDistortionSettings distortion;           // "distortion": {"k1", "k2", "k3", "p1", "p2"}, each default 0
+  LensDistortionSettings distortion;  // "distortion": {"k1", "k2", "k3", "p1", "p2"}, each default 0
 };
 
 struct DisplayConfig {
   std::string name;
   std::string description;
-  std::string sourcePath;             // file path, or "builtin:NAME"
+  std::string sourcePath;  // file path, or "builtin:NAME"
   DisplayModel model = DisplayModel::Lenticular;
   std::optional<LookingGlassCalibration> calibration;  // required for (and only for) the lenticular model
   CameraPlacement camera;
-  std::uint32_t spp = 4;              // default samples per subpixel / pixel, [1, 4096]
+  std::uint32_t spp = 4;  // default samples per subpixel / pixel, [1, 4096]
   PinholeSettings pinhole;
   std::optional<ProjectorArrayConfig> projectorArray;  // required for (and only for) model "projector-array"
   std::optional<IntegralConfig> integral;              // required for (and only for) model "integral"

@@ -1,8 +1,8 @@
 // integral_config.h - the "integral" section of a display config (model "integral", docs/configs.md): an integral-
 // imaging / microlens panel with full parallax (docs/OPTICS.md §7, §9 M4).
 //
-// Display units (e.g. mm), display-local frame (docs/OPTICS.md §0): lens array = plane z = 0 centred on the origin, LCD at
-// z = -gap, viewer plane at z = +viewerDistance, +z toward the viewer.
+// Display units (e.g. mm), display-local frame (docs/OPTICS.md §0): lens array = plane z = 0 centred on the origin, LCD
+// at z = -gap, viewer plane at z = +viewerDistance, +z toward the viewer.
 #pragma once
 #include <cstdint>
 

@@ -1,11 +1,11 @@
 // lenticular_model.h - direct per-subpixel primary rays for a Looking Glass lenticular panel (shared C++/GLSL).
 //
-// Model M2 of docs/OPTICS.md §9: the vendor view phase (holoplaycore.js `GetSubpixelViews`, docs/OPTICS.md §3.1; Gen3 cells
-// `GetCellForPixel`/`GetPixelShift`, §3.2) picks a point on the view cone, the camera of looking-glass-webxr
+// Model M2 of docs/OPTICS.md §9: the vendor view phase (holoplaycore.js `GetSubpixelViews`, docs/OPTICS.md §3.1; Gen3
+// cells `GetCellForPixel`/`GetPixelShift`, §3.2) picks a point on the view cone, the camera of looking-glass-webxr
 // `LookingGlassXRDevice.ts onFrameStart` (docs/OPTICS.md §4.3 / §9 M1) turns it into a ray through the focal rectangle.
 //
-// Conventions (docs/OPTICS.md §0): pixel (x, y) with y counted from the BOTTOM, c = 0, 1, 2 = R, G, B; display-local frame
-// +x right, +y up, +z toward the viewer, origin at the centre of the focal rectangle; t = 0 is the leftmost view.
+// Conventions (docs/OPTICS.md §0): pixel (x, y) with y counted from the BOTTOM, c = 0, 1, 2 = R, G, B; display-local
+// frame +x right, +y up, +z toward the viewer, origin at the centre of the focal rectangle; t = 0 is the leftmost view.
 //
 // Sampling: xi in [0,1)^2 is the position inside the subpixel's footprint, a rectangle 1/3 px wide and 1 px tall
 // centred on the vendor's sample point (u + c*subp, v) (classic) or on the Gen3 cell-offset position. xi = (0.5, 0.5)
@@ -38,9 +38,7 @@ HT_CONST float HT_LENTICULAR_T_MAX = 0.99999994f;
 
 // Channel whose physical subpixel feeds output channel c: BGR panels (flipSubp) swap R and B, c' = 2 - c
 // (HoloPlayCore ri/bi, docs/OPTICS.md §1 and §9 M2).
-HT_INLINE uint lenticular_physical_channel(LenticularParams p, uint c) {
-  return p.panel.w > 0.5f ? 2u - c : c;
-}
+HT_INLINE uint lenticular_physical_channel(LenticularParams p, uint c) { return p.panel.w > 0.5f ? 2u - c : c; }
 
 // Whether the panel places its subpixels by Gen3 cells (docs/OPTICS.md §3.2) rather than the classic 1/3-pixel steps.
 HT_INLINE bool lenticular_has_cells(LenticularParams p) {
@@ -101,8 +99,7 @@ HT_INLINE vec2 lenticular_rate_split(vec2 stored, float fallback) {
 // lenticular_view_phase_at_offset: the same at a sample offset o = lenticular_sample_offset_px(p, x, y, c, xi).
 HT_INLINE float lenticular_view_phase_at_offset(LenticularParams p, uint x, uint y, vec2 o) {
   vec2 rateX = lenticular_rate_split(vec2(p.cellOffset[0].z, p.cellOffset[0].w), p.phase.x / p.panel.x);
-  vec2 rateY = lenticular_rate_split(vec2(p.cellOffset[1].z, p.cellOffset[1].w),
-                                     p.phase.y * p.phase.x / p.panel.y);
+  vec2 rateY = lenticular_rate_split(vec2(p.cellOffset[1].z, p.cellOffset[1].w), p.phase.y * p.phase.x / p.panel.y);
   HT_PRECISE float fx = fract(float(x) * rateX.x);
   HT_PRECISE float fy = fract(float(y) * rateY.x);
   HT_PRECISE float small = float(x) * rateX.y + float(y) * rateY.y;
@@ -115,7 +112,8 @@ HT_INLINE float lenticular_view_phase(LenticularParams p, uint x, uint y, uint c
   return lenticular_view_phase_at_offset(p, x, y, lenticular_sample_offset_px(p, x, y, c, xi));
 }
 
-// Ray for view phase t through the focal-plane point at screen uv (docs/OPTICS.md §9 M1/M2, looking-glass-webxr camera):
+// Ray for view phase t through the focal-plane point at screen uv (docs/OPTICS.md §9 M1/M2, looking-glass-webxr
+// camera):
 //   theta = viewCone*(t - 0.5);  o = (D tan(theta), 0, D)
 //   P = ((u - 0.5)*aspect*size, (v - 0.5)*size, 0), u, v mirrored by flipImageX / flipImageY;  d = normalize(P - o)
 // then display-local -> world through localToWorld. dir is unit length.

@@ -29,8 +29,8 @@ bool hasArea(const Bounds3& bounds) {
 }  // namespace
 
 LenticularShaderValues lenticularShaderValues(const LookingGlassCalibration& c) {
-  // docs/OPTICS.md §2 (looking-glass-webxr src/LookingGlassConfig.ts at b44ed27; LKG-Toolkit Calibration.cs ProcessPitch,
-  // ProcessSlope). subp is negated with flipImageX as in looking-glass-webxr HEAD.
+  // docs/OPTICS.md §2 (looking-glass-webxr src/LookingGlassConfig.ts at b44ed27; LKG-Toolkit Calibration.cs
+  // ProcessPitch, ProcessSlope). subp is negated with flipImageX as in looking-glass-webxr HEAD.
   const double flip = c.flipImageX ? -1.0 : 1.0;
   const double width = static_cast<double>(c.screenW);
   const double height = static_cast<double>(c.screenH);

@@ -16,9 +16,9 @@ namespace ht {
 //   pitch_s = pitch * (screenW / DPI) * cos(atan(1 / slope)),  tilt = screenH / (screenW * slope) * (flipX ? -1 : 1),
 //   subp = 1 / (3 * screenW) * (flipX ? -1 : 1),  center unchanged.
 struct LenticularShaderValues {
-  double pitch = 0.0;   // pitch_s: lenses across the full screen width
+  double pitch = 0.0;  // pitch_s: lenses across the full screen width
   double tilt = 0.0;
-  double subp = 0.0;    // one subpixel in u units, signed
+  double subp = 0.0;  // one subpixel in u units, signed
   double center = 0.0;
 };
 LenticularShaderValues lenticularShaderValues(const LookingGlassCalibration& calibration);
@@ -32,7 +32,7 @@ struct LenticularCamera {
   glm::dvec3 target{0.0};
   double size = 2.0;
   double focalDistance = 0.0;
-  double aspect = 1.0;        // screenW / screenH
+  double aspect = 1.0;  // screenW / screenH
   double viewConeRad = 0.0;
 };
 LenticularCamera resolveLenticularCamera(const DisplayConfig& config, const Bounds3& sceneBounds);

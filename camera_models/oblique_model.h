@@ -1,4 +1,5 @@
-// oblique_model.h - oblique (sheared orthographic) direction camera rays (shared C++/GLSL), model M6 of docs/OPTICS.md §9.
+// oblique_model.h - oblique (sheared orthographic) direction camera rays (shared C++/GLSL), model M6 of docs/OPTICS.md
+// §9.
 //
 // Burnett, "Oblique Slice and Dice" (TLBurnett3/LightField Src/Renderer/README.md; docs/OPTICS.md §7, §9 M6): one image
 // per emission direction e_k; for a window point X the ray is o = X + e_k*zFront', d = -e_k (all rays of a view are
@@ -31,8 +32,7 @@ HT_INLINE vec2 oblique_view_tangents(ObliqueParams p, uint view) {
   return vec2(tan(thx), tan(thy));
 }
 
-HT_INLINE void oblique_ray(ObliqueParams p, uint x, uint y, uint view, vec2 xi, HT_OUT(vec3) origin,
-                           HT_OUT(vec3) dir) {
+HT_INLINE void oblique_ray(ObliqueParams p, uint x, uint y, uint view, vec2 xi, HT_OUT(vec3) origin, HT_OUT(vec3) dir) {
   vec2 t = oblique_view_tangents(p, view);
   HT_PRECISE vec3 windowPoint = vec3(((float(x) + xi.x) / float(p.grid.z) - 0.5f) * p.window.x,
                                      ((float(y) + xi.y) / float(p.grid.w) - 0.5f) * p.window.y, 0.0f);

@@ -88,7 +88,8 @@ gpu_shared::PinholeParams makePinholeParams(const DisplayConfig& config, const B
   gpu_shared::PinholeParams p{};
   p.cameraToWorld = glm::mat4(cameraToWorld);
   const double tanHalf = std::tan(0.5 * fovy), aspect = static_cast<double>(camera.width) / camera.height;
-  p.lens = glm::vec4(glm::dvec4(tanHalf, aspect, static_cast<double>(camera.width), static_cast<double>(camera.height)));
+  p.lens =
+      glm::vec4(glm::dvec4(tanHalf, aspect, static_cast<double>(camera.width), static_cast<double>(camera.height)));
   p.distortion = makeLensDistortion(config.pinhole.distortion, glm::dvec2(aspect * tanHalf, tanHalf), config.sourcePath,
                                     "pinhole.distortion");
   return p;

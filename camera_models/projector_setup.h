@@ -19,7 +19,8 @@ using ProjectorPlacement = ScreenPlacement;
 ProjectorPlacement resolveProjectorPlacement(const DisplayConfig& config, const Bounds3& sceneBounds);
 
 // angularScattering, or "auto": 1.5 x the angle between the two central projectors (sorted by the horizontal angle
-// atan(P.x / -P.z) seen from the screen centre; LightFieldDisplayModel GenerateSampleModels/main.cpp, docs/OPTICS.md §6).
+// atan(P.x / -P.z) seen from the screen centre; LightFieldDisplayModel GenerateSampleModels/main.cpp, docs/OPTICS.md
+// §6).
 double resolveAngularScattering(const ProjectorArrayConfig& array);
 
 // The projector's pixel -> screen homography (its own, or the linear mapping), row-major.

@@ -1,9 +1,9 @@
 // quilt_layout.h - Looking Glass quilts: the `_qs{cols}x{rows}a{aspect}` file-name tag, tile layout and the device
 // default quilt sizes (docs/OPTICS.md §4.1, §4.2). Host side only; the quilt cameras are quilt_model.h.
 //
-// Layout (holoplaycore.js GetQuiltCoordinates; LKG-Toolkit QuiltSettings.ViewPortion*, docs/OPTICS.md §4.1): view i sits in
-// tile (i mod cols, floor(i / cols)) counted from the BOTTOM-LEFT in GL texture space (y up); view 0 is the leftmost
-// camera, views run left to right, then upward. Tiles are tileW x tileH pixels; the quilt may be larger than
+// Layout (holoplaycore.js GetQuiltCoordinates; LKG-Toolkit QuiltSettings.ViewPortion*, docs/OPTICS.md §4.1): view i
+// sits in tile (i mod cols, floor(i / cols)) counted from the BOTTOM-LEFT in GL texture space (y up); view 0 is the
+// leftmost camera, views run left to right, then upward. Tiles are tileW x tileH pixels; the quilt may be larger than
 // cols*tileW x rows*tileH (the unused remainder is the "view portion" < 1).
 #pragma once
 #include <cstdint>

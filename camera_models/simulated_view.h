@@ -75,8 +75,8 @@ SimulatedView simulateProjectorView(const gpu_shared::ProjectorArrayParams& para
 
 // `lcd`: the LCD image (panel.x x panel.y, the layout of an integral render). Throws Error if the size does not
 // match or E.z <= 0.
-SimulatedView simulateIntegralView(const gpu_shared::IntegralParams& params, std::span<const float> lcd,
-                                   glm::dvec3 eye, unsigned threads = 0);
+SimulatedView simulateIntegralView(const gpu_shared::IntegralParams& params, std::span<const float> lcd, glm::dvec3 eye,
+                                   unsigned threads = 0);
 
 // Eyes spread across each model's view cone, left to right, at bin centres (i + 0.5)/n of it (one eye: the centre):
 //   lenticular: the virtual camera line, o(t) = (D tan(viewCone (t - 0.5)), 0, D) for t = (i + 0.5)/n;

@@ -17,7 +17,8 @@ gpu::RenderResult renderViewPhaseDebug(const gpu_shared::LenticularParams& param
     const std::uint32_t y = result.height - 1 - row;  // the model counts y from the bottom (docs/OPTICS.md §0)
     float* dst = result.rgba.data() + std::size_t(row) * result.width * 4;
     for (std::uint32_t x = 0; x < result.width; ++x, dst += 4) {
-      for (std::uint32_t c = 0; c < 3; ++c) dst[c] = gpu_shared::lenticular_view_phase(params, x, y, c, glm::vec2(0.5f));
+      for (std::uint32_t c = 0; c < 3; ++c)
+        dst[c] = gpu_shared::lenticular_view_phase(params, x, y, c, glm::vec2(0.5f));
       dst[3] = 1.0f;
     }
   }

@@ -49,9 +49,7 @@ namespace {
 
 DaemonConfig withWorkDir(DaemonConfig config, bool& owns) {
   owns = config.workDir.empty();
-  if (owns) {
-    config.workDir = std::filesystem::temp_directory_path() / ("holotraced-" + std::to_string(::getpid()));
-  }
+  if (owns) { config.workDir = std::filesystem::temp_directory_path() / ("holotraced-" + std::to_string(::getpid())); }
   std::filesystem::create_directories(config.workDir);
   ::chmod(config.workDir.c_str(), 0700);
   return config;

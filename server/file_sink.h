@@ -44,7 +44,7 @@ class FileSink {
 
  private:
   int openTemp(const std::string& tempName);
-  int writeAll(int fd, std::span<const std::uint8_t> bytes);  // 0 or the errno
+  int writeAll(int fd, std::span<const std::uint8_t> bytes);                    // 0 or the errno
   int writeTemp(const std::string& temp, std::span<const std::uint8_t> bytes);  // 0 or the errno; fd closed
   FileOps ops_;
   int rootFd_ = -1;

@@ -117,8 +117,8 @@ grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const 
   return guarded([&] {
     const double fps = request->frames_per_second();
     if (!(fps > 0.0) || fps > state_.config.limits.maxFramesPerSecond) {
-      throw BadRequest("frames_per_second", "must be in (0, " +
-                                                std::to_string(state_.config.limits.maxFramesPerSecond) + "]");
+      throw BadRequest("frames_per_second",
+                       "must be in (0, " + std::to_string(state_.config.limits.maxFramesPerSecond) + "]");
     }
     FrameJob job = checkRenderRequest(state_, request->render());
     StreamSlot slot(state_);
@@ -155,8 +155,8 @@ grpc::Status HolotraceService::Capture(grpc::ServerContext* context, const v1::C
     FrameJob job = checkRenderRequest(state_, request->render());
     const gpu::DisplayCamera camera = jobCamera(job);
     if (!frame_io::layoutAllowed({job.display->config, camera.quilt}, camera.shape.views, layout)) {
-      throw BadRequest("layout", "the views of display '" + job.display->id +
-                                     "' do not form a quilt; use CAPTURE_LAYOUT_VIEWS");
+      throw BadRequest("layout",
+                       "the views of display '" + job.display->id + "' do not form a quilt; use CAPTURE_LAYOUT_VIEWS");
     }
     StreamSlot slot(state_);
     const std::string client = clientKey(*context);

@@ -97,13 +97,16 @@ int run(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   std::ostringstream md;
   md << kIntro;
-  md << "## Watertightness (" << raysPerMesh << " rays per mesh)\n\n" << ht::accuracy::report::watertightSection(context, raysPerMesh);
-  md << "\n## Embree differential (" << diffRays << " rays per case)\n\nt agreement: |t_ours - t_embree| <= "
+  md << "## Watertightness (" << raysPerMesh << " rays per mesh)\n\n"
+     << ht::accuracy::report::watertightSection(context, raysPerMesh);
+  md << "\n## Embree differential (" << diffRays
+     << " rays per case)\n\nt agreement: |t_ours - t_embree| <= "
         "64 eps (t + (|o| + max|v|) / |d|) (tests/accuracy/kit/hit_agreement.h). Causes: edge-or-vertex = the hit's "
         "smallest barycentric < 1e-4; silhouette-graze = |cos(ray, normal)| < 1e-3; interior = neither (must be 0).\n\n"
      << ht::accuracy::report::differentialSection(context, diffRays);
   const double minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / 60.0;
-  md << "\n" << ht::accuracy::report::ciTestsSection() << "## How this file was made\n\n"
+  md << "\n"
+     << ht::accuracy::report::ciTestsSection() << "## How this file was made\n\n"
      << "Device: " << context.device().name << ". Run on " << today() << " in " << static_cast<int>(minutes * 10) / 10.0
      << " minutes:\n\n```\nscripts/accuracy-report.sh --rays-per-mesh " << raysPerMesh << " --differential-rays "
      << diffRays << "\n```\n";

@@ -27,9 +27,8 @@ TEST_P(Watertight, RaysFromInsideClosedMeshesNeverMiss) {
     const auto rays = mixedInteriorRays(mesh, count, 7);
     const LeakCounts c = countLeaks(mesh, rays, LeakOptions{&test::sharedContext(), false});
     std::printf("%-16s %-14s rays %llu misses: cpu %llu gpu %llu (triangles dropped at build %llu)\n",
-                mesh.name.c_str(), placement.name.c_str(), (unsigned long long)c.rays,
-                (unsigned long long)c.cpuMisses, (unsigned long long)c.gpuMisses,
-                (unsigned long long)c.trianglesDropped);
+                mesh.name.c_str(), placement.name.c_str(), (unsigned long long)c.rays, (unsigned long long)c.cpuMisses,
+                (unsigned long long)c.gpuMisses, (unsigned long long)c.trianglesDropped);
     EXPECT_EQ(c.cpuMisses, 0u) << mesh.name << " at " << placement.name;
     EXPECT_EQ(c.cpuOverflows, 0u) << mesh.name << " at " << placement.name;
     EXPECT_EQ(c.gpuMisses, 0u) << mesh.name << " at " << placement.name;
@@ -39,7 +38,8 @@ TEST_P(Watertight, RaysFromInsideClosedMeshesNeverMiss) {
 INSTANTIATE_TEST_SUITE_P(Placements, Watertight, ::testing::ValuesIn(placements()),
                          [](const ::testing::TestParamInfo<Placement>& info) {
                            std::string name;
-                           for (char ch : info.param.name) name += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+                           for (char ch : info.param.name)
+                             name += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
                            return name;
                          });
 

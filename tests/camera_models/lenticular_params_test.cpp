@@ -1,5 +1,5 @@
-// Raw -> shader values (docs/OPTICS.md §2 worked examples), camera resolution (docs/OPTICS.md §4.3) and the LenticularParams /
-// PinholeParams blocks.
+// Raw -> shader values (docs/OPTICS.md §2 worked examples), camera resolution (docs/OPTICS.md §4.3) and the
+// LenticularParams / PinholeParams blocks.
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -17,7 +17,8 @@ namespace {
 using test::fixturePath;
 using test::loadFixture;
 
-// The worked examples of docs/OPTICS.md §2 are quoted to a given number of digits: compare to half a unit of the last one.
+// The worked examples of docs/OPTICS.md §2 are quoted to a given number of digits: compare to half a unit of the last
+// one.
 TEST(CameraModelsShaderValues, PortraitPr56WorkedExample) {
   LenticularShaderValues v = lenticularShaderValues(*loadFixture("portrait_pr56_visual.json").calibration);
   EXPECT_NEAR(v.pitch, 246.973, 0.0005);
@@ -65,7 +66,7 @@ TEST(CameraModelsParams, LenticularParamsFields) {
   const double d = 0.5 * 1.5 / std::tan(8.0 * std::numbers::pi / 180.0);
   EXPECT_FLOAT_EQ(p.camera.x, static_cast<float>(d));
   EXPECT_FLOAT_EQ(p.camera.y, 1.5f);
-  EXPECT_FLOAT_EQ(p.camera.z, 0.75f);                                     // 1536 / 2048
+  EXPECT_FLOAT_EQ(p.camera.z, 0.75f);                                                       // 1536 / 2048
   EXPECT_FLOAT_EQ(p.camera.w, static_cast<float>(40.0 * 1.25 * std::numbers::pi / 180.0));  // depthiness 1.25
   EXPECT_FLOAT_EQ(p.panel.x, 1536.0f);
   EXPECT_FLOAT_EQ(p.panel.y, 2048.0f);
@@ -89,8 +90,8 @@ TEST(CameraModelsParams, Gen3CellOffsetsDividedOnce) {
   EXPECT_EQ(p.flags.y, 2);
   EXPECT_FLOAT_EQ(p.cellOffset[0].x, static_cast<float>(-0.31 / 3840.0));  // cell 0 R
   EXPECT_FLOAT_EQ(p.cellOffset[0].y, static_cast<float>(0.25 / 2160.0));
-  EXPECT_FLOAT_EQ(p.cellOffset[5].y, static_cast<float>(0.25 / 2160.0));   // cell 1 B
-  EXPECT_FLOAT_EQ(p.cellOffset[4].x, static_cast<float>(0.28 / 3840.0));   // cell 1 G
+  EXPECT_FLOAT_EQ(p.cellOffset[5].y, static_cast<float>(0.25 / 2160.0));  // cell 1 B
+  EXPECT_FLOAT_EQ(p.cellOffset[4].x, static_cast<float>(0.28 / 3840.0));  // cell 1 G
   // Building twice gives the same block (no in-place division, cf. looking-glass-webxr PR #59).
   gpu_shared::LenticularParams again = makeLenticularParams(builtinDisplay("gen3-16-landscape"), test::testBounds());
   for (int i = 0; i < 12; ++i) EXPECT_EQ(p.cellOffset[i], again.cellOffset[i]);
@@ -189,8 +190,8 @@ TEST(CameraModelsPinhole, LenticularPreviewIsTheCentreView) {
 }
 
 TEST(CameraModelsPinhole, AutoEyeSeesTheBounds) {
-  DisplayConfig config = parseDisplayConfig(R"({"model":"pinhole","pinhole":{"width":800,"height":600}})",
-                                            "auto.json", "");
+  DisplayConfig config =
+      parseDisplayConfig(R"({"model":"pinhole","pinhole":{"width":800,"height":600}})", "auto.json", "");
   Bounds3 bounds = test::testBounds();
   PinholeCamera camera = resolvePinholeCamera(config, bounds);
   EXPECT_NEAR(camera.lookAt.x, 0.3, 1e-6);

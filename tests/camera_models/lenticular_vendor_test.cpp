@@ -60,10 +60,10 @@ VendorShader<T> vendorShader(const LookingGlassCalibration& c) {
 }
 
 struct VendorComparison {
-  double maxVsDouble = 0.0;       // |t_model - t_vendor(double)| on the phase circle
-  double maxVsFloat = 0.0;        // |t_model - t_vendor(float)|
+  double maxVsDouble = 0.0;  // |t_model - t_vendor(double)| on the phase circle
+  double maxVsFloat = 0.0;   // |t_model - t_vendor(float)|
   double maxFloatVendorError = 0.0;
-  long indexMismatches = 0;       // view index differs although the phase is not within 1e-5 of a bin edge
+  long indexMismatches = 0;  // view index differs although the phase is not within 1e-5 of a bin edge
   long nearEdge = 0;
   long samples = 0;
 };
@@ -96,10 +96,11 @@ VendorComparison compareWithVendor(const DisplayConfig& config, int views, std::
       }
     }
   }
-  std::printf("[ %s ] %ld subpixels, N=%d: max |dt| vs vendor double %.3g, vs vendor float %.3g "
-              "(vendor float vs double %.3g); %ld within 1e-5 of a bin edge, %ld index mismatches elsewhere\n",
-              config.name.c_str(), result.samples, views, result.maxVsDouble, result.maxVsFloat,
-              result.maxFloatVendorError, result.nearEdge, result.indexMismatches);
+  std::printf(
+      "[ %s ] %ld subpixels, N=%d: max |dt| vs vendor double %.3g, vs vendor float %.3g "
+      "(vendor float vs double %.3g); %ld within 1e-5 of a bin edge, %ld index mismatches elsewhere\n",
+      config.name.c_str(), result.samples, views, result.maxVsDouble, result.maxVsFloat, result.maxFloatVendorError,
+      result.nearEdge, result.indexMismatches);
   return result;
 }
 

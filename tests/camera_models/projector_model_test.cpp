@@ -1,5 +1,5 @@
-// HPO projector array (docs/OPTICS.md §6, §9 M3). Consistency checks written without the model code: the screen point is
-// computed here from the config (linear mapping, or the fixture's homography), and each ray must pass through it,
+// HPO projector array (docs/OPTICS.md §6, §9 M3). Consistency checks written without the model code: the screen point
+// is computed here from the config (linear mapping, or the fixture's homography), and each ray must pass through it,
 // start on the observer line (z = Dobs, y = h), continue its projector's line P_k -> S horizontally and take its
 // vertical slope from the observer. Then float vs double over whole projector images of the 70-projector wall.
 #include <algorithm>

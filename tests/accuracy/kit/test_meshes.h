@@ -19,8 +19,8 @@ namespace ht::accuracy {
 // (torus), in the mesh's own units before placement.
 struct Interior {
   enum class Kind { Ball, Tube } kind = Kind::Ball;
-  float radius = 0.0f;       // ball radius, or tube radius around the centre circle
-  float circleRadius = 0.0f; // Tube only: radius of the centre circle
+  float radius = 0.0f;        // ball radius, or tube radius around the centre circle
+  float circleRadius = 0.0f;  // Tube only: radius of the centre circle
 };
 
 struct TestMesh {
@@ -28,8 +28,8 @@ struct TestMesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::uvec3> triangles;
   bool closed = true;
-  Interior interior;        // valid when closed
-  glm::vec3 offset{0.0f};   // placement: world = local * scale + offset
+  Interior interior;       // valid when closed
+  glm::vec3 offset{0.0f};  // placement: world = local * scale + offset
   float scale = 1.0f;
 };
 
