@@ -35,8 +35,10 @@ CaptureGridConfig parseCaptureGrid(const JsonLocation& at, const json& section) 
   if (window == nullptr || !window->is_object())
     detail::throwFieldError(at, "window", window, "expected {\"width\": w, \"height\": h} (world units)");
   detail::rejectUnknownKeys(at.child("window"), *window, {"width", "height"});
-  c.windowWidth = detail::requirePositiveNumber(at.child("window"), *window, "width", "expected a finite number > 0 (world units)");
-  c.windowHeight = detail::requirePositiveNumber(at.child("window"), *window, "height", "expected a finite number > 0 (world units)");
+  c.windowWidth =
+      detail::requirePositiveNumber(at.child("window"), *window, "width", "expected a finite number > 0 (world units)");
+  c.windowHeight = detail::requirePositiveNumber(at.child("window"), *window, "height",
+                                                 "expected a finite number > 0 (world units)");
   const detail::ImageSize image = detail::requireImageSize(at, section, "image");
   c.imageWidth = image.width;
   c.imageHeight = image.height;

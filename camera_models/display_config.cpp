@@ -30,8 +30,7 @@ const json& requireObject(const JsonLocation& at, const json& parent, std::strin
 }
 
 // [x, y, z] of finite numbers, or "auto" (nullopt) when allowed.
-std::optional<glm::dvec3> readPoint(const JsonLocation& at, const json& object, std::string_view key,
-                                    bool allowAuto) {
+std::optional<glm::dvec3> readPoint(const JsonLocation& at, const json& object, std::string_view key, bool allowAuto) {
   const std::string expected = std::string("expected [x, y, z] of finite numbers") + (allowAuto ? " or \"auto\"" : "");
   return detail::optionalVector<3>(at, object, key, expected, allowAuto);
 }
@@ -72,8 +71,8 @@ PinholeSettings readPinhole(const JsonLocation& at, const json& pinhole) {
   settings.eye = readPoint(at, pinhole, "eye", true);
   settings.lookAt = readPoint(at, pinhole, "lookAt", true);
   if (auto up = readPoint(at, pinhole, "up", false)) {
-    if (glm::length(*up) == 0.0) detail::throwFieldError(at, "up", detail::findField(pinhole, "up"),
-                                                         "expected a non-zero [x, y, z] up vector");
+    if (glm::length(*up) == 0.0)
+      detail::throwFieldError(at, "up", detail::findField(pinhole, "up"), "expected a non-zero [x, y, z] up vector");
     settings.up = *up;
   }
   if (detail::findField(pinhole, "distortion") != nullptr) {
@@ -115,7 +114,8 @@ LookingGlassCalibration readCalibration(const JsonLocation& at, const json& fiel
   if (path.is_relative()) path = baseDir / path;
   std::string text = detail::readTextFile(path.string(), at.file, at.field("calibration"),
                                           "expected a readable visual.json, path relative to the config file "
-                                          "(resolved to " + path.string() + ")");
+                                          "(resolved to " +
+                                              path.string() + ")");
   return parseLookingGlassCalibrationText(text, path.string());
 }
 
@@ -133,9 +133,9 @@ void validateCombination(const JsonLocation& at, const json& root, const Display
     const std::string section = withArticle(row.sectionKey) + " section";
     const std::string model = "\"" + std::string(row.name) + "\"";
     detail::throwFieldError(at, row.sectionKey, detail::findField(root, row.sectionKey),
-                            ownModel ? "expected " + section + " (required for model " + model + ")"
-                                     : "expected no " + std::string(row.sectionKey) +
-                                           " section unless model is " + model);
+                            ownModel
+                                ? "expected " + section + " (required for model " + model + ")"
+                                : "expected no " + std::string(row.sectionKey) + " section unless model is " + model);
   }
   const bool rayTableModel = config.model == DisplayModel::RayTable;
   // One size source each: an explicit oblique window replaces camera.size; a ray table is sized by rayTable.units.

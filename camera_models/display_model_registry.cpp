@@ -150,9 +150,9 @@ void parseRayTableSection(const JsonLocation& at, const json& section, const std
 
 // --- the rows -----------------------------------------------------------------------------------------------------
 
-// A small Looking Glass Portrait calibration (optics.md §1.1 values, a 72 x 96 panel) for the examples.
-#define HT_EXAMPLE_CALIBRATION                                                                                      \
-  R"("calibration":{"pitch":52.594383239746094,"slope":-7.21152925491333,"center":0.40277382731437683,)"          \
+// A small Looking Glass Portrait calibration (docs/OPTICS.md §1.1 values, a 72 x 96 panel) for the examples.
+#define HT_EXAMPLE_CALIBRATION                                                                           \
+  R"("calibration":{"pitch":52.594383239746094,"slope":-7.21152925491333,"center":0.40277382731437683,)" \
   R"("viewCone":40,"invView":1,"DPI":324,"screenW":72,"screenH":96,"flipImageX":0,"flipImageY":0,"flipSubp":0})"
 
 const DisplayModelRow kRows[] = {
@@ -188,8 +188,7 @@ const DisplayModelRow kRows[] = {
      R"({"model":"oblique","oblique":{"columns":3,"rows":2,"horizontalConeDeg":40,"verticalConeDeg":20,)"
      R"("image":{"width":12,"height":12}}})"},
     {DisplayModel::RayTable, "ray-table", true, "rayTable", parseRayTableSection, has<&DisplayConfig::rayTable>,
-     rayTableCamera, rayTableShape, writeRayTable, noQuilt,
-     R"({"model":"ray-table","rayTable":{"file":"table.exr"}})"},
+     rayTableCamera, rayTableShape, writeRayTable, noQuilt, R"({"model":"ray-table","rayTable":{"file":"table.exr"}})"},
 };
 #undef HT_EXAMPLE_CALIBRATION
 

@@ -21,9 +21,9 @@
 namespace ht {
 
 struct DisplayModelRow {
-  DisplayModel model;           // == the row's index == its GPU model id (model_ids.h)
-  std::string_view name;        // the config's "model" value, also in errors and file metadata
-  bool inConfigs;               // false: not a config "model" (the quilt cameras, CameraPath::Quilt of a lenticular)
+  DisplayModel model;     // == the row's index == its GPU model id (model_ids.h)
+  std::string_view name;  // the config's "model" value, also in errors and file metadata
+  bool inConfigs;         // false: not a config "model" (the quilt cameras, CameraPath::Quilt of a lenticular)
   // The model's own config section (docs/configs.md), required for the model and rejected for every other; empty
   // when the model has none (lenticular reads "calibration", pinhole the shared "pinhole" preview section).
   std::string_view sectionKey;
@@ -34,12 +34,12 @@ struct DisplayModelRow {
   // named by config.rayTable, ignored by the other models). Throws ConfigError for a config of another model.
   FrameCamera (*makeCamera)(const DisplayConfig& config, const Bounds3& sceneBounds,
                             std::shared_ptr<const RayTable> rayTable);
-  FrameShape (*shape)(const FrameCamera& camera);                       // what the camera renders
+  FrameShape (*shape)(const FrameCamera& camera);                                 // what the camera renders
   void (*writeBlock)(const FrameCamera& camera, gpu_shared::CameraBlock& block);  // its GPU parameter block
   // The tile layout of the views when they form a quilt (quilt cameras, view grids), else nullopt.
   std::optional<QuiltLayout> (*viewQuilt)(const DisplayConfig& config, const FrameCamera& camera,
                                           const FrameShape& shape);
-  std::string_view example;     // a small config of this model (JSON), parsed and rendered by the registry tests
+  std::string_view example;  // a small config of this model (JSON), parsed and rendered by the registry tests
 };
 
 // Every row, in model-id order.

@@ -20,7 +20,7 @@ namespace ht::detail {
 struct JsonLocation {
   std::string file;
   std::string prefix;
-  std::string field(std::string_view key) const;           // prefix + "." + key (or key at top level)
+  std::string field(std::string_view key) const;  // prefix + "." + key (or key at top level)
   JsonLocation child(std::string_view key) const { return {file, field(key)}; }
 };
 

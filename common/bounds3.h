@@ -11,7 +11,10 @@ namespace ht {
 struct Bounds3 {
   glm::vec3 lo{std::numeric_limits<float>::infinity()};
   glm::vec3 hi{-std::numeric_limits<float>::infinity()};
-  void extend(const glm::vec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+  void extend(const glm::vec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
   bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
   glm::vec3 center() const { return 0.5f * (lo + hi); }
   glm::vec3 extent() const { return hi - lo; }

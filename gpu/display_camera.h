@@ -7,8 +7,8 @@
 
 #include "camera_models/display_config.h"
 #include "camera_models/quilt_layout.h"
-#include "gpu/renderer.h"
 #include "common/bounds3.h"
+#include "gpu/renderer.h"
 
 namespace ht::gpu {
 

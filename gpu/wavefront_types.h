@@ -1,18 +1,18 @@
 // wavefront_types.h - data shared by the host (C++) and every wavefront pass (GLSL): the per-frame block of
 // buffer device addresses and parameters, scene records (materials, lights, texture directory) and the
 // layout of the queues. All buffers are reached through VK_KHR_buffer_device_address, so no buffer is bound
-// through a descriptor and lavapipe's 128 MiB maxStorageBufferRange (toolchain.md §4, P10) does not apply.
+// through a descriptor and lavapipe's 128 MiB maxStorageBufferRange (docs/TOOLCHAIN.md §4, P10) does not apply.
 //
-// Pass order per batch of paths (bvh.md §7, "proposed holotrace passes"):
+// Pass order per batch of paths (docs/BVH.md §7, "proposed holotrace passes"):
 //   raygen -> [trace_closest -> shade -> (prepare -> trace_any -> gather_direct)? -> prepare]* -> resolve
 // and once per frame: interleave. Queues are compacted with atomic counters; a `prepare` invocation turns a
 // counter into vkCmdDispatchIndirect arguments, so an empty queue dispatches zero workgroups.
 #ifndef HT_WAVEFRONT_TYPES_H
 #define HT_WAVEFRONT_TYPES_H
 #include "common/glsl_cpp.h"
-#include "gpu/shader_interface.h"
 #include "camera_models/camera_block.h"
 #include "camera_models/model_ids.h"
+#include "gpu/shader_interface.h"
 
 HT_SHARED_BEGIN
 
@@ -45,51 +45,51 @@ struct GpuLight {
 };
 
 struct GpuTexture {
-  uvec4 info;      // x = first texel index, y = width, z = height, w unused
+  uvec4 info;  // x = first texel index, y = width, z = height, w unused
 };
 
 // Counters written by the passes; the host reads the whole block back after a frame.
 struct GpuCounters {
-  uint queueCount[2];      // entries in ray queue 0 / 1 (ping-pong)
-  uint shadowCount;        // entries in the shadow queue
-  uint overflowCount;      // rays that hit the traversal step limit (must stay 0)
-  uint maxSteps;           // largest traversal step count seen
-  uint raysTraced;         // closest + any rays traced in this frame
-  uint nanCount;           // non-finite radiance values clamped to 0 (must stay 0)
-  uint subgroupSize;       // written by refine_select: the subgroup size its dispatch ran with
-  uvec4 dispatch[3];       // indirect dispatch args: [0] queue 0, [1] queue 1, [2] shadow queue (xyz, w unused)
+  uint queueCount[2];  // entries in ray queue 0 / 1 (ping-pong)
+  uint shadowCount;    // entries in the shadow queue
+  uint overflowCount;  // rays that hit the traversal step limit (must stay 0)
+  uint maxSteps;       // largest traversal step count seen
+  uint raysTraced;     // closest + any rays traced in this frame
+  uint nanCount;       // non-finite radiance values clamped to 0 (must stay 0)
+  uint subgroupSize;   // written by refine_select: the subgroup size its dispatch ran with
+  uvec4 dispatch[3];   // indirect dispatch args: [0] queue 0, [1] queue 1, [2] shadow queue (xyz, w unused)
 };
 
 // One block per frame, in a uniform buffer (binding HT_BINDING_FRAME). Every member is 16-byte aligned, so the
 // std140 layout GLSL uses equals the C++ layout. Per-path state and scene records are texel buffers (see
 // gpu/shaders/common.glsl for why); only the atomic counters and the BVH fallback are reached by address.
 struct FrameBlock {
-  uint64_t counters;       // GpuCounters (device address)
-  uint64_t refine;         // adaptive refinement: slot counts, staging, the refined targets (device address)
-  uvec4 dims;              // x = image width, y = image height (one view), z = spp, w = number of targets
-  uvec4 views;             // x = views in this frame, y = index of its first view, z = filter (HT_FILTER_*), w unused
-  uvec4 scene;             // x = light count, y = texture count, z = step limit, w = max depth
-  uvec4 frame;             // x = seed; yzw unused (per-dispatch values travel in PassConstants)
-  uvec4 refineInfo;        // adaptive refinement (refine_select.comp): x = contrast threshold (float bits), y = first
-                           // entry of the target list in `refine`, z = subgroup size the slots assume,
-                           // w = the base pass's spp while the listed targets are traced (resolve.comp averages
-                           // its samples with theirs), 0 otherwise
-  uvec4 flags;             // x = scene has vertex normals, y = scene has texcoords
-  vec4 background;         // rgb radiance of escaped rays
-  vec4 ambient;            // rgb ambient irradiance on diffuse surfaces
-  CameraBlock camera;      // the frame's camera model's parameters (camera_models/camera_block.h)
+  uint64_t counters;   // GpuCounters (device address)
+  uint64_t refine;     // adaptive refinement: slot counts, staging, the refined targets (device address)
+  uvec4 dims;          // x = image width, y = image height (one view), z = spp, w = number of targets
+  uvec4 views;         // x = views in this frame, y = index of its first view, z = filter (HT_FILTER_*), w unused
+  uvec4 scene;         // x = light count, y = texture count, z = step limit, w = max depth
+  uvec4 frame;         // x = seed; yzw unused (per-dispatch values travel in PassConstants)
+  uvec4 refineInfo;    // adaptive refinement (refine_select.comp): x = contrast threshold (float bits), y = first
+                       // entry of the target list in `refine`, z = subgroup size the slots assume,
+                       // w = the base pass's spp while the listed targets are traced (resolve.comp averages
+                       // its samples with theirs), 0 otherwise
+  uvec4 flags;         // x = scene has vertex normals, y = scene has texcoords
+  vec4 background;     // rgb radiance of escaped rays
+  vec4 ambient;        // rgb ambient irradiance on diffuse surfaces
+  CameraBlock camera;  // the frame's camera model's parameters (camera_models/camera_block.h)
 };
 
 // Push constants of every pass (40 B of the 128 B guaranteed). The BVH addresses sit here, not in the
 // FrameBlock, so the traversal loop reads them without an extra dependent load per node fetch.
 struct PassConstants {
-  uint64_t frame;          // address of the FrameBlock
-  uint64_t nodes;          // == FrameBlock.nodes
-  uint64_t bvhTriangles;   // == FrameBlock.bvhTriangles
-  uint batchFirst;         // first path index of this batch (a multiple of spp)
-  uint batchCount;         // paths in this batch
-  uint depth;              // bounce number of the current queue (0 = primary rays)
-  uint queue;              // input ray queue (0/1); output queue = 1 - queue
+  uint64_t frame;         // address of the FrameBlock
+  uint64_t nodes;         // == FrameBlock.nodes
+  uint64_t bvhTriangles;  // == FrameBlock.bvhTriangles
+  uint batchFirst;        // first path index of this batch (a multiple of spp)
+  uint batchCount;        // paths in this batch
+  uint depth;             // bounce number of the current queue (0 = primary rays)
+  uint queue;             // input ray queue (0/1); output queue = 1 - queue
 };
 
 HT_SHARED_END

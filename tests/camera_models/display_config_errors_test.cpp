@@ -16,9 +16,9 @@
 namespace ht {
 namespace {
 
-using ::testing::HasSubstr;
 using test::catchConfigError;
 using test::fixturePath;
+using ::testing::HasSubstr;
 
 // A valid visual.json with one field replaced (or removed when replacement is empty).
 std::string visualJsonWith(const std::string& key, const std::string& replacement) {

@@ -85,9 +85,7 @@ TEST(DisplayModelRegistry, AModelSectionUnderAnotherModelNamesTheSection) {
 TEST(DisplayModelRegistry, UnknownModelErrorListsEveryConfigModel) {
   ConfigError e = catchConfigError([] { parseDisplayConfig(R"({"model":"holovizio"})", "display.json", ""); });
   for (const DisplayModelRow& row : displayModels()) {
-    if (row.inConfigs) {
-      EXPECT_THAT(e.expected(), HasSubstr("\"" + std::string(row.name) + "\"")) << row.name;
-    }
+    if (row.inConfigs) { EXPECT_THAT(e.expected(), HasSubstr("\"" + std::string(row.name) + "\"")) << row.name; }
   }
   EXPECT_THAT(e.expected(), ::testing::Not(HasSubstr("quilt")));
 }

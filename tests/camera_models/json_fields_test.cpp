@@ -14,8 +14,8 @@
 namespace ht::test {
 namespace {
 
-using ::testing::HasSubstr;
 using nlohmann::json;
+using ::testing::HasSubstr;
 
 const detail::JsonLocation kAt{"fields.json", "section"};
 
@@ -27,8 +27,8 @@ TEST(JsonFields, VectorReadsExactlyNFiniteNumbers) {
 }
 
 TEST(JsonFields, VectorErrorsNameFileFieldAndValue) {
-  for (const char* bad : {R"({"p": [1, 2]})", R"({"p": [1, 2, 3, 4]})", R"({"p": [1, "2", 3]})", R"({"p": 7})",
-                          R"({"p": "auto"})"}) {
+  for (const char* bad :
+       {R"({"p": [1, 2]})", R"({"p": [1, 2, 3, 4]})", R"({"p": [1, "2", 3]})", R"({"p": 7})", R"({"p": "auto"})"}) {
     const json object = json::parse(bad);
     ConfigError e = catchConfigError([&] { detail::requireVector<3>(kAt, object, "p", "expected [x, y, z]"); });
     EXPECT_EQ(e.file(), "fields.json") << bad;
@@ -56,7 +56,8 @@ TEST(JsonFields, ImageSizeUpToTheOneLimit) {
   EXPECT_EQ(size.width, kMaxImageSide);
   EXPECT_EQ(size.height, 1u);
 
-  const json tooWide = json::parse(R"({"image": {"width": )" + std::to_string(kMaxImageSide + 1) + R"(, "height": 1}})");
+  const json tooWide =
+      json::parse(R"({"image": {"width": )" + std::to_string(kMaxImageSide + 1) + R"(, "height": 1}})");
   ConfigError e = catchConfigError([&] { detail::requireImageSize(kAt, tooWide, "image"); });
   EXPECT_EQ(e.field(), "section.image.width");
   EXPECT_EQ(e.value(), std::to_string(kMaxImageSide + 1));

@@ -40,8 +40,8 @@ CORE_LAYERS = {
 # Our modules a core library must not depend on.
 ABOVE_CORE = APPS + ("protocol", "frame_io", "tests", "bench", "tools")
 
-# Violations of today's tree, as printed by this script, that pending work removes (none since the frame_io library
-# landed). The script notes entries that no longer occur; never add one to make a new violation pass.
+# Violations tolerated while a refactor is in flight, as printed by this script (issue 13 emptied it when frame_io/
+# took the image code out of cli/ and server/). Never add one to make a new violation pass.
 KNOWN_VIOLATIONS = set()
 
 SOURCE_SUFFIXES = (".h", ".hpp", ".cpp", ".cc", ".c", ".comp", ".glsl", ".in")
