@@ -15,10 +15,10 @@
 #include <glm/glm.hpp>
 
 #include "camera_models/capture_grid_config.h"
-#include "camera_models/display_model.h"
 #include "camera_models/integral_config.h"
 #include "camera_models/lens_settings.h"
 #include "camera_models/looking_glass_calibration.h"
+#include "camera_models/model_list.h"
 #include "camera_models/oblique_config.h"
 #include "camera_models/projector_array_config.h"
 #include "camera_models/ray_table_config.h"

@@ -12,7 +12,6 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "camera_models/display_config.h"
-#include "camera_models/display_model.h"
 #include "camera_models/frame_camera.h"
 #include "camera_models/json_fields.h"
 #include "camera_models/quilt_layout.h"
@@ -21,7 +20,7 @@
 namespace ht {
 
 struct DisplayModelRow {
-  DisplayModel model;     // == the row's index == its GPU model id (model_ids.h)
+  DisplayModel model;     // == the row's index == its GPU model id (model_list.h)
   std::string_view name;  // the config's "model" value, also in errors and file metadata
   bool inConfigs;         // false: not a config "model" (the quilt cameras, CameraPath::Quilt of a lenticular)
   // The model's own config section (docs/configs.md), required for the model and rejected for every other; empty

@@ -2,28 +2,10 @@
 // display models. No Vulkan: the renderer (gpu/) takes a FrameCamera, and the CPU tests check shapes and blocks.
 #pragma once
 #include <cstdint>
-#include <memory>
-#include <variant>
 
-#include "camera_models/camera_block.h"
-#include "camera_models/display_model.h"
+#include "camera_models/model_list.h"
 
 namespace ht {
-
-struct RayTable;
-
-// A per-pixel ray table and its placement; the renderer uploads the table once per table object (shared_ptr
-// identity).
-struct RayTableCamera {
-  gpu_shared::RayTableParams params{};
-  std::shared_ptr<const RayTable> table;
-};
-
-// The camera of a frame: alternative i is the parameter block of model i (DisplayModel, model_ids.h).
-using FrameCamera = std::variant<gpu_shared::LenticularParams, gpu_shared::PinholeParams, gpu_shared::QuiltParams,
-                                 gpu_shared::ProjectorArrayParams, gpu_shared::IntegralParams,
-                                 gpu_shared::CaptureGridParams, gpu_shared::ObliqueParams, RayTableCamera>;
-static_assert(std::variant_size_v<FrameCamera> == gpu_shared::HT_MODEL_COUNT, "one FrameCamera alternative per model");
 
 inline DisplayModel cameraModel(const FrameCamera& camera) { return static_cast<DisplayModel>(camera.index()); }
 

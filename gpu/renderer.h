@@ -80,14 +80,9 @@ class Renderer {
   // count; throws GpuError otherwise): a light edit needs no BVH.
   void updateLights(const Scene& scene);
 
-  // Every view of the camera. Large view arrays are rendered in chunks of views (bounded device memory).
+  // Every view of the camera, whatever its model (camera_models/frame_camera.h). Large view arrays are rendered in
+  // chunks of views (bounded device memory).
   RenderResult render(const FrameCamera& camera, const RenderSettings& settings);
-  // Native interleaved panel image (screenW x screenH), each subpixel traced with its own rays.
-  RenderResult renderLenticular(const gpu_shared::LenticularParams& params, const RenderSettings& settings);
-  // Ordinary RGB image through a pinhole camera.
-  RenderResult renderPinhole(const gpu_shared::PinholeParams& params, const RenderSettings& settings);
-  // The N quilt views (tile size each), view 0 = leftmost camera.
-  RenderResult renderQuilt(const gpu_shared::QuiltParams& params, const RenderSettings& settings);
 
   // The primary rays raygen writes for targets [firstTarget, firstTarget + targetCount), settings.spp samples each
   // (sample s of target t at index (t - firstTarget)*spp + s), read back without tracing them: the GPU side of

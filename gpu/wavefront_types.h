@@ -10,8 +10,7 @@
 #ifndef HT_WAVEFRONT_TYPES_H
 #define HT_WAVEFRONT_TYPES_H
 #include "common/glsl_cpp.h"
-#include "camera_models/camera_block.h"
-#include "camera_models/model_ids.h"
+#include "camera_models/model_list.h"
 #include "gpu/shader_interface.h"
 
 HT_SHARED_BEGIN
@@ -77,7 +76,7 @@ struct FrameBlock {
   uvec4 flags;         // x = scene has vertex normals, y = scene has texcoords
   vec4 background;     // rgb radiance of escaped rays
   vec4 ambient;        // rgb ambient irradiance on diffuse surfaces
-  CameraBlock camera;  // the frame's camera model's parameters (camera_models/camera_block.h)
+  CameraBlock camera;  // the frame's camera model's parameters (camera_models/model_list.h)
 };
 
 // Push constants of every pass (40 B of the 128 B guaranteed). The BVH addresses sit here, not in the
