@@ -98,11 +98,11 @@ void warmUp(const Context& c, const DisplayConfig& display, const gpu::FrameCame
   small.calibration->screenW = 96;
   small.calibration->screenH = 128;
   const auto bounds = c.scene.bounds();
-  c.renderer.renderLenticular(makeLenticularParams(small, bounds), warmUpSettings(c.options));
+  c.renderer.render(makeLenticularParams(small, bounds), warmUpSettings(c.options));
   const QuiltLayout layout = defaultQuiltLayout(display);
   const QuiltLayout tiny =
       makeQuiltLayout(layout.columns, layout.rows, layout.columns * 16, layout.rows * 16, layout.aspect);
-  c.renderer.renderQuilt(makeQuiltParams(display, bounds, tiny), settings(c.options, 1, 0));
+  c.renderer.render(makeQuiltParams(display, bounds, tiny), settings(c.options, 1, 0));
 }
 
 // Images are compared as one width x (height * views) image: every view (projector, camera) of the frame.
@@ -167,9 +167,9 @@ void measureQuilt(const Context& c, const DisplayConfig& display, const QuiltLay
   for (std::uint32_t spp : sppList) {
     std::cout << "  quilt " << name << " spp " << spp << "..." << std::endl;
     const gpu::RenderSettings s = settings(c.options, spp, 0);
-    const auto frame = c.renderer.renderQuilt(params, s);
+    const auto frame = c.renderer.render(params, s);
     const QuiltViews views = viewStackViews(frame.width, frame.height, frame.views, frame.rgba);
-    Retime& retime = retimes.emplace_back([&c, params, s] { return c.renderer.renderQuilt(params, s).totalMs; });
+    Retime& retime = retimes.emplace_back([&c, params, s] { return c.renderer.render(params, s).totalMs; });
     for (QuiltViewFilter filter : kFilters) {
       const auto start = Clock::now();
       const auto panel = interleaveQuilt(views, lenticular, filter);

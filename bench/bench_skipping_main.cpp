@@ -126,11 +126,11 @@ SceneSkip measureScene(gpu::VulkanContext& context, const std::string& spec, con
   all.forceAllFeatures = true;
   SceneSkip s{spec, featureText(renderer.features()), {}, {}, {}, {}};
   std::cout << kCommand << ": " << spec << " (features: " << s.features << ")" << std::endl;
-  renderer.renderPinhole(params, specialised);  // warm-up (JIT) of both pipelines
-  renderer.renderPinhole(params, all);
+  renderer.render(params, specialised);  // warm-up (JIT) of both pipelines
+  renderer.render(params, all);
   for (std::uint32_t run = 0; run < o.runs; ++run) {
-    const auto a = renderer.renderPinhole(params, specialised);
-    const auto b = renderer.renderPinhole(params, all);
+    const auto a = renderer.render(params, specialised);
+    const auto b = renderer.render(params, all);
     record(s.specialised, a);
     record(s.allFeatures, b);
     s.frameRatio.push_back(b.totalMs / a.totalMs);

@@ -16,16 +16,9 @@ namespace {
 
 glm::dvec2 readSpacing(const JsonLocation& at, const json& object) {
   const std::string expected = "expected [ds, dt] of finite numbers > 0 (world units)";
-  const json* field = detail::findField(object, "spacing");
-  if (field == nullptr || !field->is_array() || field->size() != 2)
-    detail::throwFieldError(at, "spacing", field, expected);
-  glm::dvec2 spacing;
-  for (int i = 0; i < 2; ++i) {
-    const json& c = (*field)[static_cast<std::size_t>(i)];
-    if (!c.is_number() || !std::isfinite(c.get<double>()) || !(c.get<double>() > 0.0))
-      detail::throwFieldError(at, "spacing", field, expected);
-    spacing[i] = c.get<double>();
-  }
+  const glm::dvec2 spacing = detail::requireVector<2>(at, object, "spacing", expected);
+  if (!(spacing.x > 0.0 && spacing.y > 0.0))
+    detail::throwFieldError(at, "spacing", detail::findField(object, "spacing"), expected);
   return spacing;
 }
 
@@ -46,14 +39,9 @@ CaptureGridConfig parseCaptureGrid(const JsonLocation& at, const json& section) 
       detail::requirePositiveNumber(at.child("window"), *window, "width", "expected a finite number > 0 (world units)");
   c.windowHeight = detail::requirePositiveNumber(at.child("window"), *window, "height",
                                                  "expected a finite number > 0 (world units)");
-  const json* image = detail::findField(section, "image");
-  if (image == nullptr || !image->is_object())
-    detail::throwFieldError(at, "image", image, "expected {\"width\": W, \"height\": H} (pixels)");
-  detail::rejectUnknownKeys(at.child("image"), *image, {"width", "height"});
-  c.imageWidth =
-      static_cast<std::uint32_t>(detail::requireInteger(at.child("image"), *image, "width", false, 1, 32768));
-  c.imageHeight =
-      static_cast<std::uint32_t>(detail::requireInteger(at.child("image"), *image, "height", false, 1, 32768));
+  const detail::ImageSize image = detail::requireImageSize(at, section, "image");
+  c.imageWidth = image.width;
+  c.imageHeight = image.height;
   return c;
 }
 

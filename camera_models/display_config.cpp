@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "camera_models/display_model_registry.h"
 #include "camera_models/embedded_display_configs.h"
 #include "camera_models/json_fields.h"
 #include "common/error.h"
@@ -16,23 +17,9 @@ namespace ht {
 using detail::JsonLocation;
 using nlohmann::json;
 
-std::string_view displayModelName(DisplayModel model) {
-  switch (model) {
-    case DisplayModel::Pinhole: return "pinhole";
-    case DisplayModel::ProjectorArray: return "projector-array";
-    case DisplayModel::Integral: return "integral";
-    case DisplayModel::CaptureGrid: return "capture-grid";
-    case DisplayModel::Oblique: return "oblique";
-    case DisplayModel::RayTable: return "ray-table";
-    case DisplayModel::Lenticular: break;
-  }
-  return "lenticular";
-}
-
 namespace {
 
 constexpr long long kMaxSpp = 4096;
-constexpr long long kMaxImageSize = 32768;
 
 // Our format is strict: every key must be known (detail::rejectUnknownKeys), so a typo is reported, not ignored.
 
@@ -42,22 +29,10 @@ const json& requireObject(const JsonLocation& at, const json& parent, std::strin
   return *field;
 }
 
-bool isAuto(const json& value) { return value.is_string() && value.get<std::string>() == "auto"; }
-
 // [x, y, z] of finite numbers, or "auto" (nullopt) when allowed.
 std::optional<glm::dvec3> readPoint(const JsonLocation& at, const json& object, std::string_view key, bool allowAuto) {
-  const json* field = detail::findField(object, key);
-  if (field == nullptr || (allowAuto && isAuto(*field))) return std::nullopt;
-  std::string expected = std::string("expected [x, y, z] of finite numbers") + (allowAuto ? " or \"auto\"" : "");
-  if (!field->is_array() || field->size() != 3) detail::throwFieldError(at, key, field, expected);
-  glm::dvec3 point;
-  for (int i = 0; i < 3; ++i) {
-    const json& component = (*field)[static_cast<std::size_t>(i)];
-    if (!component.is_number() || !std::isfinite(component.get<double>()))
-      detail::throwFieldError(at, key, field, expected);
-    point[i] = component.get<double>();
-  }
-  return point;
+  const std::string expected = std::string("expected [x, y, z] of finite numbers") + (allowAuto ? " or \"auto\"" : "");
+  return detail::optionalVector<3>(at, object, key, expected, allowAuto);
 }
 
 double readAngle(const JsonLocation& at, const json& object, std::string_view key, double fallback) {
@@ -72,7 +47,7 @@ CameraPlacement readCamera(const JsonLocation& at, const json& camera) {
   CameraPlacement placement;
   placement.target = readPoint(at, camera, "target", true);
   const json* size = detail::findField(camera, "size");
-  if (size != nullptr && !isAuto(*size)) {
+  if (size != nullptr && !detail::isAuto(*size)) {
     const std::string expected = "expected a focal-rectangle height > 0 (world units) or \"auto\"";
     double value = detail::requireNumber(at, camera, "size", false, expected);
     if (!(value > 0.0)) detail::throwFieldError(at, "size", size, expected);
@@ -90,10 +65,8 @@ CameraPlacement readCamera(const JsonLocation& at, const json& camera) {
 PinholeSettings readPinhole(const JsonLocation& at, const json& pinhole) {
   detail::rejectUnknownKeys(at, pinhole, {"width", "height", "fovyDeg", "eye", "lookAt", "up", "distortion"});
   PinholeSettings settings;
-  if (auto w = detail::optionalInteger(at, pinhole, "width", false, 1, kMaxImageSize))
-    settings.width = static_cast<std::uint32_t>(*w);
-  if (auto h = detail::optionalInteger(at, pinhole, "height", false, 1, kMaxImageSize))
-    settings.height = static_cast<std::uint32_t>(*h);
+  settings.width = detail::optionalImageSide(at, pinhole, "width");
+  settings.height = detail::optionalImageSide(at, pinhole, "height");
   if (detail::findField(pinhole, "fovyDeg") != nullptr) settings.fovyDeg = readAngle(at, pinhole, "fovyDeg", 45.0);
   settings.eye = readPoint(at, pinhole, "eye", true);
   settings.lookAt = readPoint(at, pinhole, "lookAt", true);
@@ -111,16 +84,24 @@ PinholeSettings readPinhole(const JsonLocation& at, const json& pinhole) {
 DisplayModel readModel(const JsonLocation& at, const json& root) {
   const json* field = detail::findField(root, "model");
   if (field == nullptr) return DisplayModel::Lenticular;
-  if (field->is_string() && field->get<std::string>() == "lenticular") return DisplayModel::Lenticular;
-  if (field->is_string() && field->get<std::string>() == "pinhole") return DisplayModel::Pinhole;
-  if (field->is_string() && field->get<std::string>() == "projector-array") return DisplayModel::ProjectorArray;
-  if (field->is_string() && field->get<std::string>() == "integral") return DisplayModel::Integral;
-  if (field->is_string() && field->get<std::string>() == "capture-grid") return DisplayModel::CaptureGrid;
-  if (field->is_string() && field->get<std::string>() == "oblique") return DisplayModel::Oblique;
-  if (field->is_string() && field->get<std::string>() == "ray-table") return DisplayModel::RayTable;
-  detail::throwFieldError(at, "model", field,
-                          "expected \"projector-array\", \"integral\", \"capture-grid\", \"oblique\", "
-                          "\"ray-table\", \"lenticular\" or \"pinhole\"");
+  if (field->is_string()) {
+    if (const DisplayModelRow* row = findConfigModel(field->get<std::string>())) return row->model;
+  }
+  std::vector<std::string> names;
+  for (const DisplayModelRow& row : displayModels()) {
+    if (row.inConfigs) names.push_back("\"" + std::string(row.name) + "\"");
+  }
+  std::string expected = "expected ";
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    expected += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  }
+  detail::throwFieldError(at, "model", field, expected);
+}
+
+// "a" or "an" before a section name in errors.
+std::string withArticle(std::string_view word) {
+  const bool vowel = !word.empty() && std::string_view("aeiouAEIOU").find(word.front()) != std::string_view::npos;
+  return (vowel ? "an " : "a ") + std::string(word);
 }
 
 // "calibration": an embedded visual.json object, or a path to one relative to the config file.
@@ -144,32 +125,19 @@ void validateCombination(const JsonLocation& at, const json& root, const Display
     detail::throwFieldError(at, "calibration", nullptr,
                             "expected a visual.json object or a path to a visual.json (required for model "
                             "\"lenticular\")");
-  const bool projectorModel = config.model == DisplayModel::ProjectorArray;
-  if (projectorModel != config.projectorArray.has_value())
-    detail::throwFieldError(at, "projectorArray", detail::findField(root, "projectorArray"),
-                            projectorModel ? "expected a projectorArray section (required for model "
-                                             "\"projector-array\")"
-                                           : "expected no projectorArray section unless model is \"projector-array\"");
-  const bool integralModel = config.model == DisplayModel::Integral;
-  if (integralModel != config.integral.has_value())
-    detail::throwFieldError(at, "integral", detail::findField(root, "integral"),
-                            integralModel ? "expected an integral section (required for model \"integral\")"
-                                          : "expected no integral section unless model is \"integral\"");
-  const bool captureModel = config.model == DisplayModel::CaptureGrid;
-  if (captureModel != config.captureGrid.has_value())
-    detail::throwFieldError(at, "captureGrid", detail::findField(root, "captureGrid"),
-                            captureModel ? "expected a captureGrid section (required for model \"capture-grid\")"
-                                         : "expected no captureGrid section unless model is \"capture-grid\"");
-  const bool obliqueModel = config.model == DisplayModel::Oblique;
-  if (obliqueModel != config.oblique.has_value())
-    detail::throwFieldError(at, "oblique", detail::findField(root, "oblique"),
-                            obliqueModel ? "expected an oblique section (required for model \"oblique\")"
-                                         : "expected no oblique section unless model is \"oblique\"");
+  // A model's own section is required for it and rejected for every other model.
+  for (const DisplayModelRow& row : displayModels()) {
+    if (row.sectionKey.empty()) continue;
+    const bool ownModel = config.model == row.model;
+    if (ownModel == row.hasSection(config)) continue;
+    const std::string section = withArticle(row.sectionKey) + " section";
+    const std::string model = "\"" + std::string(row.name) + "\"";
+    detail::throwFieldError(at, row.sectionKey, detail::findField(root, row.sectionKey),
+                            ownModel
+                                ? "expected " + section + " (required for model " + model + ")"
+                                : "expected no " + std::string(row.sectionKey) + " section unless model is " + model);
+  }
   const bool rayTableModel = config.model == DisplayModel::RayTable;
-  if (rayTableModel != config.rayTable.has_value())
-    detail::throwFieldError(at, "rayTable", detail::findField(root, "rayTable"),
-                            rayTableModel ? "expected a rayTable section (required for model \"ray-table\")"
-                                          : "expected no rayTable section unless model is \"ray-table\"");
   // One size source each: an explicit oblique window replaces camera.size; a ray table is sized by rayTable.units.
   const json* cameraSection = detail::findField(root, "camera");
   const json* cameraSize = cameraSection ? detail::findField(*cameraSection, "size") : nullptr;
@@ -202,9 +170,11 @@ DisplayConfig fromVisualJson(const json& root, const std::string& sourceName) {
 
 DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, const std::filesystem::path& baseDir) {
   const JsonLocation at{sourceName, ""};
-  detail::rejectUnknownKeys(at, root,
-                            {"name", "description", "model", "calibration", "camera", "spp", "pinhole",
-                             "projectorArray", "integral", "captureGrid", "oblique", "rayTable"});
+  std::vector<std::string_view> keys = {"name", "description", "model", "calibration", "camera", "spp", "pinhole"};
+  for (const DisplayModelRow& row : displayModels()) {
+    if (!row.sectionKey.empty()) keys.push_back(row.sectionKey);
+  }
+  detail::rejectUnknownKeys(at, root, keys);
   DisplayConfig config;
   config.sourcePath = sourceName;
   config.name = detail::optionalString(at, root, "name").value_or(std::filesystem::path(sourceName).stem().string());
@@ -218,16 +188,10 @@ DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, con
     config.spp = static_cast<std::uint32_t>(*spp);
   if (detail::findField(root, "pinhole") != nullptr)
     config.pinhole = readPinhole(at.child("pinhole"), requireObject(at, root, "pinhole"));
-  if (detail::findField(root, "projectorArray") != nullptr)
-    config.projectorArray = parseProjectorArray(at.child("projectorArray"), requireObject(at, root, "projectorArray"));
-  if (detail::findField(root, "integral") != nullptr)
-    config.integral = parseIntegral(at.child("integral"), requireObject(at, root, "integral"));
-  if (detail::findField(root, "captureGrid") != nullptr)
-    config.captureGrid = parseCaptureGrid(at.child("captureGrid"), requireObject(at, root, "captureGrid"));
-  if (detail::findField(root, "oblique") != nullptr)
-    config.oblique = parseOblique(at.child("oblique"), requireObject(at, root, "oblique"));
-  if (detail::findField(root, "rayTable") != nullptr)
-    config.rayTable = parseRayTable(at.child("rayTable"), requireObject(at, root, "rayTable"), baseDir);
+  for (const DisplayModelRow& row : displayModels()) {
+    if (row.sectionKey.empty() || detail::findField(root, row.sectionKey) == nullptr) continue;
+    row.parseSection(at.child(row.sectionKey), requireObject(at, root, row.sectionKey), baseDir, config);
+  }
   validateCombination(at, root, config);
   return config;
 }

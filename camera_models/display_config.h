@@ -18,15 +18,12 @@
 #include "camera_models/integral_config.h"
 #include "camera_models/lens_settings.h"
 #include "camera_models/looking_glass_calibration.h"
+#include "camera_models/model_list.h"
 #include "camera_models/oblique_config.h"
 #include "camera_models/projector_array_config.h"
 #include "camera_models/ray_table_config.h"
 
 namespace ht {
-
-enum class DisplayModel { Lenticular, Pinhole, ProjectorArray, Integral, CaptureGrid, Oblique, RayTable };
-// "lenticular" | "pinhole" | "projector-array" | "integral" | "capture-grid" | "oblique" | "ray-table"
-std::string_view displayModelName(DisplayModel model);
 
 // Where the display's focal rectangle sits in the scene (looking-glass-webxr camera, docs/OPTICS.md §4.3).
 // The display-local frame has its origin at `target` and world-aligned axes (+z toward the viewer).
@@ -50,8 +47,8 @@ struct PinholeSettings {
 struct DisplayConfig {
   std::string name;
   std::string description;
-  std::string sourcePath;  // file path, or "builtin:NAME"
-  DisplayModel model = DisplayModel::Lenticular;
+  std::string sourcePath;                              // file path, or "builtin:NAME"
+  DisplayModel model = DisplayModel::Lenticular;       // a registry row with inConfigs (display_model_registry.h)
   std::optional<LookingGlassCalibration> calibration;  // required for (and only for) the lenticular model
   CameraPlacement camera;
   std::uint32_t spp = 4;  // default samples per subpixel / pixel, [1, 4096]

@@ -14,20 +14,9 @@ using nlohmann::json;
 
 namespace {
 
-constexpr long long kMaxPanelSize = 32768;
-
 glm::dvec2 readOffset(const JsonLocation& at, const json& object) {
-  const json* field = detail::findField(object, "lensOffset");
-  if (field == nullptr) return glm::dvec2(0.0);
-  const std::string expected = "expected [x, y] of finite numbers (display units)";
-  if (!field->is_array() || field->size() != 2) detail::throwFieldError(at, "lensOffset", field, expected);
-  glm::dvec2 offset;
-  for (int i = 0; i < 2; ++i) {
-    const json& c = (*field)[static_cast<std::size_t>(i)];
-    if (!c.is_number() || !std::isfinite(c.get<double>())) detail::throwFieldError(at, "lensOffset", field, expected);
-    offset[i] = c.get<double>();
-  }
-  return offset;
+  return detail::optionalVector<2>(at, object, "lensOffset", "expected [x, y] of finite numbers (display units)")
+      .value_or(glm::dvec2(0.0));
 }
 
 LensSampling readSampling(const JsonLocation& at, const json& object) {
@@ -45,9 +34,8 @@ IntegralConfig parseIntegral(const JsonLocation& at, const json& section) {
                             {"panelWidth", "panelHeight", "pixelPitch", "lensPitch", "lensOffset", "lensRotationDeg",
                              "gap", "focalLength", "viewerDistance", "frontPlane", "sampling"});
   IntegralConfig c;
-  c.panelWidth = static_cast<std::uint32_t>(detail::requireInteger(at, section, "panelWidth", false, 1, kMaxPanelSize));
-  c.panelHeight =
-      static_cast<std::uint32_t>(detail::requireInteger(at, section, "panelHeight", false, 1, kMaxPanelSize));
+  c.panelWidth = detail::requireImageSide(at, section, "panelWidth");
+  c.panelHeight = detail::requireImageSide(at, section, "panelHeight");
   c.pixelPitch =
       detail::requirePositiveNumber(at, section, "pixelPitch", "expected a finite pixel pitch > 0 (display units)");
   c.lensPitch =

@@ -2,6 +2,7 @@
 #include "camera_models/json_fields.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -161,7 +162,7 @@ std::optional<std::string> optionalString(const JsonLocation& at, const json& ob
 }
 
 void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object,
-                       std::initializer_list<std::string_view> allowed) {
+                       std::span<const std::string_view> allowed) {
   for (const auto& [key, value] : object.items()) {
     if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
     std::string list;
@@ -175,6 +176,70 @@ double requirePositiveNumber(const JsonLocation& at, const nlohmann::json& objec
   const double value = requireNumber(at, object, key, false, expected);
   if (!(value > 0.0)) throwFieldError(at, key, findField(object, key), expected);
   return value;
+}
+
+bool isAuto(const json& value) { return value.is_string() && value.get<std::string>() == "auto"; }
+
+bool readFiniteArray(const json& value, std::span<double> out) {
+  if (!value.is_array() || value.size() != out.size()) return false;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (!value[i].is_number() || !std::isfinite(value[i].get<double>())) return false;
+    out[i] = value[i].get<double>();
+  }
+  return true;
+}
+
+template <int N>
+std::optional<glm::vec<N, double>> optionalVector(const JsonLocation& at, const json& object, std::string_view key,
+                                                  const std::string& expected, bool allowAuto) {
+  const json* field = findField(object, key);
+  if (field == nullptr || (allowAuto && isAuto(*field))) return std::nullopt;
+  std::array<double, N> values{};
+  if (!readFiniteArray(*field, values)) throwFieldError(at, key, field, expected);
+  glm::vec<N, double> vector;
+  for (int i = 0; i < N; ++i) vector[i] = values[static_cast<std::size_t>(i)];
+  return vector;
+}
+
+template <int N>
+glm::vec<N, double> requireVector(const JsonLocation& at, const json& object, std::string_view key,
+                                  const std::string& expected) {
+  std::optional<glm::vec<N, double>> vector = optionalVector<N>(at, object, key, expected);
+  if (!vector) throwFieldError(at, key, nullptr, expected);
+  return *vector;
+}
+
+template std::optional<glm::dvec2> optionalVector<2>(const JsonLocation&, const json&, std::string_view,
+                                                     const std::string&, bool);
+template std::optional<glm::dvec3> optionalVector<3>(const JsonLocation&, const json&, std::string_view,
+                                                     const std::string&, bool);
+template glm::dvec2 requireVector<2>(const JsonLocation&, const json&, std::string_view, const std::string&);
+template glm::dvec3 requireVector<3>(const JsonLocation&, const json&, std::string_view, const std::string&);
+
+std::optional<std::uint32_t> optionalImageSide(const JsonLocation& at, const json& object, std::string_view key,
+                                               bool allowWrapped) {
+  std::optional<long long> side = optionalInteger(at, object, key, allowWrapped, 1, kMaxImageSide);
+  if (!side) return std::nullopt;
+  return static_cast<std::uint32_t>(*side);
+}
+
+std::uint32_t requireImageSide(const JsonLocation& at, const json& object, std::string_view key, bool allowWrapped) {
+  return static_cast<std::uint32_t>(requireInteger(at, object, key, allowWrapped, 1, kMaxImageSide));
+}
+
+std::optional<ImageSize> optionalImageSize(const JsonLocation& at, const json& object, std::string_view key) {
+  const json* field = findField(object, key);
+  if (field == nullptr) return std::nullopt;
+  if (!field->is_object()) throwFieldError(at, key, field, "expected {\"width\": W, \"height\": H} (pixels)");
+  const JsonLocation sizeAt = at.child(key);
+  rejectUnknownKeys(sizeAt, *field, {"width", "height"});
+  return ImageSize{requireImageSide(sizeAt, *field, "width"), requireImageSide(sizeAt, *field, "height")};
+}
+
+ImageSize requireImageSize(const JsonLocation& at, const json& object, std::string_view key) {
+  std::optional<ImageSize> size = optionalImageSize(at, object, key);
+  if (!size) throwFieldError(at, key, nullptr, "expected {\"width\": W, \"height\": H} (pixels)");
+  return *size;
 }
 
 }  // namespace ht::detail

@@ -1,12 +1,17 @@
 // json_fields.h - reading typed fields out of display-config / visual.json objects with errors that name the file,
 // the field path and the offending value (ht::ConfigError). Internal to camera_models.
 #pragma once
+#include <cstdint>
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
+#include <glm/glm.hpp>
 #include <nlohmann/json_fwd.hpp>
+
+#include "common/image_limits.h"
 
 namespace ht::detail {
 
@@ -57,8 +62,11 @@ std::optional<std::string> optionalString(const JsonLocation& at, const nlohmann
 
 // Throws a ConfigError for the first key of `object` not in `allowed`, listing the allowed keys: typos in our
 // config sections must not pass silently.
-void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object,
-                       std::initializer_list<std::string_view> allowed);
+void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object, std::span<const std::string_view> allowed);
+inline void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object,
+                              std::initializer_list<std::string_view> allowed) {
+  rejectUnknownKeys(at, object, std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
 
 // Required finite number > 0; `expected` is the error's "expected ..." text.
 double requirePositiveNumber(const JsonLocation& at, const nlohmann::json& object, std::string_view key,
@@ -66,5 +74,34 @@ double requirePositiveNumber(const JsonLocation& at, const nlohmann::json& objec
 
 // Formats a double for error messages ("0.001", "1e+06").
 std::string formatNumber(double value);
+
+// "auto": the value of a field whose default is derived (from the scene bounds, another field, ...).
+bool isAuto(const nlohmann::json& value);
+
+// True when `value` is an array of exactly out.size() finite numbers; they are written to `out`.
+bool readFiniteArray(const nlohmann::json& value, std::span<double> out);
+
+// [a, b, ...] of N finite numbers. Missing (or "auto" when allowAuto) -> nullopt; any other value ->
+// ConfigError(file, field, value, expected). Range checks on the components are the caller's.
+template <int N>
+std::optional<glm::vec<N, double>> optionalVector(const JsonLocation& at, const nlohmann::json& object,
+                                                  std::string_view key, const std::string& expected,
+                                                  bool allowAuto = false);
+// As optionalVector, but a missing field is an error too.
+template <int N>
+glm::vec<N, double> requireVector(const JsonLocation& at, const nlohmann::json& object, std::string_view key,
+                                  const std::string& expected);
+
+// {"width": W, "height": H} in pixels, integers in [1, kMaxImageSide] (common/image_limits.h).
+struct ImageSize {
+  std::uint32_t width = 0, height = 0;
+};
+std::optional<ImageSize> optionalImageSize(const JsonLocation& at, const nlohmann::json& object, std::string_view key);
+ImageSize requireImageSize(const JsonLocation& at, const nlohmann::json& object, std::string_view key);
+// A pixel count in [1, kMaxImageSide] (a width or height field of its own).
+std::optional<std::uint32_t> optionalImageSide(const JsonLocation& at, const nlohmann::json& object,
+                                               std::string_view key, bool allowWrapped = false);
+std::uint32_t requireImageSide(const JsonLocation& at, const nlohmann::json& object, std::string_view key,
+                               bool allowWrapped = false);
 
 }  // namespace ht::detail

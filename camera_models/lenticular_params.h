@@ -8,7 +8,7 @@
 #include "camera_models/camera_params.h"
 #include "camera_models/display_config.h"
 #include "camera_models/pinhole_params.h"  // makePinholeParams, the other camera model's parameter block
-#include "scene/scene.h"
+#include "common/bounds3.h"
 
 namespace ht {
 

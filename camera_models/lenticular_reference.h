@@ -14,7 +14,7 @@
 
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_params.h"
-#include "scene/scene.h"
+#include "common/bounds3.h"
 
 namespace ht {
 

@@ -22,7 +22,6 @@ glm::dvec2 SubpixelCell::offset(std::uint32_t channel) const {
 
 namespace {
 
-constexpr long long kMaxScreenSize = 32768;
 constexpr double kMaxCellOffsetPx = 2.0;
 constexpr int kMaxCellPatternMode = 4;
 
@@ -115,8 +114,8 @@ LookingGlassCalibration parseLookingGlassCalibration(const json& raw, const std:
   c.invView = detail::requireFlag(at, raw, "invView");
   c.verticalAngle = detail::optionalNumber(at, raw, "verticalAngle", true, "expected a finite number").value_or(0.0);
   c.DPI = requirePositive(at, raw, "DPI", "panel dots per inch");
-  c.screenW = static_cast<std::uint32_t>(detail::requireInteger(at, raw, "screenW", true, 1, kMaxScreenSize));
-  c.screenH = static_cast<std::uint32_t>(detail::requireInteger(at, raw, "screenH", true, 1, kMaxScreenSize));
+  c.screenW = detail::requireImageSide(at, raw, "screenW", true);
+  c.screenH = detail::requireImageSide(at, raw, "screenH", true);
   c.flipImageX = detail::requireFlag(at, raw, "flipImageX");
   c.flipImageY = detail::requireFlag(at, raw, "flipImageY");
   c.flipSubp = detail::requireFlag(at, raw, "flipSubp");

@@ -34,8 +34,8 @@ struct LookingGlassCalibration {
   bool invView = false;        // reversed view order: t = 1 - fract(phi)
   double verticalAngle = 0.0;  // present in every file seen, read by no known shader; kept
   double DPI = 0.0;            // panel dots per inch (> 0)
-  std::uint32_t screenW = 0;   // native panel width in pixels, [1, 32768]
-  std::uint32_t screenH = 0;   // native panel height in pixels, [1, 32768]
+  std::uint32_t screenW = 0;   // native panel width in pixels, [1, kMaxImageSide]
+  std::uint32_t screenH = 0;   // native panel height in pixels, [1, kMaxImageSide]
   bool flipImageX = false;     // mirror horizontally (negates tilt and subp, docs/OPTICS.md §2)
   bool flipImageY = false;     // mirror vertically
   bool flipSubp = false;       // BGR panel: output R/B use the phase of subpixel 2 - c

@@ -17,7 +17,7 @@ struct ObliqueConfig {
   std::uint32_t columns = 0, rows = 0;            // directions, [1, 1024] each
   double horizontalConeDeg = 0.0;                 // full horizontal angular range (degrees), [0, 180)
   double verticalConeDeg = 0.0;                   // full vertical angular range (degrees), [0, 180); 0 or rows 1 = HPO
-  std::uint32_t imageWidth = 0, imageHeight = 0;  // pixels per view, [1, 32768]
+  std::uint32_t imageWidth = 0, imageHeight = 0;  // pixels per view, [1, kMaxImageSide] (common/image_limits.h)
   // Window size (world units, > 0); nullopt = "auto": height = camera.size (or the auto fit of screen_placement.h),
   // width = height * imageWidth / imageHeight.
   std::optional<double> windowWidth, windowHeight;

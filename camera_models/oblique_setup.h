@@ -8,7 +8,7 @@
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_reference.h"  // ReferenceRay
 #include "camera_models/oblique_params.h"
-#include "scene/scene.h"
+#include "common/bounds3.h"
 
 namespace ht {
 

@@ -7,7 +7,7 @@
 
 #include "camera_models/camera_params.h"
 #include "camera_models/display_config.h"
-#include "scene/scene.h"
+#include "common/bounds3.h"
 
 namespace ht {
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -16,21 +17,11 @@ using nlohmann::json;
 
 namespace {
 
-constexpr long long kMaxImageSize = 32768;
-
 // [x, y, z], finite, z < 0: projectors sit behind the screen (docs/OPTICS.md §9 M3, P_k.z < 0).
 glm::dvec3 readPosition(const JsonLocation& at, const json& object) {
   const std::string expected = "expected [x, y, z] of finite numbers (display units) with z < 0 (behind the screen)";
-  const json* field = detail::findField(object, "position");
-  if (field == nullptr || !field->is_array() || field->size() != 3)
-    detail::throwFieldError(at, "position", field, expected);
-  glm::dvec3 p;
-  for (int i = 0; i < 3; ++i) {
-    const json& c = (*field)[static_cast<std::size_t>(i)];
-    if (!c.is_number() || !std::isfinite(c.get<double>())) detail::throwFieldError(at, "position", field, expected);
-    p[i] = c.get<double>();
-  }
-  if (!(p.z < 0.0)) detail::throwFieldError(at, "position", field, expected);
+  const glm::dvec3 p = detail::requireVector<3>(at, object, "position", expected);
+  if (!(p.z < 0.0)) detail::throwFieldError(at, "position", detail::findField(object, "position"), expected);
   return p;
 }
 
@@ -46,13 +37,8 @@ std::array<double, 9> readHomography(const JsonLocation& at, const json& object,
     detail::throwFieldError(at, "homography", field, expected);
   std::array<double, 9> h{};
   for (std::size_t r = 0; r < 3; ++r) {
-    const json& row = (*field)[r];
-    if (!row.is_array() || row.size() != 3) detail::throwFieldError(at, "homography", field, expected);
-    for (std::size_t c = 0; c < 3; ++c) {
-      if (!row[c].is_number() || !std::isfinite(row[c].get<double>()))
-        detail::throwFieldError(at, "homography", field, expected);
-      h[r * 3 + c] = row[c].get<double>();
-    }
+    if (!detail::readFiniteArray((*field)[r], std::span<double>(h).subspan(r * 3, 3)))
+      detail::throwFieldError(at, "homography", field, expected);
   }
   for (double x : {0.0, double(width)})
     for (double y : {0.0, double(height)})
@@ -69,14 +55,13 @@ ProjectorConfig readProjector(const JsonLocation& at, const json& object, std::o
   detail::rejectUnknownKeys(at, object, {"position", "width", "height", "homography"});
   ProjectorConfig projector;
   projector.position = readPosition(at, object);
-  auto width = detail::optionalInteger(at, object, "width", false, 1, kMaxImageSize);
-  auto height = detail::optionalInteger(at, object, "height", false, 1, kMaxImageSize);
-  if (!width && !defaultWidth)
-    detail::throwFieldError(at, "width", nullptr, "expected an integer in [1, 32768] here or in \"image\"");
-  if (!height && !defaultHeight)
-    detail::throwFieldError(at, "height", nullptr, "expected an integer in [1, 32768] here or in \"image\"");
-  projector.width = width ? static_cast<std::uint32_t>(*width) : *defaultWidth;
-  projector.height = height ? static_cast<std::uint32_t>(*height) : *defaultHeight;
+  const std::optional<std::uint32_t> width = detail::optionalImageSide(at, object, "width");
+  const std::optional<std::uint32_t> height = detail::optionalImageSide(at, object, "height");
+  const std::string expected = "expected an integer in [1, " + std::to_string(kMaxImageSide) + "] here or in \"image\"";
+  if (!width && !defaultWidth) detail::throwFieldError(at, "width", nullptr, expected);
+  if (!height && !defaultHeight) detail::throwFieldError(at, "height", nullptr, expected);
+  projector.width = width ? *width : *defaultWidth;
+  projector.height = height ? *height : *defaultHeight;
   if (detail::findField(object, "homography") != nullptr)
     projector.homography = readHomography(at, object, projector.width, projector.height);
   return projector;
@@ -91,16 +76,9 @@ ProjectorArrayConfig::Lens readLens(const JsonLocation& at, const json* lens) {
   ProjectorArrayConfig::Lens out;
   out.focalLengthPx = detail::requirePositiveNumber(at, *lens, "focalLength",
                                                     "expected the lens focal length in pixels, a finite number > 0");
-  if (const json* offset = detail::findField(*lens, "principalOffset")) {
-    const std::string expected = "expected [dx, dy] (pixels from the image centre), finite";
-    if (!offset->is_array() || offset->size() != 2) detail::throwFieldError(at, "principalOffset", offset, expected);
-    for (std::size_t i = 0; i < 2; ++i) {
-      const json& v = (*offset)[i];
-      if (!v.is_number() || !std::isfinite(v.get<double>()))
-        detail::throwFieldError(at, "principalOffset", offset, expected);
-      out.principalOffsetPx[static_cast<int>(i)] = v.get<double>();
-    }
-  }
+  out.principalOffsetPx = detail::optionalVector<2>(at, *lens, "principalOffset",
+                                                    "expected [dx, dy] (pixels from the image centre), finite")
+                              .value_or(out.principalOffsetPx);
   if (const json* distortion = detail::findField(*lens, "distortion")) {
     if (!distortion->is_object()) detail::throwFieldError(at, "distortion", distortion, "expected a JSON object");
     out.distortion = parseLensDistortion(at.child("distortion"), *distortion);
@@ -137,7 +115,7 @@ ProjectorArrayConfig parseProjectorArray(const JsonLocation& at, const json& sec
       detail::optionalNumber(at, section, "observerHeight", false, "expected a finite height (display units)")
           .value_or(0.0);
   const json* scattering = detail::findField(section, "angularScattering");
-  if (scattering != nullptr && !(scattering->is_string() && scattering->get<std::string>() == "auto")) {
+  if (scattering != nullptr && !detail::isAuto(*scattering)) {
     const std::string expected = "expected a finite angle >= 0 (radians) or \"auto\"";
     const double value = detail::requireNumber(at, section, "angularScattering", false, expected);
     if (!(value >= 0.0)) detail::throwFieldError(at, "angularScattering", scattering, expected);
@@ -145,14 +123,9 @@ ProjectorArrayConfig parseProjectorArray(const JsonLocation& at, const json& sec
   }
 
   std::optional<std::uint32_t> defaultWidth, defaultHeight;
-  if (const json* image = detail::findField(section, "image")) {
-    if (!image->is_object()) detail::throwFieldError(at, "image", image, "expected {\"width\": W, \"height\": H}");
-    const JsonLocation imageAt = at.child("image");
-    detail::rejectUnknownKeys(imageAt, *image, {"width", "height"});
-    defaultWidth =
-        static_cast<std::uint32_t>(detail::requireInteger(imageAt, *image, "width", false, 1, kMaxImageSize));
-    defaultHeight =
-        static_cast<std::uint32_t>(detail::requireInteger(imageAt, *image, "height", false, 1, kMaxImageSize));
+  if (const std::optional<detail::ImageSize> image = detail::optionalImageSize(at, section, "image")) {
+    defaultWidth = image->width;
+    defaultHeight = image->height;
   }
   const json* projectors = detail::findField(section, "projectors");
   const std::string countExpected =

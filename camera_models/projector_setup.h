@@ -10,7 +10,7 @@
 #include "camera_models/lenticular_reference.h"  // ReferenceRay
 #include "camera_models/projector_params.h"
 #include "camera_models/screen_placement.h"
-#include "scene/scene.h"
+#include "common/bounds3.h"
 
 namespace ht {
 

@@ -10,7 +10,7 @@
 #include "camera_models/lenticular_reference.h"
 #include "camera_models/quilt_layout.h"
 #include "camera_models/quilt_params.h"
-#include "scene/scene.h"
+#include "common/bounds3.h"
 
 namespace ht {
 

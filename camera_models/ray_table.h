@@ -15,7 +15,7 @@
 #include "camera_models/lenticular_reference.h"  // ReferenceRay
 #include "camera_models/ray_table_config.h"
 #include "camera_models/ray_table_params.h"
-#include "scene/scene.h"
+#include "common/bounds3.h"
 
 namespace ht {
 

@@ -4,7 +4,7 @@
 #include <glm/glm.hpp>
 
 #include "camera_models/display_config.h"
-#include "scene/scene.h"
+#include "common/bounds3.h"
 
 namespace ht {
 

@@ -18,12 +18,12 @@
 #include <string>
 #include <vector>
 
+#include "common/image_limits.h"
 #include "frame_io/frame_images.h"
 #include "frame_io/image_encoding.h"
 
 namespace ht::frame_io {
 
-inline constexpr std::uint32_t kMaxImageSide = 32768;
 inline constexpr std::uint64_t kMaxImageValues = std::uint64_t(1) << 28;  // floats: 1 GiB, an 8192^2 RGBA quilt
 
 enum class SampleType { UInt8, UInt16, Half, Float, Other };

@@ -7,8 +7,8 @@
 
 #include "camera_models/display_config.h"
 #include "camera_models/quilt_layout.h"
+#include "common/bounds3.h"
 #include "gpu/renderer.h"
-#include "scene/scene.h"
 
 namespace ht::gpu {
 

@@ -22,7 +22,7 @@ VkDeviceSize texelSize(VkFormat format) {
 VkDescriptorType FrameDescriptors::bindingType(std::uint32_t binding) {
   using namespace gpu_shared;
   if (binding == HT_BINDING_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  if (binding >= HT_BINDING_STATE_FIRST && binding < HT_BINDING_SCENE_FIRST)
+  if (binding >= HT_BINDING_STORAGE_FIRST && binding <= HT_BINDING_STORAGE_LAST)
     return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
   return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
 }

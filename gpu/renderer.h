@@ -10,12 +10,7 @@
 
 #include "bvh/bvh_builder.h"
 #include "bvh/ray_types.h"
-#include "camera_models/camera_params.h"
-#include "camera_models/capture_grid_params.h"
-#include "camera_models/integral_params.h"
-#include "camera_models/oblique_params.h"
-#include "camera_models/projector_params.h"
-#include "camera_models/quilt_params.h"
+#include "camera_models/frame_camera.h"
 #include "camera_models/ray_table.h"
 #include "scene/scene.h"
 
@@ -27,25 +22,11 @@ class VulkanContext;
 // (camera_models/footprint_sampling.h).
 enum class SampleFilter : std::uint32_t { Box = 0, Tent = 1, Gaussian = 2 };
 
-// A per-pixel ray table and its placement; the table is uploaded once per table object (shared_ptr identity).
-struct RayTableCamera {
-  gpu_shared::RayTableParams params{};
-  std::shared_ptr<const RayTable> table;
-};
-
-// The camera of a frame. The alternative selects the ray-generation model (specialisation constant of raygen).
-using FrameCamera = std::variant<gpu_shared::LenticularParams, gpu_shared::PinholeParams, gpu_shared::QuiltParams,
-                                 gpu_shared::ProjectorArrayParams, gpu_shared::IntegralParams,
-                                 gpu_shared::CaptureGridParams, gpu_shared::ObliqueParams, RayTableCamera>;
-
-// What a camera renders: `views` images of width x height pixels; subpixel models trace 3 targets per pixel.
-struct FrameShape {
-  std::uint32_t model = 0;  // gpu_shared::HT_MODEL_*
-  std::uint32_t width = 0, height = 0, views = 1;
-  std::uint32_t targetsPerPixel = 1;
-  std::uint64_t targets() const { return static_cast<std::uint64_t>(width) * height * views * targetsPerPixel; }
-};
-FrameShape frameShape(const FrameCamera& camera);
+// The camera of a frame, its shape and GPU block: camera_models/frame_camera.h (no Vulkan there).
+using ht::FrameCamera;
+using ht::FrameShape;
+using ht::frameShape;
+using ht::RayTableCamera;
 
 struct RenderSettings {
   std::uint32_t spp = 4;  // samples per target (subpixel or pixel)
@@ -99,14 +80,9 @@ class Renderer {
   // count; throws GpuError otherwise): a light edit needs no BVH.
   void updateLights(const Scene& scene);
 
-  // Every view of the camera. Large view arrays are rendered in chunks of views (bounded device memory).
+  // Every view of the camera, whatever its model (camera_models/frame_camera.h). Large view arrays are rendered in
+  // chunks of views (bounded device memory).
   RenderResult render(const FrameCamera& camera, const RenderSettings& settings);
-  // Native interleaved panel image (screenW x screenH), each subpixel traced with its own rays.
-  RenderResult renderLenticular(const gpu_shared::LenticularParams& params, const RenderSettings& settings);
-  // Ordinary RGB image through a pinhole camera.
-  RenderResult renderPinhole(const gpu_shared::PinholeParams& params, const RenderSettings& settings);
-  // The N quilt views (tile size each), view 0 = leftmost camera.
-  RenderResult renderQuilt(const gpu_shared::QuiltParams& params, const RenderSettings& settings);
 
   // The primary rays raygen writes for targets [firstTarget, firstTarget + targetCount), settings.spp samples each
   // (sample s of target t at index (t - firstTarget)*spp + s), read back without tracing them: the GPU side of

@@ -10,13 +10,8 @@
 #ifndef HT_WAVEFRONT_TYPES_H
 #define HT_WAVEFRONT_TYPES_H
 #include "common/glsl_cpp.h"
-#include "camera_models/camera_params.h"
-#include "camera_models/capture_grid_params.h"
-#include "camera_models/integral_params.h"
-#include "camera_models/oblique_params.h"
-#include "camera_models/projector_params.h"
-#include "camera_models/quilt_params.h"
-#include "camera_models/ray_table_params.h"
+#include "camera_models/model_list.h"
+#include "gpu/shader_interface.h"
 
 HT_SHARED_BEGIN
 
@@ -34,22 +29,6 @@ HT_CONST uint HT_MATERIAL_GLASS = 2u;
 HT_CONST uint HT_LIGHT_POINT = 0u;
 HT_CONST uint HT_LIGHT_SPOT = 1u;
 HT_CONST uint HT_LIGHT_DIRECTIONAL = 2u;
-
-// Camera model selected by the raygen specialisation constant. Subpixel models (lenticular, integral) trace each
-// R, G, B subpixel with its own rays and keep one channel per target; the others trace RGB pixels of `views` images.
-HT_CONST uint HT_MODEL_LENTICULAR = 0u;
-HT_CONST uint HT_MODEL_PINHOLE = 1u;
-HT_CONST uint HT_MODEL_QUILT = 2u;
-HT_CONST uint HT_MODEL_PROJECTOR_ARRAY = 3u;
-HT_CONST uint HT_MODEL_INTEGRAL = 4u;
-HT_CONST uint HT_MODEL_CAPTURE_GRID = 5u;
-HT_CONST uint HT_MODEL_OBLIQUE = 6u;
-HT_CONST uint HT_MODEL_RAY_TABLE = 7u;
-HT_CONST uint HT_MODEL_COUNT = 8u;
-
-HT_INLINE bool ht_model_has_subpixel_targets(uint model) {
-  return model == HT_MODEL_LENTICULAR || model == HT_MODEL_INTEGRAL;
-}
 
 struct GpuMaterial {
   vec4 baseColor;  // rgb linear; w = texture index (as float, -1 = none)
@@ -84,37 +63,21 @@ struct GpuCounters {
 // std140 layout GLSL uses equals the C++ layout. Per-path state and scene records are texel buffers (see
 // gpu/shaders/common.glsl for why); only the atomic counters and the BVH fallback are reached by address.
 struct FrameBlock {
-  uint64_t counters;  // GpuCounters (device address)
-  uint64_t refine;    // adaptive refinement: slot counts, staging, the refined targets (device address)
-  uvec4 dims;         // x = image width, y = image height (one view), z = spp, w = number of targets
-  uvec4 views;        // x = views in this frame, y = index of its first view, z = filter (HT_FILTER_*), w unused
-  uvec4 scene;        // x = light count, y = texture count, z = step limit, w = max depth
-  uvec4 frame;        // x = seed; yzw unused (per-dispatch values travel in PassConstants)
-  uvec4 refineInfo;   // adaptive refinement (refine_select.comp): x = contrast threshold (float bits), y = first
-                      // entry of the target list in `refine`, z = subgroup size the slots assume,
-                      // w = the base pass's spp while the listed targets are traced (resolve.comp averages
-                      // its samples with theirs), 0 otherwise
-  uvec4 flags;        // x = scene has vertex normals, y = scene has texcoords
-  vec4 background;    // rgb radiance of escaped rays
-  vec4 ambient;       // rgb ambient irradiance on diffuse surfaces
-  LenticularParams lenticular;
-  PinholeParams pinhole;
-  QuiltParams quilt;
-  IntegralParams integral;
-  CaptureGridParams captureGrid;
-  ObliqueParams oblique;
-  RayTableParams rayTable;
-  ProjectorArrayParams projectors;
+  uint64_t counters;   // GpuCounters (device address)
+  uint64_t refine;     // adaptive refinement: slot counts, staging, the refined targets (device address)
+  uvec4 dims;          // x = image width, y = image height (one view), z = spp, w = number of targets
+  uvec4 views;         // x = views in this frame, y = index of its first view, z = filter (HT_FILTER_*), w unused
+  uvec4 scene;         // x = light count, y = texture count, z = step limit, w = max depth
+  uvec4 frame;         // x = seed; yzw unused (per-dispatch values travel in PassConstants)
+  uvec4 refineInfo;    // adaptive refinement (refine_select.comp): x = contrast threshold (float bits), y = first
+                       // entry of the target list in `refine`, z = subgroup size the slots assume,
+                       // w = the base pass's spp while the listed targets are traced (resolve.comp averages
+                       // its samples with theirs), 0 otherwise
+  uvec4 flags;         // x = scene has vertex normals, y = scene has texcoords
+  vec4 background;     // rgb radiance of escaped rays
+  vec4 ambient;        // rgb ambient irradiance on diffuse surfaces
+  CameraBlock camera;  // the frame's camera model's parameters (camera_models/model_list.h)
 };
-
-// Descriptor set 0 (gpu/shaders/common.glsl, gpu/shaders/bvh_access.glsl).
-HT_CONST uint HT_BINDING_BVH_FIRST = 0u;         // 0-3: BVH node / triangle texel views
-HT_CONST uint HT_BINDING_FRAME = 4u;             // uniform buffer: FrameBlock
-HT_CONST uint HT_BINDING_STATE_FIRST = 5u;       // 5-16: per-path state, storage texel buffers
-HT_CONST uint HT_BINDING_SCENE_FIRST = 17u;      // 17-24: scene records, uniform texel buffers
-HT_CONST uint HT_BINDING_RAY_TABLE = 25u;        // uniform texel buffer: ray-table entries (origin, direction)
-HT_CONST uint HT_BINDING_SUBPIXEL_TEXELS = 26u;  // uniform texel buffer: read-only view of the subpixel buffer
-HT_CONST uint HT_BINDING_COUNT = 27u;
 
 // Push constants of every pass (40 B of the 128 B guaranteed). The BVH addresses sit here, not in the
 // FrameBlock, so the traversal loop reads them without an extra dependent load per node fetch.

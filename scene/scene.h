@@ -8,19 +8,9 @@
 
 #include <glm/glm.hpp>
 
-namespace ht {
+#include "common/bounds3.h"
 
-struct Bounds3 {
-  glm::vec3 lo{std::numeric_limits<float>::infinity()};
-  glm::vec3 hi{-std::numeric_limits<float>::infinity()};
-  void extend(const glm::vec3& p) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
-  glm::vec3 center() const { return 0.5f * (lo + hi); }
-  glm::vec3 extent() const { return hi - lo; }
-};
+namespace ht {
 
 // Whitted-style material classes the shader distinguishes (derived from the glTF PBR parameters).
 enum class MaterialKind : std::uint32_t { Diffuse = 0, Mirror = 1, Glass = 2 };

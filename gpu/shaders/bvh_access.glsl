@@ -7,12 +7,12 @@
 // (child links, triangle-id bits, which as floats are denormals) come through UINT views of the same memory,
 // so no float path can flush them.
 // TEXEL_FETCH = false: buffer device addresses, for BVHs larger than maxTexelBufferElements.
-layout(constant_id = 10) const bool TEXEL_FETCH = true;
+layout(constant_id = HT_SPEC_TEXEL_FETCH) const bool TEXEL_FETCH = true;
 
-layout(set = 0, binding = 0) uniform samplerBuffer bvhNodeTexels;      // 4 texels per node
-layout(set = 0, binding = 1) uniform usamplerBuffer bvhNodeUintTexels; // same memory, integer view
-layout(set = 0, binding = 2) uniform samplerBuffer bvhTriTexels;       // 3 texels per triangle slot
-layout(set = 0, binding = 3) uniform usamplerBuffer bvhTriUintTexels;  // same memory, integer view
+layout(set = 0, binding = HT_BINDING_BVH_NODES) uniform samplerBuffer bvhNodeTexels;      // 4 texels per node
+layout(set = 0, binding = HT_BINDING_BVH_NODE_UINTS) uniform usamplerBuffer bvhNodeUintTexels; // same memory, integer view
+layout(set = 0, binding = HT_BINDING_BVH_TRIS) uniform samplerBuffer bvhTriTexels;       // 3 texels per triangle slot
+layout(set = 0, binding = HT_BINDING_BVH_TRI_UINTS) uniform usamplerBuffer bvhTriUintTexels;  // same memory, integer view
 
 GpuBvhNode ht_fetch_node(uint i) {
   if (TEXEL_FETCH) {

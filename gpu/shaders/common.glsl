@@ -6,7 +6,7 @@
 // image and texel-buffer accesses handle all lanes at once. Per-path state therefore lives in storage texel
 // buffers, read-only scene records in uniform texel buffers, the frame parameters in a uniform buffer (uniform
 // loads are scalar), and only the atomic queue counters are reached by device address. GPUs are indifferent.
-// Binding numbers are gpu/wavefront_types.h's HT_BINDING_*.
+// Binding numbers and shared specialisation ids: gpu/shader_interface.h.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference2 : require
@@ -26,34 +26,34 @@ layout(buffer_reference, std430, buffer_reference_align = 4) buffer UintRef { ui
 
 layout(push_constant, std430) uniform PushBlock { PassConstants pc; };
 
-layout(set = 0, binding = 4, std140) uniform FrameUniforms { FrameBlock frameBlock; };
+layout(set = 0, binding = HT_BINDING_FRAME, std140) uniform FrameUniforms { FrameBlock frameBlock; };
 #define FRAME frameBlock
 #define COUNTERS CountersRef(frameBlock.counters).c
 
 // Per-path state (storage texel buffers).
-layout(set = 0, binding = 5, rgba32f) uniform imageBuffer rayQueue0;         // 2 texels per ray
-layout(set = 0, binding = 6, rgba32f) uniform imageBuffer rayQueue1;
-layout(set = 0, binding = 7, r32ui) uniform uimageBuffer queuePath0;
-layout(set = 0, binding = 8, r32ui) uniform uimageBuffer queuePath1;
-layout(set = 0, binding = 9, rgba32ui) uniform uimageBuffer hitBuffer;        // t bits, triId, u bits, v bits
-layout(set = 0, binding = 10, rgba32f) uniform imageBuffer radianceBuffer;
-layout(set = 0, binding = 11, rgba32f) uniform imageBuffer throughputBuffer;
-layout(set = 0, binding = 12, rgba32f) uniform imageBuffer shadowRayBuffer;   // 2 texels per slot
-layout(set = 0, binding = 13, rgba32f) uniform imageBuffer shadowContribBuffer;
-layout(set = 0, binding = 14, r32ui) uniform uimageBuffer shadowQueueBuffer;
-layout(set = 0, binding = 15, r32f) uniform imageBuffer subpixelBuffer;
-layout(set = 0, binding = 16, rgba32f) uniform imageBuffer outputImage;
+layout(set = 0, binding = HT_BINDING_RAY_QUEUE_0, rgba32f) uniform imageBuffer rayQueue0;         // 2 texels per ray
+layout(set = 0, binding = HT_BINDING_RAY_QUEUE_1, rgba32f) uniform imageBuffer rayQueue1;
+layout(set = 0, binding = HT_BINDING_QUEUE_PATH_0, r32ui) uniform uimageBuffer queuePath0;
+layout(set = 0, binding = HT_BINDING_QUEUE_PATH_1, r32ui) uniform uimageBuffer queuePath1;
+layout(set = 0, binding = HT_BINDING_HITS, rgba32ui) uniform uimageBuffer hitBuffer;        // t bits, triId, u bits, v bits
+layout(set = 0, binding = HT_BINDING_RADIANCE, rgba32f) uniform imageBuffer radianceBuffer;
+layout(set = 0, binding = HT_BINDING_THROUGHPUT, rgba32f) uniform imageBuffer throughputBuffer;
+layout(set = 0, binding = HT_BINDING_SHADOW_RAYS, rgba32f) uniform imageBuffer shadowRayBuffer;   // 2 texels per slot
+layout(set = 0, binding = HT_BINDING_SHADOW_CONTRIB, rgba32f) uniform imageBuffer shadowContribBuffer;
+layout(set = 0, binding = HT_BINDING_SHADOW_QUEUE, r32ui) uniform uimageBuffer shadowQueueBuffer;
+layout(set = 0, binding = HT_BINDING_SUBPIXELS, r32f) uniform imageBuffer subpixelBuffer;
+layout(set = 0, binding = HT_BINDING_OUTPUT_IMAGE, rgba32f) uniform imageBuffer outputImage;
 // Scene records (uniform texel buffers).
-layout(set = 0, binding = 17) uniform samplerBuffer vertexTexels;
-layout(set = 0, binding = 18) uniform samplerBuffer normalTexels;
-layout(set = 0, binding = 19) uniform samplerBuffer texcoordTexels;           // RG32F
-layout(set = 0, binding = 20) uniform usamplerBuffer triangleTexels;          // (i0, i1, i2, material)
-layout(set = 0, binding = 21) uniform samplerBuffer materialTexels;           // 3 texels per GpuMaterial
-layout(set = 0, binding = 22) uniform samplerBuffer lightTexels;              // 4 texels per GpuLight
-layout(set = 0, binding = 23) uniform usamplerBuffer textureTexels;           // GpuTexture.info
-layout(set = 0, binding = 24) uniform samplerBuffer texelTexels;
-layout(set = 0, binding = 25) uniform samplerBuffer rayTableTexels;           // 2 texels per entry: origin, direction
-layout(set = 0, binding = 26) uniform samplerBuffer subpixelTexels;           // subpixelBuffer, read through texel fetches
+layout(set = 0, binding = HT_BINDING_VERTICES) uniform samplerBuffer vertexTexels;
+layout(set = 0, binding = HT_BINDING_NORMALS) uniform samplerBuffer normalTexels;
+layout(set = 0, binding = HT_BINDING_TEXCOORDS) uniform samplerBuffer texcoordTexels;           // RG32F
+layout(set = 0, binding = HT_BINDING_TRIANGLES) uniform usamplerBuffer triangleTexels;          // (i0, i1, i2, material)
+layout(set = 0, binding = HT_BINDING_MATERIALS) uniform samplerBuffer materialTexels;           // 3 texels per GpuMaterial
+layout(set = 0, binding = HT_BINDING_LIGHTS) uniform samplerBuffer lightTexels;              // 4 texels per GpuLight
+layout(set = 0, binding = HT_BINDING_TEXTURES) uniform usamplerBuffer textureTexels;           // GpuTexture.info
+layout(set = 0, binding = HT_BINDING_TEXELS) uniform samplerBuffer texelTexels;
+layout(set = 0, binding = HT_BINDING_RAY_TABLE) uniform samplerBuffer rayTableTexels;           // 2 texels per entry: origin, direction
+layout(set = 0, binding = HT_BINDING_SUBPIXEL_TEXELS) uniform samplerBuffer subpixelTexels;           // subpixelBuffer, read through texel fetches
 
 HtRay load_ray(uint q, uint i) {
   int k = int(2u * i);
@@ -82,7 +82,7 @@ void store_queue_path(uint q, uint i, uint path) {
 // so raygen writes none of those and the depth-0 pipelines (PRIMARY_DEPTH = true, set by the host for the dispatches
 // at depth 0) read none: lavapipe stores and loads storage texels lane by lane, and these were 3 of raygen's 5
 // stores. A specialisation constant rather than a test of pc.depth, which made shade slower on lavapipe (measured).
-layout(constant_id = 20) const bool PRIMARY_DEPTH = false;
+layout(constant_id = HT_SPEC_PRIMARY_DEPTH) const bool PRIMARY_DEPTH = false;
 uint queue_path(uint i) {
   if (PRIMARY_DEPTH) return i;
   return load_queue_path(pc.queue, i);

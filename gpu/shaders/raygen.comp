@@ -9,7 +9,7 @@
 #include "camera_models/footprint_sampling.h"
 #include "camera_models/capture_grid_model.h"
 #include "camera_models/integral_model.h"
-layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
+layout(constant_id = HT_SPEC_MODEL) const uint MODEL = HT_MODEL_LENTICULAR;
 // The lenticular panel's Gen3 cell layout, folded into the code (lenticular_model.h HT_LENTICULAR_CELL_MODE).
 layout(constant_id = 1) const int LENTICULAR_CELL_MODE = 0;
 layout(constant_id = 2) const int LENTICULAR_CELL_COUNT = 0;
@@ -28,8 +28,8 @@ layout(constant_id = 3) const bool REFINING = false;
 
 // Projector `view` assembled from single uniform members (projector_model.h ProjectorView: no 8 KiB copy).
 ProjectorView frame_projector(uint view) {
-  return ProjectorView(FRAME.projectors.observer, FRAME.projectors.scale, FRAME.projectors.localToWorld,
-                       FRAME.projectors.projector[view], FRAME.projectors.lens, FRAME.projectors.distortion);
+  return ProjectorView(FRAME.camera.projectors.observer, FRAME.camera.projectors.scale, FRAME.camera.projectors.localToWorld,
+                       FRAME.camera.projectors.projector[view], FRAME.camera.projectors.lens, FRAME.camera.projectors.distortion);
 }
 
 void main() {
@@ -60,26 +60,26 @@ void main() {
   vec3 origin;
   vec3 dir;
   if (MODEL == HT_MODEL_LENTICULAR) {
-    lenticular_ray(FRAME.lenticular, x, y, c, xi, origin, dir);
+    lenticular_ray(FRAME.camera.lenticular, x, y, c, xi, origin, dir);
   } else if (MODEL == HT_MODEL_PINHOLE) {
-    pinhole_ray(FRAME.pinhole, x, y, xi, origin, dir);
+    pinhole_ray(FRAME.camera.pinhole, x, y, xi, origin, dir);
   } else if (MODEL == HT_MODEL_QUILT) {
-    quilt_ray(FRAME.quilt, x, y, view, xi, origin, dir);
+    quilt_ray(FRAME.camera.quilt, x, y, view, xi, origin, dir);
   } else if (MODEL == HT_MODEL_PROJECTOR_ARRAY) {
-    if (spp > 1u && FRAME.projectors.observer.z > 0.0f) {
+    if (spp > 1u && FRAME.camera.projectors.observer.z > 0.0f) {
       vec2 xiAngle = footprint_sample_angle(globalTarget, s, spp, FRAME.frame.x);
       projector_view_scattered_ray(frame_projector(view), x, y, xi, xiAngle, origin, dir);
     } else {
       projector_view_ray(frame_projector(view), x, y, xi, origin, dir);
     }
   } else if (MODEL == HT_MODEL_INTEGRAL) {
-    integral_ray(FRAME.integral, x, y, c, xi, origin, dir);
+    integral_ray(FRAME.camera.integral, x, y, c, xi, origin, dir);
   } else if (MODEL == HT_MODEL_CAPTURE_GRID) {
-    capture_grid_ray(FRAME.captureGrid, x, y, view, xi, origin, dir);
+    capture_grid_ray(FRAME.camera.captureGrid, x, y, view, xi, origin, dir);
   } else if (MODEL == HT_MODEL_OBLIQUE) {
-    oblique_ray(FRAME.oblique, x, y, view, xi, origin, dir);
+    oblique_ray(FRAME.camera.oblique, x, y, view, xi, origin, dir);
   } else {
-    ray_table_ray(FRAME.rayTable, x, y, xi, origin, dir);
+    ray_table_ray(FRAME.camera.rayTable, x, y, xi, origin, dir);
   }
   store_ray(0u, i, HtRay(origin, 0.0f, dir, 3.0e38f));  // path i = queue entry i, radiance 0, throughput 1 (queue_path)
 }

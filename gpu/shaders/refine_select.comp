@@ -19,7 +19,7 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "gpu/adaptive_refinement.h"
 
-layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
+layout(constant_id = HT_SPEC_MODEL) const uint MODEL = HT_MODEL_LENTICULAR;
 layout(constant_id = 1) const uint MODE = 0u;
 
 // Texel fetches, not image loads: lavapipe gathers all lanes of a fetch at once (gpu/shaders/bvh_access.glsl).

@@ -8,7 +8,7 @@
 // 49.70 -> 50.08 dB for one more texel load per refined target, docs/BENCHMARKS.md).
 #include "gpu/shaders/common.glsl"
 
-layout(constant_id = 0) const uint MODEL = HT_MODEL_LENTICULAR;
+layout(constant_id = HT_SPEC_MODEL) const uint MODEL = HT_MODEL_LENTICULAR;
 // The refinement pass's pipeline: lavapipe would run the list and base-value loads of a runtime branch on every pass.
 layout(constant_id = 1) const bool REFINING = false;
 

@@ -42,8 +42,8 @@ TEST(Determinism, LenticularPanelFrameTwiceIsBitIdentical) {
   gpu::Renderer renderer(test::sharedContext(), scene);
   gpu::RenderSettings settings;
   settings.spp = 1;
-  const gpu::RenderResult a = renderer.renderLenticular(params, settings);
-  const gpu::RenderResult b = renderer.renderLenticular(params, settings);
+  const gpu::RenderResult a = renderer.render(params, settings);
+  const gpu::RenderResult b = renderer.render(params, settings);
   ASSERT_EQ(a.rgba.size(), b.rgba.size());
   ASSERT_FALSE(a.rgba.empty());
   EXPECT_EQ(std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)), 0);

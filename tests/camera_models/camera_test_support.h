@@ -2,15 +2,26 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
 
 #include "camera_models/display_config.h"
+#include "common/error.h"
 #include "scene/scene.h"
 
 namespace ht::test {
+
+// The ConfigError `action` throws (a test failure, and an empty error, when it throws none).
+inline ConfigError catchConfigError(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const ConfigError& e) { return e; }
+  ADD_FAILURE() << "expected a ConfigError";
+  return ConfigError("", "", "", "");
+}
 
 inline std::string fixturePath(const std::string& name) { return std::string(HT_TEST_DATA_DIR) + "/configs/" + name; }
 

@@ -16,6 +16,7 @@
 namespace ht {
 namespace {
 
+using test::catchConfigError;
 using test::fixturePath;
 using ::testing::HasSubstr;
 
@@ -32,14 +33,6 @@ std::string visualJsonWith(const std::string& key, const std::string& replacemen
     j[key] = nlohmann::json::parse(replacement);
   }
   return j.dump();
-}
-
-ConfigError catchConfigError(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const ConfigError& e) { return e; }
-  ADD_FAILURE() << "expected a ConfigError";
-  return ConfigError("", "", "", "");
 }
 
 ConfigError visualJsonError(const std::string& key, const std::string& replacement) {
@@ -229,7 +222,7 @@ TEST(DisplayConfigErrors, UnknownModel) {
   ConfigError e = catchConfigError([] { parseDisplayConfig(R"({"model":"holovizio"})", "display.json", ""); });
   EXPECT_EQ(e.field(), "model");
   EXPECT_EQ(e.value(), "\"holovizio\"");
-  EXPECT_THAT(e.expected(), HasSubstr("\"lenticular\" or \"pinhole\""));
+  EXPECT_THAT(e.expected(), HasSubstr("\"lenticular\", \"pinhole\", \"projector-array\""));
 }
 
 TEST(DisplayConfigErrors, DepthinessMakesConeTooWide) {

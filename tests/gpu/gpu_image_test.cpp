@@ -61,7 +61,7 @@ TEST(GpuImage, PinholeSphereCoverageMatchesProjectedArea) {
   gpu::Renderer renderer(sharedContext(), scene);
   gpu::RenderSettings settings;
   settings.spp = kSanitized ? 4 : 16;
-  gpu::RenderResult r = renderer.renderPinhole(lookAt({0, 0, distance}, {0, 0, 0}, fovy, size, size), settings);
+  gpu::RenderResult r = renderer.render(lookAt({0, 0, distance}, {0, 0, 0}, fovy, size, size), settings);
 
   // Exact: the silhouette of a sphere of radius R seen from distance d is a circle of angular radius
   // asin(R/d), i.e. of radius tan(asin(R/d)) on the image plane at unit distance.
@@ -100,7 +100,7 @@ TEST(GpuImage, MirrorShowsTheObjectBehindTheCamera) {
   Scene withMirror = build(true), withoutMirror = build(false);
   ASSERT_TRUE(withMirror.features().mirrors);
   gpu::Renderer mirrorRenderer(sharedContext(), withMirror);
-  gpu::RenderResult r = mirrorRenderer.renderPinhole(cam, settings);
+  gpu::RenderResult r = mirrorRenderer.render(cam, settings);
   glm::vec4 centre = pixel(r, 32, 32), corner = pixel(r, 0, 0);
   EXPECT_NEAR(centre.x, 1.0f, 1e-6f);
   EXPECT_NEAR(centre.y, 0.0f, 1e-6f);
@@ -110,7 +110,7 @@ TEST(GpuImage, MirrorShowsTheObjectBehindTheCamera) {
   EXPECT_NEAR(corner.z, 0.2f, 1e-6f);
 
   gpu::Renderer diffuseRenderer(sharedContext(), withoutMirror);
-  gpu::RenderResult d = diffuseRenderer.renderPinhole(cam, settings);
+  gpu::RenderResult d = diffuseRenderer.render(cam, settings);
   EXPECT_NEAR(pixel(d, 32, 32).x, 0.0f, 1e-6f) << "without the mirror the emitter must not be visible";
 }
 
@@ -121,8 +121,8 @@ TEST(GpuImage, SameFrameTwiceIsBitIdentical) {
   auto cam = lookAt(b.center() + glm::vec3(0.0f, 0.5f, 2.0f) * glm::length(b.extent()), b.center(), 35.0f, 160, 120);
   gpu::RenderSettings settings;
   settings.spp = 4;
-  gpu::RenderResult a = renderer.renderPinhole(cam, settings);
-  gpu::RenderResult b2 = renderer.renderPinhole(cam, settings);
+  gpu::RenderResult a = renderer.render(cam, settings);
+  gpu::RenderResult b2 = renderer.render(cam, settings);
   ASSERT_EQ(a.rgba.size(), b2.rgba.size());
   EXPECT_EQ(std::memcmp(a.rgba.data(), b2.rgba.data(), a.rgba.size() * sizeof(float)), 0);
   EXPECT_GT(meanChannel(a, 0), 0.0);
@@ -141,12 +141,12 @@ struct EditedShowcase {
     const Bounds3 b = scene.bounds();
     cam = lookAt(b.center() + glm::vec3(0.0f, 0.5f, 2.0f) * glm::length(b.extent()), b.center(), 35.0f, 128, 96);
     settings.spp = 2;
-    before = renderer.renderPinhole(cam, settings);
+    before = renderer.render(cam, settings);
   }
   // The edited frame equals the fresh Renderer's bit for bit and differs from the one before the edit.
   void expectRendersLikeAFreshRenderer(gpu::Renderer& fresh) {
-    const gpu::RenderResult edited = renderer.renderPinhole(cam, settings);
-    const gpu::RenderResult reference = fresh.renderPinhole(cam, settings);
+    const gpu::RenderResult edited = renderer.render(cam, settings);
+    const gpu::RenderResult reference = fresh.render(cam, settings);
     ASSERT_EQ(edited.rgba.size(), reference.rgba.size());
     EXPECT_EQ(std::memcmp(edited.rgba.data(), reference.rgba.data(), edited.rgba.size() * sizeof(float)), 0);
     EXPECT_NE(std::memcmp(edited.rgba.data(), before.rgba.data(), edited.rgba.size() * sizeof(float)), 0);
@@ -208,9 +208,9 @@ TEST(GpuImage, SpecialisedPipelineGivesTheSameImageAsAllFeaturesOn) {
   auto cam = lookAt(b.center() + glm::vec3(0.0f, 0.3f, 2.0f) * glm::length(b.extent()), b.center(), 35.0f, 128, 96);
   gpu::RenderSettings settings;
   settings.spp = 2;
-  gpu::RenderResult lean = renderer.renderPinhole(cam, settings);
+  gpu::RenderResult lean = renderer.render(cam, settings);
   settings.forceAllFeatures = true;
-  gpu::RenderResult full = renderer.renderPinhole(cam, settings);
+  gpu::RenderResult full = renderer.render(cam, settings);
   ASSERT_EQ(lean.rgba.size(), full.rgba.size());
   EXPECT_EQ(std::memcmp(lean.rgba.data(), full.rgba.data(), lean.rgba.size() * sizeof(float)), 0);
   for (const auto& s : lean.stages) EXPECT_NE(s.name, "shadow") << "a scene without lights dispatches no shadow pass";
@@ -225,7 +225,7 @@ TEST(GpuImage, OutputLargerThan128MiBStorageRange) {
   gpu::RenderSettings settings;
   settings.spp = 1;
   const std::uint32_t size = 3072;
-  gpu::RenderResult r = renderer.renderPinhole(lookAt({0, 0, 4}, {0, 0, 0}, 30.0f, size, size), settings);
+  gpu::RenderResult r = renderer.render(lookAt({0, 0, 4}, {0, 0, 0}, 30.0f, size, size), settings);
   ASSERT_EQ(r.rgba.size(), static_cast<size_t>(size) * size * 4);
   EXPECT_FLOAT_EQ(pixel(r, size / 2, size / 2).x, 1.0f);
   EXPECT_FLOAT_EQ(pixel(r, size - 1, size - 1).x, 0.0f);

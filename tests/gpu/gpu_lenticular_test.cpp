@@ -44,7 +44,7 @@ TEST(GpuLenticular, PortraitSubpixelsShowTheSphereExactlyWhereTheReferenceRaysHi
   gpu::Renderer renderer(sharedContext(), scene);
   gpu::RenderSettings settings;
   settings.spp = 1;  // the footprint centre: the vendor's sample point
-  gpu::RenderResult image = renderer.renderLenticular(params, settings);
+  gpu::RenderResult image = renderer.render(params, settings);
   const std::uint32_t w = image.width, h = image.height;
   ASSERT_EQ(w, 1536u);
   ASSERT_EQ(h, 2048u);

@@ -102,9 +102,9 @@ TEST(GpuRefinement, RefinedSubpixelsAreTheCpuSelectionAndTakeTheRefinedValues) {
   const auto params = smallPortrait(scene);
   gpu::Renderer renderer(sharedContext(), scene);
   const float threshold = 0.08f;
-  const auto base = renderer.renderLenticular(params, withSpp(1));
-  const auto high = renderer.renderLenticular(params, withSpp(4));
-  const auto adaptive = renderer.renderLenticular(params, withSpp(1, 4, threshold));
+  const auto base = renderer.render(params, withSpp(1));
+  const auto high = renderer.render(params, withSpp(4));
+  const auto adaptive = renderer.render(params, withSpp(1, 4, threshold));
   const SelectionCheck check = checkSelection(base, 1, high, 4, adaptive, threshold, true);
   std::printf("targets %zu, refined on the GPU %llu, by the CPU reference %zu (%zu at the threshold)\n", check.targets,
               static_cast<unsigned long long>(adaptive.refinedTargets), check.refined, check.ambiguous);
@@ -123,9 +123,9 @@ TEST(GpuRefinement, RefinedPixelsOfMultiViewFramesAreTheCpuSelection) {
   const QuiltLayout layout = makeQuiltLayout(8, 6, 8 * 24, 6 * 32, 0.75f);
   const auto params = makeQuiltParams(display, scene.bounds(), layout);
   const float threshold = 0.05f;
-  const auto base = renderer.renderQuilt(params, withSpp(2));
-  const auto high = renderer.renderQuilt(params, withSpp(8));
-  const auto adaptive = renderer.renderQuilt(params, withSpp(2, 8, threshold));
+  const auto base = renderer.render(params, withSpp(2));
+  const auto high = renderer.render(params, withSpp(8));
+  const auto adaptive = renderer.render(params, withSpp(2, 8, threshold));
   ASSERT_EQ(base.views, 48u);
   const SelectionCheck check = checkSelection(base, 2, high, 8, adaptive, threshold, false);
   EXPECT_EQ(check.wrong, 0u);
@@ -138,7 +138,7 @@ TEST(GpuRefinement, RefinedPixelsOfMultiViewFramesAreTheCpuSelection) {
 class GpuRefinementShowcase : public ::testing::Test {
  protected:
   gpu::RenderResult render(std::uint32_t spp, std::uint32_t refineSpp = 0, float contrast = 0.0f) {
-    return renderer_.renderLenticular(params_, withSpp(spp, refineSpp, contrast));
+    return renderer_.render(params_, withSpp(spp, refineSpp, contrast));
   }
   Scene scene_ = loadScene("builtin:showcase");
   gpu_shared::LenticularParams params_ = smallPortrait(scene_);
@@ -179,9 +179,9 @@ TEST(GpuRefinement, BadRefinementSettingsAreRefusedBeforeAnyWork) {
   const auto params = smallPortrait(scene);
   gpu::Renderer renderer(sharedContext(), scene);
   for (float bad : {-0.1f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
-    EXPECT_THROW(renderer.renderLenticular(params, withSpp(1, 4, bad)), GpuError) << bad;
+    EXPECT_THROW(renderer.render(params, withSpp(1, 4, bad)), GpuError) << bad;
   }
-  EXPECT_THROW(renderer.renderLenticular(params, withSpp(1, 5000, 0.1f)), GpuError);
+  EXPECT_THROW(renderer.render(params, withSpp(1, 5000, 0.1f)), GpuError);
 }
 
 }  // namespace

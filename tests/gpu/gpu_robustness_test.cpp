@@ -72,7 +72,7 @@ TEST(GpuRobustness, ValidationLayerIsCleanOnAFrame) {
     auto cam = lookAt(b.center() + glm::vec3(0.0f, 0.5f, 2.0f) * glm::length(b.extent()), b.center(), 35.0f, 64, 48);
     gpu::RenderSettings settings;
     settings.spp = 1;
-    renderer.renderPinhole(cam, settings);
+    renderer.render(cam, settings);
     renderer.traceOccluded(std::vector<gpu_shared::HtRay>(8, gpu_shared::HtRay{b.center(), 0.0f, {0, -1, 0}, 1e30f}));
   }
   EXPECT_EQ(context->validationMessageCount(), 0u);

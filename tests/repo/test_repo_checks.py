@@ -141,6 +141,20 @@ class ModuleBoundaries(unittest.TestCase):
         self.assertIn("link ht_bvh (bvh) -> ht_server (server) via ht_bvh: core library depends on server", found)
         self.assertIn("include bvh/b.h -> frame_io/png.h: core library bvh includes frame_io", found)
 
+    def test_core_layers_fail_upward_includes(self):
+        files = {
+            "camera_models/CMakeLists.txt": "add_library(ht_camera_models STATIC m.cpp)\n",
+            "camera_models/m.h": '#include "scene/scene.h"\n#include "common/bounds3.h"\n',
+            "scene/s.cpp": '#include "gpu/renderer.h"\n',
+            "gpu/g.cpp": '#include "scene/scene.h"\n#include "camera_models/m.h"\n#include "bvh/bvh.h"\n',
+        }
+        found = self.violations(files)
+        self.assertIn("include camera_models/m.h -> scene/scene.h: core library camera_models includes scene "
+                      "(it may include common)", found)
+        self.assertIn("include scene/s.cpp -> gpu/renderer.h: core library scene includes gpu (it may include common)",
+                      found)
+        self.assertEqual(len(found), 2, found)
+
     def test_openimageio_and_embree_outside_their_modules_fail(self):
         files = {
             "cli/CMakeLists.txt": "add_library(ht_cli STATIC c.cpp)\n"

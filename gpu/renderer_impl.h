@@ -1,0 +1,167 @@
+// renderer_impl.h - Renderer::Impl, shared by the files of the renderer: renderer.cpp (resources, descriptors,
+// the frame block, the public API), wavefront_loop.cpp (the frame loop), refinement_pass.cpp (adaptive refinement)
+// and ray_batches.cpp (rays without a frame). Internal to gpu/.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "gpu/compute_pipeline.h"
+#include "gpu/device_buffer.h"
+#include "gpu/frame_descriptors.h"
+#include "gpu/gpu_scene.h"
+#include "gpu/pass_recorder.h"
+#include "gpu/path_buffers.h"
+#include "gpu/pipeline_library.h"
+#include "gpu/renderer.h"
+#include "gpu/vulkan_context.h"
+#include "gpu/wavefront_types.h"
+
+namespace ht::gpu {
+
+using gpu_shared::FrameBlock;
+using gpu_shared::GpuCounters;
+using gpu_shared::HT_WORKGROUP_SIZE;
+using gpu_shared::PassConstants;
+
+inline constexpr std::uint64_t kWorkMemoryBudget = 512ull << 20;  // per-batch path state
+inline constexpr std::uint32_t kMaxPathsPerBatch = 1u << 20;
+inline constexpr std::uint32_t kQueryCapacity = 4096;
+inline constexpr std::uint32_t kMaxSpp = 4096;
+inline constexpr std::uint32_t kMaxDepth = 32;
+inline constexpr std::uint64_t kMaxChunkPixels = 8ull
+                                                 << 20;  // pixels of all views rendered by one chunk (output buffers)
+
+using StageTimes = std::array<double, static_cast<size_t>(Stage::Count)>;
+
+// Workgroups of HT_WORKGROUP_SIZE invocations covering n.
+inline std::uint32_t groupsFor(std::uint64_t n) {
+  return static_cast<std::uint32_t>((n + gpu_shared::HT_WORKGROUP_SIZE - 1) / gpu_shared::HT_WORKGROUP_SIZE);
+}
+
+// `spec` (a kernel's own constants, ids 0..) with constant `id` set to `value`, the ids between left 0: the
+// constants common to several kernels sit at fixed high ids (gpu/shader_interface.h HT_SPEC_*).
+std::vector<std::uint32_t> withConstant(std::vector<std::uint32_t> spec, std::uint32_t id, std::uint32_t value);
+
+// Throw GpuError naming the value out of range.
+void checkSettings(const RenderSettings& settings);
+void checkShape(const FrameShape& shape, std::uint32_t spp);
+
+struct Renderer::Impl {
+  VulkanContext::Impl& vk;
+  GpuScene scene;
+  const PipelineLayout& layout;  // the device's (PipelineLibrary), shared with every Renderer
+  FrameDescriptors descriptors;
+  bool bvhTexelsCover = true;
+  std::uint64_t boundWorkGeneration = 0;
+  std::uint64_t boundOutputGeneration = 0;
+  DeviceBuffer frame;     // FrameBlock, host visible
+  DeviceBuffer counters;  // GpuCounters, host visible
+  PathBuffers work;
+  OutputBuffers outputs;
+  VkQueryPool queryPool = VK_NULL_HANDLE;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  VkFence fence = VK_NULL_HANDLE;
+  DeviceBuffer refineBuffer;    // adaptive refinement: per-subgroup counts, staging, target list (refine_select.comp)
+  DeviceBuffer rayTableTexels;  // the current ray table (2 texels per entry) or a 1-entry dummy
+  std::shared_ptr<const RayTable> boundRayTable;  // which table rayTableTexels holds
+
+  bvh::BuildOptions buildOptions;
+
+  Impl(VulkanContext::Impl& v, const Scene& s, const bvh::BuildOptions& o);
+
+  ~Impl();
+
+  const ComputePipeline& pipeline(ShaderId id, const std::vector<std::uint32_t>& spec = {}) {
+    return vk.pipelines->get(id, spec);
+  }
+
+  // Specialisation of raygen: the camera model, then a lenticular panel's Gen3 cell mode and count, so the cell code
+  // folds to the panel's own pattern (lenticular_model.h HT_LENTICULAR_CELL_MODE; a CPU driver pays for untaken code),
+  // then REFINING for the pass over listed targets.
+  static_assert(gpu_shared::HT_SPEC_MODEL == 0, "raygen, resolve and refine_select take the model as constant 0");
+  static std::vector<std::uint32_t> raygenSpec(const FrameCamera& camera, const FrameShape& shape,
+                                               bool refining = false) {
+    const auto* lenticular = std::get_if<gpu_shared::LenticularParams>(&camera);
+    if (!lenticular) return {shape.model, 0u, 0u, refining};
+    return {shape.model, static_cast<std::uint32_t>(lenticular->flags.x),
+            static_cast<std::uint32_t>(lenticular->flags.y), refining};
+  }
+
+  // Specialisation of the kernels that continue paths (shade, gather_direct): their own constants, then
+  // PRIMARY_DEPTH, true for the dispatches at depth 0 (common.glsl queue_path).
+  static std::vector<std::uint32_t> depthSpec(std::vector<std::uint32_t> own, std::uint32_t depth) {
+    return withConstant(std::move(own), gpu_shared::HT_SPEC_PRIMARY_DEPTH, depth == 0 ? 1u : 0u);
+  }
+
+  // Specialisation of the trace kernels: their own constants, then TEXEL_FETCH.
+  std::vector<std::uint32_t> traceSpec(std::vector<std::uint32_t> own) const {
+    return withConstant(std::move(own), gpu_shared::HT_SPEC_TEXEL_FETCH, bvhTexelsCover ? 1u : 0u);
+  }
+
+  // Binding HT_BINDING_RAY_TABLE: `table`'s entries (uploaded when the table object changes); without a table the
+  // bound one stays, or a dummy entry so the descriptor is valid.
+  void bindRayTable(const std::shared_ptr<const RayTable>& table);
+
+  // A new BVH and scene records, built and uploaded before the current ones are released (a failure leaves them);
+  // pipelines, work and output buffers stay. Every frame waits for its own work, so nothing in flight reads them.
+  void replaceScene(const Scene& s);
+
+  // New light values (same count) into the bound light buffer: no BVH build, no descriptor change.
+  void updateLights(const Scene& s);
+
+  FrameBlock& frameBlock() { return *static_cast<FrameBlock*>(frame.mapped()); }
+  GpuCounters& counterBlock() { return *static_cast<GpuCounters*>(counters.mapped()); }
+
+  // Scene records and BVH views: written at construction and again by replaceScene, whose new buffers were created
+  // while the bound ones still existed, so their handles differ and every view is rebuilt.
+  void bindScene();
+
+  // Per-path state of the current work buffers, plus the frame's outputs.
+  void bindState();
+
+  void fillFrameBasics(FrameBlock& f) {
+    f.counters = counters.address();
+    f.flags = glm::uvec4(scene.hasNormals ? 1u : 0u, scene.hasTexcoords ? 1u : 0u, 0u, 0u);
+  }
+
+  PassConstants passConstants(std::uint32_t first, std::uint32_t count, std::uint32_t depth,
+                              std::uint32_t queue) const {
+    return PassConstants{
+        frame.address(), scene.nodes.address(), scene.bvhTriangles.address(), first, count, depth, queue};
+  }
+
+  void beginCommands();
+
+  void submitAndWait();
+
+  // Throws GpuError when a ray hit the traversal step limit (its hits could be missing).
+  void checkCounters(const char* what);
+
+  // Writes the camera block and the frame-wide values of a frame of `shape` covering views [viewFirst, +viewCount).
+  void fillFrame(const FrameCamera& camera, const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
+                 const RenderSettings& settings);
+  // The wavefront frame loop (wavefront_loop.cpp).
+  RenderResult render(const FrameCamera& camera, const RenderSettings& settings);
+  void renderChunk(const FrameCamera& camera, const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
+                   const RenderSettings& settings, StageTimes& stageMs, RenderResult& result);
+  // Traces paths [0, totalPaths) of `spp` samples per target in batches of perBatch (a multiple of spp) and resolves
+  // them into the subpixel buffer. refining: the listed targets of FrameBlock.refine (refineInfo.w = the base spp),
+  // through the REFINING pipelines of raygen and resolve; else the chunk's base pass, its first call, which clears
+  // the shadow slots (gather_direct leaves every slot it used cleared for later batches).
+  void tracePaths(const FrameCamera& camera, const FrameShape& shape, std::uint32_t spp, std::uint64_t totalPaths,
+                  std::uint64_t perBatch, bool refining, const RenderSettings& settings, StageTimes& stageMs,
+                  const std::function<void(double)>& progress);
+  // Adaptive refinement (refinement_pass.cpp).
+  std::uint64_t selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast,
+                                     StageTimes& stageMs);
+  // Ray batches without a frame (ray_batches.cpp).
+  std::vector<gpu_shared::HtRay> generateRays(const FrameCamera& camera, const RenderSettings& settings,
+                                              std::uint64_t firstTarget, std::uint32_t targetCount, TraceStats* stats);
+  std::vector<gpu_shared::HtHit> traceBatch(std::span<const gpu_shared::HtRay> rays, bool occlusion, TraceStats* stats);
+};
+
+}  // namespace ht::gpu

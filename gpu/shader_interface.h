@@ -1,0 +1,54 @@
+// shader_interface.h - the one source of the numbers the host and the GLSL passes must agree on: the bindings of
+// descriptor set 0 and the specialisation-constant ids shared by several kernels. The C++ side (frame_descriptors,
+// renderer) and the shaders (gpu/shaders/common.glsl, bvh_access.glsl) both name these constants; no binding or
+// shared constant id is written as a literal anywhere else. Shared-header rules: common/glsl_cpp.h.
+#ifndef HT_SHADER_INTERFACE_H
+#define HT_SHADER_INTERFACE_H
+#include "common/glsl_cpp.h"
+
+HT_SHARED_BEGIN
+
+// Descriptor set 0. Why texel buffers: gpu/shaders/common.glsl.
+// BVH views (bvh_access.glsl), uniform texel buffers; the UINT views alias the same memory.
+HT_CONST uint HT_BINDING_BVH_NODES = 0u;       // RGBA32F, 4 texels per node
+HT_CONST uint HT_BINDING_BVH_NODE_UINTS = 1u;  // RGBA32UI view of the nodes
+HT_CONST uint HT_BINDING_BVH_TRIS = 2u;        // RGBA32F, 3 texels per triangle slot
+HT_CONST uint HT_BINDING_BVH_TRI_UINTS = 3u;   // RGBA32UI view of the triangle slots
+HT_CONST uint HT_BINDING_FRAME = 4u;           // uniform buffer: FrameBlock (gpu/wavefront_types.h)
+// Per-path state and the frame's outputs, storage texel buffers.
+HT_CONST uint HT_BINDING_RAY_QUEUE_0 = 5u;  // RGBA32F, 2 texels per ray
+HT_CONST uint HT_BINDING_RAY_QUEUE_1 = 6u;
+HT_CONST uint HT_BINDING_QUEUE_PATH_0 = 7u;  // R32UI
+HT_CONST uint HT_BINDING_QUEUE_PATH_1 = 8u;
+HT_CONST uint HT_BINDING_HITS = 9u;             // RGBA32UI: t bits, triId, u bits, v bits
+HT_CONST uint HT_BINDING_RADIANCE = 10u;        // RGBA32F
+HT_CONST uint HT_BINDING_THROUGHPUT = 11u;      // RGBA32F
+HT_CONST uint HT_BINDING_SHADOW_RAYS = 12u;     // RGBA32F, 2 texels per slot
+HT_CONST uint HT_BINDING_SHADOW_CONTRIB = 13u;  // RGBA32F
+HT_CONST uint HT_BINDING_SHADOW_QUEUE = 14u;    // R32UI
+HT_CONST uint HT_BINDING_SUBPIXELS = 15u;       // R32F: one value per target
+HT_CONST uint HT_BINDING_OUTPUT_IMAGE = 16u;    // RGBA32F: the views, read back by the host
+// Scene records, uniform texel buffers.
+HT_CONST uint HT_BINDING_VERTICES = 17u;
+HT_CONST uint HT_BINDING_NORMALS = 18u;
+HT_CONST uint HT_BINDING_TEXCOORDS = 19u;  // RG32F
+HT_CONST uint HT_BINDING_TRIANGLES = 20u;  // RGBA32UI: i0, i1, i2, material
+HT_CONST uint HT_BINDING_MATERIALS = 21u;  // 3 texels per GpuMaterial
+HT_CONST uint HT_BINDING_LIGHTS = 22u;     // 4 texels per GpuLight
+HT_CONST uint HT_BINDING_TEXTURES = 23u;   // RGBA32UI: GpuTexture.info
+HT_CONST uint HT_BINDING_TEXELS = 24u;
+HT_CONST uint HT_BINDING_RAY_TABLE = 25u;        // 2 texels per entry: origin, direction
+HT_CONST uint HT_BINDING_SUBPIXEL_TEXELS = 26u;  // read-only texel view of HT_BINDING_SUBPIXELS
+HT_CONST uint HT_BINDING_COUNT = 27u;
+// The storage texel buffers are exactly the bindings [FIRST, LAST].
+HT_CONST uint HT_BINDING_STORAGE_FIRST = HT_BINDING_RAY_QUEUE_0;
+HT_CONST uint HT_BINDING_STORAGE_LAST = HT_BINDING_OUTPUT_IMAGE;
+
+// Specialisation-constant ids. A kernel's own constants take ids from 0 (declared in its .comp file, given by the
+// host in that order); the constants of the shared includes sit at fixed higher ids, so they never collide.
+HT_CONST uint HT_SPEC_MODEL = 0u;           // raygen, resolve, refine_select: the camera model (HT_MODEL_*)
+HT_CONST uint HT_SPEC_TEXEL_FETCH = 10u;    // bvh_access.glsl: read the BVH through texel buffers, else by address
+HT_CONST uint HT_SPEC_PRIMARY_DEPTH = 20u;  // common.glsl: the dispatch continues primary paths (depth 0)
+
+HT_SHARED_END
+#endif

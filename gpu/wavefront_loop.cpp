@@ -1,0 +1,178 @@
+// wavefront_loop.cpp - the wavefront frame loop (docs/BVH.md §7): batches of paths go through raygen, then per bounce
+// trace_closest -> shade -> [trace_any -> gather_direct], then resolve; the frame ends with interleave. Large view
+// arrays are rendered in chunks of views. Batches are submitted one by one (bounded memory, progress reports);
+// within a batch the GPU drives its own queues through indirect dispatches.
+#include <algorithm>
+#include <chrono>
+#include <cstddef>
+#include <cstring>
+
+#include "gpu/renderer_impl.h"
+
+namespace ht::gpu {
+
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSettings& settings) {
+  auto t0 = std::chrono::steady_clock::now();
+  checkSettings(settings);
+  const FrameShape shape = frameShape(camera);
+  checkShape(shape, std::max(settings.spp, settings.refineSpp));
+  RenderResult result;
+  result.width = shape.width;
+  result.height = shape.height;
+  result.views = shape.views;
+  const std::uint64_t viewPixels = static_cast<std::uint64_t>(shape.width) * shape.height;
+  result.rgba.resize(static_cast<size_t>(viewPixels * shape.views * 4));
+  const auto chunkViews =
+      static_cast<std::uint32_t>(std::clamp<std::uint64_t>(kMaxChunkPixels / viewPixels, 1, shape.views));
+  std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};
+  double readbackMs = 0.0;
+  for (std::uint32_t first = 0; first < shape.views; first += chunkViews) {
+    const std::uint32_t count = std::min(chunkViews, shape.views - first);
+    RenderSettings chunkSettings = settings;
+    if (settings.progress) {
+      chunkSettings.progress = [&settings, first, count, views = shape.views](double done) {
+        settings.progress((first + done * count) / views);
+      };
+    }
+    renderChunk(camera, shape, first, count, chunkSettings, stageMs, result);
+    auto tRead = std::chrono::steady_clock::now();
+    outputs.image.download(result.rgba.data() + viewPixels * first * 4, viewPixels * count * 16);
+    readbackMs += msSince(tRead);
+  }
+  const bool lights = scene.lightCount() > 0 && (scene.features().lights || settings.forceAllFeatures);
+  for (size_t s = 0; s < stageMs.size(); ++s) {
+    auto stage = static_cast<Stage>(s);
+    if (stage == Stage::Shadow && !lights) continue;
+    if (stage == Stage::Refine && settings.refineSpp == 0) continue;
+    result.stages.push_back({stageName(stage), stageMs[s]});
+  }
+  result.stages.push_back({"readback", readbackMs});
+  result.totalMs = msSince(t0);
+  return result;
+}
+
+void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& shape, std::uint32_t viewFirst,
+                                 std::uint32_t viewCount, const RenderSettings& settings, StageTimes& stageMs,
+                                 RenderResult& result) {
+  const std::uint64_t targets =
+      static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
+  // Batch size: whole targets, bounded by the path-state memory budget.
+  const std::uint32_t maxSpp = std::max(settings.spp, settings.refineSpp);
+  std::uint64_t perBatch =
+      std::min<std::uint64_t>(kMaxPathsPerBatch, kWorkMemoryBudget / PathBuffers::bytesPerPath(scene.lightCount()));
+  perBatch = std::max<std::uint64_t>(maxSpp, perBatch / maxSpp * maxSpp);
+  perBatch = std::min(perBatch, targets * maxSpp);
+  work.ensure(vk, static_cast<std::uint32_t>(perBatch), scene.lightCount());
+  outputs.ensure(vk, shape.width, shape.height * viewCount);
+  bindState();
+  fillFrame(camera, shape, viewFirst, viewCount, settings);
+  std::memset(counters.mapped(), 0, sizeof(GpuCounters));
+
+  const double share = settings.refineSpp > 0 ? 0.8 : 1.0;  // progress: the refinement takes the rest
+  tracePaths(camera, shape, settings.spp, targets * settings.spp, perBatch, false, settings, stageMs, [&](double done) {
+    if (settings.progress) settings.progress(done * share);
+  });
+  if (settings.refineSpp > 0) {
+    const std::uint64_t refined = selectRefinedTargets(shape, targets, settings.refineContrast, stageMs);
+    result.refinedTargets += refined;
+    if (refined > 0) {
+      FrameBlock& f = frameBlock();
+      f.dims.z = settings.refineSpp;
+      f.refineInfo.w = settings.spp;  // != 0: trace the listed targets, and keep the base samples in their mean
+      const std::uint64_t refineBatch =
+          std::min(perBatch / settings.refineSpp * settings.refineSpp, refined * settings.refineSpp);
+      tracePaths(camera, shape, settings.refineSpp, refined * settings.refineSpp, refineBatch, true, settings, stageMs,
+                 [&](double done) {
+                   if (settings.progress) settings.progress(share + done * (1.0 - share));
+                 });
+    }
+  }
+  const ComputePipeline& interleave = pipeline(ShaderId::Interleave);
+  beginCommands();
+  PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+  rec.dispatch(interleave, passConstants(0, 0, 0, 0),
+               groupsFor(static_cast<std::uint64_t>(shape.width) * shape.height * viewCount), Stage::Interleave);
+  submitAndWait();
+  rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+  const GpuCounters& c = counterBlock();
+  result.raysTraced += c.raysTraced;
+  result.maxTraversalSteps = std::max(result.maxTraversalSteps, c.maxSteps);
+  result.nonFiniteSamples += c.nanCount;
+}
+
+void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& shape, std::uint32_t spp,
+                                std::uint64_t totalPaths, std::uint64_t perBatch, bool refining,
+                                const RenderSettings& settings, StageTimes& stageMs,
+                                const std::function<void(double)>& progress) {
+  const SceneFeatures& feat = scene.features();
+  const bool all = settings.forceAllFeatures;
+  const bool lights = scene.lightCount() > 0 && (feat.lights || all);
+  const bool mirror = feat.mirrors || all, glass = feat.glass || all,
+             textures = (feat.textures && scene.textureCount() > 0) || all;
+  const std::uint32_t depthPasses = (mirror || glass) ? settings.maxDepth + 1 : 1;
+
+  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape, refining));
+  const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest, traceSpec({}));
+  const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
+  const std::vector<std::uint32_t> shadeFeatures = {lights, mirror, glass, textures};
+  const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
+  const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
+  const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {shape.model, refining});
+
+  const VkBuffer args = counters.handle();
+  bool clear = !refining;
+  for (std::uint64_t begin = 0; begin < totalPaths; begin += perBatch) {
+    const auto count = static_cast<std::uint32_t>(std::min<std::uint64_t>(perBatch, totalPaths - begin));
+    const auto batchFirst = static_cast<std::uint32_t>(begin);
+    beginCommands();
+    if (clear) {  // live flags of the shadow slots start cleared; gather_direct clears them after use
+      vkCmdFillBuffer(cmd, work.shadowContrib.handle(), 0, VK_WHOLE_SIZE, 0);
+      VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0,
+                           nullptr, 0, nullptr);
+      clear = false;
+    }
+    PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+    rec.dispatch(raygen, passConstants(batchFirst, count, 0, 0), groupsFor(count), Stage::Raygen);
+    for (std::uint32_t depth = 0; depth < depthPasses; ++depth) {
+      const std::uint32_t q = depth % 2;
+      PassConstants pc = passConstants(batchFirst, count, depth, q);
+      const VkDeviceSize queueArgs = offsetof(GpuCounters, dispatch) + q * sizeof(glm::uvec4);
+      const ComputePipeline& shade = pipeline(ShaderId::Shade, depthSpec(shadeFeatures, depth));
+      const ComputePipeline& gather = pipeline(ShaderId::GatherDirect, depthSpec({}, depth));
+      if (depth == 0) {
+        rec.dispatch(traceClosest, pc, groupsFor(count), Stage::Trace);
+        rec.dispatch(shade, pc, groupsFor(count), Stage::Shade);
+      } else {
+        rec.dispatchIndirect(traceClosest, pc, args, queueArgs, Stage::Trace);
+        rec.dispatchIndirect(shade, pc, args, queueArgs, Stage::Shade);
+      }
+      rec.dispatch(afterShade, pc, 1, Stage::Queues);
+      if (lights) {
+        rec.dispatchIndirect(traceAny, pc, args, offsetof(GpuCounters, dispatch) + 2 * sizeof(glm::uvec4),
+                             Stage::Shadow);
+        if (depth == 0)
+          rec.dispatch(gather, pc, groupsFor(count), Stage::Shadow);
+        else
+          rec.dispatchIndirect(gather, pc, args, queueArgs, Stage::Shadow);
+      }
+      rec.dispatch(endDepth, pc, 1, Stage::Queues);
+    }
+    rec.dispatch(resolve, passConstants(batchFirst, count, 0, 0), groupsFor(count / spp), Stage::Resolve);
+    submitAndWait();
+    rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+    checkCounters("render");
+    progress(static_cast<double>(begin + count) / static_cast<double>(totalPaths));
+  }
+}
+
+}  // namespace ht::gpu
