@@ -19,6 +19,7 @@ namespace ht::server {
 struct Daemon::Parts {
   DaemonConfig config;
   std::ostream& log;
+  std::vector<ListenClaim> claims;  // before the device: a second daemon is refused before it opens anything
   bool ownsWorkDir = false;
   gpu::VulkanContext context;
   RenderWorker worker;
@@ -31,9 +32,10 @@ struct Daemon::Parts {
   std::unique_ptr<grpc::Server> server;
   bool stopped = false;
 
-  Parts(DaemonConfig c, std::ostream& l, bool ownsWork)
+  Parts(DaemonConfig c, std::ostream& l, std::vector<ListenClaim> owned, bool ownsWork)
       : config(std::move(c)),
         log(l),
+        claims(std::move(owned)),
         ownsWorkDir(ownsWork),
         context({config.deviceIndex, false}),
         worker(context, config.limits.maxFramesInFlight),
@@ -61,9 +63,11 @@ DaemonConfig withWorkDir(DaemonConfig config, bool& owns) {
 
 Daemon::Daemon(DaemonConfig config, std::ostream& log) {
   for (const std::string& address : config.listen) checkListenAddress(config.sourcePath, address);
+  std::vector<ListenClaim> claims;
+  for (const std::string& address : config.listen) claims.emplace_back(address);  // throws AddressInUse
   bool owns = false;
   config = withWorkDir(std::move(config), owns);
-  parts_ = std::make_unique<Parts>(std::move(config), log, owns);
+  parts_ = std::make_unique<Parts>(std::move(config), log, std::move(claims), owns);
   log << "holotraced: device " << parts_->context.device().name << ", " << parts_->displays.reload(log)
       << " displays\n";
 }
@@ -81,19 +85,17 @@ void Daemon::start() {
   grpc::EnableDefaultHealthCheckService(true);  // grpc.health.v1 (docs/service.md §4 "Health")
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
-  for (const std::string& address : parts_->config.listen) {
-    prepareListenAddress(address);
-    builder.AddListeningPort(address, grpc::InsecureServerCredentials());
-  }
+  for (const ListenClaim& claim : parts_->claims) builder.AddListeningPort(claim.address(), grpc::InsecureServerCredentials());
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);  // gRPC's default shares a TCP port with a second daemon
   builder.SetMaxReceiveMessageSize(static_cast<int>(parts_->config.limits.maxMessageBytes));
   builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 60'000);  // notice dead peers (docs/service.md §4)
   builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, 20'000);
   builder.RegisterService(&parts_->service);
   parts_->server = builder.BuildAndStart();
   if (!parts_->server) throw IoError("holotraced: cannot listen on the configured addresses (in use? permissions?)");
-  for (const std::string& address : parts_->config.listen) {
-    finishListenAddress(address);
-    parts_->log << "holotraced: listening on " << address << "\n";
+  for (const ListenClaim& claim : parts_->claims) {
+    claim.finish();
+    parts_->log << "holotraced: listening on " << claim.address() << "\n";
   }
 }
 
@@ -113,7 +115,7 @@ void Daemon::shutdown(std::chrono::milliseconds grace) {
     parts_->server->Wait();
   }
   parts_->worker.stop();
-  for (const std::string& address : parts_->config.listen) removeListenAddress(address);
+  parts_->claims.clear();  // removes our sockets, releases the locks
 }
 
 std::size_t Daemon::reloadDisplays() { return parts_->displays.reload(parts_->log); }

@@ -8,6 +8,10 @@
 
 namespace ht::server {
 
+// StreamFrames' lowest frame rate (one frame per 1000 s): below it 1/fps is refused, not computed (docs/SERVICE.md §2).
+inline constexpr double kMinFramesPerSecond = 0.001;
+
+// Ranges of every limit: docs/SERVICE.md §2; values outside them, or fractional counts, are a ConfigError.
 struct Limits {
   std::uint32_t maxClients = 16;                 // concurrent streaming calls (RenderFrame/StreamFrames/Capture)
   std::uint32_t maxMessageBytes = 4u << 20;      // gRPC receive limit per message

@@ -60,6 +60,12 @@ void waitForTick(ServiceState& state, grpc::ServerContext& context, Clock::time_
   }
 }
 
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
 std::string captureStem(const std::string& name, std::uint32_t index) {
   char suffix[32];
   std::snprintf(suffix, sizeof suffix, "_f%04u", index);
@@ -115,14 +121,17 @@ grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v
 grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const v1::StreamRequest* request,
                                             grpc::ServerWriter<v1::FramePart>* writer) {
   return guarded([&] {
+    // The range first: 1/fps of a tiny rate overflows the clock's 64-bit nanoseconds (and a NaN compares false).
     const double fps = request->frames_per_second();
-    if (!(fps > 0.0) || fps > state_.config.limits.maxFramesPerSecond) {
-      throw BadRequest("frames_per_second", "must be in (0, " +
-                                                std::to_string(state_.config.limits.maxFramesPerSecond) + "]");
+    if (!(fps >= kMinFramesPerSecond && fps <= state_.config.limits.maxFramesPerSecond)) {
+      throw BadRequest("frames_per_second", shortNumber(fps) + " is not in [" + shortNumber(kMinFramesPerSecond) + ", " +
+                                                shortNumber(state_.config.limits.maxFramesPerSecond) +
+                                                "] (limits.max_frames_per_second)");
     }
     FrameJob job = checkRenderRequest(state_, request->render());
     StreamSlot slot(state_);
     const std::string client = clientKey(*context);
+    // <= 1000 s after the check above, >= 1 ms (limits.max_frames_per_second <= 1000): no overflow, never zero.
     const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / fps));
     const auto start = Clock::now();
     std::uint64_t tick = 0, dropped = 0;
