@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <thread>
 
 #include "common/error.h"
@@ -15,6 +16,14 @@
 #include "server/listen_address.h"
 
 namespace ht::server {
+
+namespace {
+
+SceneLibraryLimits sceneLimits(const Limits& limits) {
+  return {limits.maxTriangles, limits.maxSceneSessions, limits.sceneIdleSeconds, limits.maxSceneMemoryBytes};
+}
+
+}  // namespace
 
 struct Daemon::Parts {
   DaemonConfig config;
@@ -27,9 +36,12 @@ struct Daemon::Parts {
   DisplayRegistry displays;
   FileSink outputSink;
   FileSink uploadSink;
+  UploadBudget uploads;
+  CallWatchdog watchdog;
   ServiceState state;
   HolotraceService service;
   std::unique_ptr<grpc::Server> server;
+  std::thread janitor;  // ends idle scene sessions (SceneLibrary::sweep), cancels stalled calls (CallWatchdog)
   bool stopped = false;
 
   Parts(DaemonConfig c, std::ostream& l, std::vector<ListenClaim> owned, bool ownsWork)
@@ -39,11 +51,13 @@ struct Daemon::Parts {
         ownsWorkDir(ownsWork),
         context({config.deviceIndex, false}),
         worker(context, config.limits.maxFramesInFlight),
-        scenes(std::make_unique<SceneLibrary>(worker, config.limits.maxTriangles)),
+        scenes(std::make_unique<SceneLibrary>(worker, sceneLimits(config.limits))),
         displays(config.displaysDir),
         outputSink(config.outputRoot),
         uploadSink(config.workDir),
-        state{config, displays, *scenes, worker, outputSink, uploadSink},
+        uploads(config.limits.maxUploads, config.limits.maxUploadBytesInFlight),
+        watchdog(l),
+        state{config, displays, *scenes, worker, outputSink, uploadSink, uploads, watchdog},
         service(state) {}
 };
 
@@ -93,6 +107,16 @@ void Daemon::start() {
   builder.RegisterService(&parts_->service);
   parts_->server = builder.BuildAndStart();
   if (!parts_->server) throw IoError("holotraced: cannot listen on the configured addresses (in use? permissions?)");
+  parts_->janitor = std::thread([this] {
+    const Limits& l = parts_->config.limits;
+    const double shortest = std::min({l.sceneIdleSeconds, l.uploadIdleSeconds, l.streamStallSeconds});
+    const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(std::clamp(shortest / 4.0, 0.02, 1.0)));
+    while (parts_->state.sleepUntil(std::chrono::steady_clock::now() + period)) {
+      parts_->watchdog.check();
+      parts_->scenes->sweep();
+    }
+  });
   for (const ListenClaim& claim : parts_->claims) {
     claim.finish();
     parts_->log << "holotraced: listening on " << claim.address() << "\n";
@@ -103,6 +127,7 @@ void Daemon::shutdown(std::chrono::milliseconds grace) {
   if (parts_->stopped) return;
   parts_->stopped = true;
   parts_->state.beginShutdown();
+  if (parts_->janitor.joinable()) parts_->janitor.join();
   if (parts_->server) {
     if (auto* health = parts_->server->GetHealthCheckService()) health->Shutdown();
     // Our streams stop at their next frame boundary; wait for that (up to `grace`), then give gRPC a short

@@ -63,6 +63,17 @@ Limits parseLimits(const json& doc, const std::string& source) {
   readInteger(j, "max_capture_frames", l.maxCaptureFrames, 1, 1'000'000, source);
   readInteger(j, "max_spp", l.maxSpp, 1, 65536, source);
   readReal(j, "max_frames_per_second", l.maxFramesPerSecond, kMinFramesPerSecond, 1000.0, source);
+  readInteger(j, "max_scene_sessions", l.maxSceneSessions, 1, 65536, source);
+  readReal(j, "scene_idle_seconds", l.sceneIdleSeconds, 0.05, 7 * 86400.0, source);
+  readInteger(j, "max_scene_memory_bytes", l.maxSceneMemoryBytes, 1ull << 20, 1ull << 44, source);
+  readInteger(j, "max_uploads", l.maxUploads, 1, 1024, source);
+  readInteger(j, "max_upload_bytes_in_flight", l.maxUploadBytesInFlight, 1, 1ull << 44, source);
+  readReal(j, "upload_idle_seconds", l.uploadIdleSeconds, 0.05, 86400.0, source);
+  readReal(j, "stream_stall_seconds", l.streamStallSeconds, 0.05, 86400.0, source);
+  if (l.maxUploadBytesInFlight < l.maxSceneBytes) {  // else the largest allowed upload could never run
+    throw ConfigError(source, "limits.max_upload_bytes_in_flight", std::to_string(l.maxUploadBytesInFlight),
+                      "at least limits.max_scene_bytes = " + std::to_string(l.maxSceneBytes));
+  }
   return l;
 }
 

@@ -34,6 +34,12 @@ TEST(DaemonConfigLimitsTest, FractionalHugeAndWrappingValuesAreRefusedNamingTheF
   EXPECT_EQ(refusedField(R"({"max_frames_per_second": 1e-11})"), "limits.max_frames_per_second");
   EXPECT_EQ(refusedField(R"({"max_frames_per_second": 1e12})"), "limits.max_frames_per_second");
   EXPECT_EQ(refusedField(R"({"max_clients": 8, "max_message_bytes": 1048576, "max_frames_per_second": 60})"), "");
+  // A budget for uploads in flight smaller than one allowed upload could never admit it.
+  EXPECT_EQ(refusedField(R"({"max_scene_bytes": 2000000, "max_upload_bytes_in_flight": 1000000})"),
+            "limits.max_upload_bytes_in_flight");
+  EXPECT_EQ(refusedField(R"({"scene_idle_seconds": 0, "max_scene_sessions": 10})"), "limits.scene_idle_seconds");
+  EXPECT_EQ(refusedField(R"({"max_scene_sessions": 0})"), "limits.max_scene_sessions");
+  EXPECT_EQ(refusedField(R"({"max_uploads": 1.5})"), "limits.max_uploads");
   try {
     parseDaemonConfig(R"({"scene_root": "s", "output_root": "o", "limits": {"max_clients": 0.5}})", "t.json", "/");
   } catch (const ConfigError& e) {
@@ -45,7 +51,8 @@ TEST(DaemonConfigLimitsTest, FractionalHugeAndWrappingValuesAreRefusedNamingTheF
 TEST(DaemonConfigLimitsTest, AcceptedValuesAreExact) {
   const DaemonConfig c = parseDaemonConfig(
       R"({"scene_root": "s", "output_root": "o", "limits": {"max_message_bytes": 2147483647,
-          "max_scene_bytes": 1099511627776, "max_frames_per_second": 0.5}})",
+          "max_scene_bytes": 1099511627776, "max_upload_bytes_in_flight": 1099511627776,
+          "max_frames_per_second": 0.5}})",
       "t.json", "/");
   EXPECT_EQ(c.limits.maxMessageBytes, 2147483647u);
   EXPECT_EQ(c.limits.maxSceneBytes, 1ull << 40);

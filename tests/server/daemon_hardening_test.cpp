@@ -79,6 +79,25 @@ TEST(ListenOwnershipTest, SecondDaemonOnTheSameTcpPortIsRefusedNotShared) {
   for (int i = 0; i < 4; ++i) EXPECT_TRUE(daemonAnswers(address));
 }
 
+// Item 1: every `holotrace client` call loads a scene and exits. Sessions used to pile up under a hidden cap of 256,
+// after which every load was RESOURCE_EXHAUSTED until restart. 600 short-lived clients (own channel each) load and
+// render (every 10th renders, to stay fast) and never unload; all succeed (the 10,000-cycle form with RSS is the soak
+// program, bench/soak_main.cpp).
+class ShortLivedClientsTest : public InProcessDaemonTest<ShortLivedClientsTest> {};
+
+TEST_F(ShortLivedClientsTest, SixHundredLoadRenderCyclesWithoutUnloadKeepWorking) {
+  for (int cycle = 0; cycle < 600; ++cycle) {
+    auto client = connect(files_->socketAddress());
+    v1::SceneHandle handle;
+    const grpc::Status loaded = loadScene(*client, cycle % 2 ? "builtin:plain" : "cube.obj", &handle);
+    ASSERT_TRUE(loaded.ok()) << "cycle " << cycle << ": " << loaded.error_message();
+    if (cycle % 10 == 9) {
+      const grpc::Status rendered = renderOne(*client, tinyRequest(handle.scene_id()));
+      ASSERT_TRUE(rendered.ok()) << "cycle " << cycle << ": " << rendered.error_message();
+    }
+  }
+}
+
 class StreamRateTest : public InProcessDaemonTest<StreamRateTest> {};
 
 grpc::Status streamAt(v1::Holotrace::Stub& stub, const std::string& sceneId, double fps, int* frames) {
