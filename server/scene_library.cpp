@@ -248,7 +248,7 @@ void SceneLibrary::fitBudgetLocked(const std::string& keepSession, bool evictSes
   }
 }
 
-void SceneLibrary::sweep() {
+bool SceneLibrary::sweep() {
   std::lock_guard lock(mutex_);
   expireLocked(Clock::now());
   try {
@@ -256,6 +256,10 @@ void SceneLibrary::sweep() {
   } catch (const LimitExceeded&) {
     // Pinned sessions alone exceed the budget; loads are refused until their calls end.
   }
+  const std::uint64_t released = sessionsReleased_ + contentsEvicted_;
+  const bool any = released != releasedAtLastSweep_;
+  releasedAtLastSweep_ = released;
+  return any;
 }
 
 void SceneLibrary::updateCamera(const std::string& id, const CameraPlacement& placement,

@@ -110,8 +110,8 @@ class SceneLibrary {
                        const std::function<void(Scene&)>& edit);
 
   // Ends sessions idle for longer than the TTL and evicts contents over the budget (the daemon calls it
-  // periodically; every open() does too).
-  void sweep();
+  // periodically; every open() does too). True if any session or content was released since the last sweep.
+  bool sweep();
   std::size_t contentCount() const;
   SceneLibraryStats stats() const;
 
@@ -149,6 +149,7 @@ class SceneLibrary {
   std::map<std::string, SessionEntry> sessions_;
   std::uint64_t nextSession_ = 1;
   std::uint64_t sessionsReleased_ = 0, contentsEvicted_ = 0;
+  std::uint64_t releasedAtLastSweep_ = 0;
 };
 
 // 64-bit FNV-1a of `bytes`, as 16 hex digits (content key; not a security boundary).
