@@ -85,8 +85,7 @@ struct Worker {
     deadline(context);
     auto reader = stub.RenderFrame(&context, request(sceneId));
     v1::FramePart part;
-    while (reader->Read(&part)) {
-    }
+    while (reader->Read(&part)) {}
     const grpc::Status s = reader->Finish();
     tally.count("render", s.error_code(), s.error_message());
     return s.ok();
@@ -138,13 +137,11 @@ struct Worker {
     auto reader = stub->StreamFrames(&context, req);
     v1::FramePart part;
     const int parts = pauseReader ? 2 : 5 + pick(30);
-    for (int i = 0; i < parts && reader->Read(&part); ++i) {
-    }
+    for (int i = 0; i < parts && reader->Read(&part); ++i) {}
     if (pauseReader) std::this_thread::sleep_for(std::chrono::milliseconds(500 + pick(2500)));  // past the stall limit
     context.TryCancel();
     if (!pauseReader && pick(2) == 0) return;  // vanished: no Finish, the channel closes
-    while (reader->Read(&part)) {
-    }
+    while (reader->Read(&part)) {}
     const grpc::Status s = reader->Finish();
     tally.count(pauseReader ? "paused-stream" : "stream", s.error_code(), s.error_message());
   }
@@ -202,13 +199,20 @@ struct Worker {
 
   void act() {
     const int roll = pick(100);
-    if (roll < 35) loadRender();
-    else if (roll < 50) upload();
-    else if (roll < 65) stream(false);
-    else if (roll < 75) capture();
-    else if (roll < 80) stalledUpload();
-    else if (roll < 85) stream(true);
-    else status();
+    if (roll < 35)
+      loadRender();
+    else if (roll < 50)
+      upload();
+    else if (roll < 65)
+      stream(false);
+    else if (roll < 75)
+      capture();
+    else if (roll < 80)
+      stalledUpload();
+    else if (roll < 85)
+      stream(true);
+    else
+      status();
   }
 };
 

@@ -15,7 +15,7 @@ inline constexpr double kSoakSceneIdleSeconds = 3.0;
 class SoakDaemon {
  public:
   SoakDaemon(const std::string& exe, const std::string& displaysDir);  // throws std::runtime_error
-  ~SoakDaemon();                                                        // SIGKILL if still running; removes the dir
+  ~SoakDaemon();                                                       // SIGKILL if still running; removes the dir
   SoakDaemon(const SoakDaemon&) = delete;
   SoakDaemon& operator=(const SoakDaemon&) = delete;
 

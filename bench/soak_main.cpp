@@ -85,7 +85,8 @@ class Sampler {
       const auto start = Clock::now();
       while (!stop_.load()) {
         if (auto s = daemonStatus(stub)) {
-          samples_.push_back({std::chrono::duration<double>(Clock::now() - start).count(), *s, tally.loadRenderCycles()});
+          samples_.push_back(
+              {std::chrono::duration<double>(Clock::now() - start).count(), *s, tally.loadRenderCycles()});
         }
         for (double waited = 0; waited < period && !stop_.load(); waited += 0.05) {
           std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -109,9 +110,8 @@ void writeCsv(const std::vector<Sample>& samples, const std::string& file) {
   std::ofstream out(file);
   out << "seconds,rss_kib,threads,fds,sessions,scene_mib,cycles\n";
   for (const Sample& s : samples) {
-    out << s.seconds << "," << s.status.resident_kib() << "," << s.status.threads() << "," << s.status.open_fds()
-        << "," << s.status.scene_sessions() << "," << s.status.scene_memory_bytes() / 1048576.0 << "," << s.cycles
-        << "\n";
+    out << s.seconds << "," << s.status.resident_kib() << "," << s.status.threads() << "," << s.status.open_fds() << ","
+        << s.status.scene_sessions() << "," << s.status.scene_memory_bytes() / 1048576.0 << "," << s.cycles << "\n";
   }
   if (!out) throw std::runtime_error("cannot write " + file);
 }
@@ -164,8 +164,9 @@ int soak(const SoakOptions& o) {
   }
   std::cout << "calls (gRPC status code counts; 0 OK, 1 CANCELLED, 5 NOT_FOUND, 8 RESOURCE_EXHAUSTED):\n"
             << tally.report();
-  std::cout << "load/render cycles: " << tally.loadRenderCycles() << "; sessions released by the daemon: "
-            << end.scene_sessions_released() << "; samples: " << samples.size() << "\n";
+  std::cout << "load/render cycles: " << tally.loadRenderCycles()
+            << "; sessions released by the daemon: " << end.scene_sessions_released() << "; samples: " << samples.size()
+            << "\n";
   std::printf("at rest after warm-up: RSS %.1f MiB, %u threads, %u fds, %u sessions\n", base.resident_kib() / 1024.0,
               base.threads(), base.open_fds(), base.scene_sessions());
   std::printf("at rest at the end:    RSS %.1f MiB, %u threads, %u fds, %u sessions\n", end.resident_kib() / 1024.0,
@@ -174,10 +175,11 @@ int soak(const SoakOptions& o) {
               peakRss / 1024.0, peakThreads, peakFds, rssSlope(samples, mainFrom));
   const std::uint64_t rssAllowance = std::max<std::uint64_t>(o.rssToleranceKiB, base.resident_kib() / 10);
   bool ok = check(tally.failures() == 0, std::to_string(tally.failures()) + " unexpected failures");
-  ok &= check(end.resident_kib() <= base.resident_kib() + rssAllowance,
-              "RSS at rest grew " + std::to_string(static_cast<long long>(end.resident_kib()) -
-                                                   static_cast<long long>(base.resident_kib())) +
-                  " KiB (allowed " + std::to_string(rssAllowance) + ")");
+  ok &= check(
+      end.resident_kib() <= base.resident_kib() + rssAllowance,
+      "RSS at rest grew " +
+          std::to_string(static_cast<long long>(end.resident_kib()) - static_cast<long long>(base.resident_kib())) +
+          " KiB (allowed " + std::to_string(rssAllowance) + ")");
   ok &= check(end.threads() <= base.threads() + o.threadTolerance,
               "threads at rest " + std::to_string(base.threads()) + " -> " + std::to_string(end.threads()));
   ok &= check(end.open_fds() <= base.open_fds() + o.fdTolerance,

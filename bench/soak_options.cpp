@@ -30,7 +30,7 @@ double number(const std::string& option, const std::string& text) {
 
 void apply(SoakOptions& o, const std::string& key, const std::string& value) {
   const std::map<std::string, std::string*> texts = {
-      {"--daemon", &o.daemonExe}, {"--socket", &o.socket},         {"--displays-dir", &o.displaysDir},
+      {"--daemon", &o.daemonExe}, {"--socket", &o.socket},          {"--displays-dir", &o.displaysDir},
       {"--display", &o.display},  {"--output-root", &o.outputRoot}, {"--samples-csv", &o.samplesCsv}};
   if (auto it = texts.find(key); it != texts.end()) {
     *it->second = value;

@@ -64,11 +64,24 @@ struct Daemon::Parts {
 
 namespace {
 
+// Until shutdown, every min(1 s, shortest idle/stall limit / 4): cancels stalled calls, ends idle sessions, evicts.
+void runJanitor(ServiceState& state, CallWatchdog& watchdog, SceneLibrary& scenes) {
+  const Limits& l = state.config.limits;
+  const double shortest = std::min({l.sceneIdleSeconds, l.uploadIdleSeconds, l.streamStallSeconds});
+  const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(std::clamp(shortest / 4.0, 0.02, 1.0)));
+  while (state.sleepUntil(std::chrono::steady_clock::now() + period)) {
+    const bool cancelled = watchdog.check() != 0;
+    // glibc keeps freed blocks in the arena of the thread that freed them (every gRPC thread gets one), so released
+    // scenes and uploads stay resident (+70 MiB at rest after a one-minute soak, bench/soak_main.cpp);
+    // malloc_trim(0) hands the free pages of all arenas back to the OS (malloc_trim(3)).
+    if (scenes.sweep() || cancelled) ::malloc_trim(0);
+  }
+}
+
 DaemonConfig withWorkDir(DaemonConfig config, bool& owns) {
   owns = config.workDir.empty();
-  if (owns) {
-    config.workDir = std::filesystem::temp_directory_path() / ("holotraced-" + std::to_string(::getpid()));
-  }
+  if (owns) { config.workDir = std::filesystem::temp_directory_path() / ("holotraced-" + std::to_string(::getpid())); }
   std::filesystem::create_directories(config.workDir);
   ::chmod(config.workDir.c_str(), 0700);
   return config;
@@ -100,7 +113,8 @@ void Daemon::start() {
   grpc::EnableDefaultHealthCheckService(true);  // grpc.health.v1 (docs/service.md §4 "Health")
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
-  for (const ListenClaim& claim : parts_->claims) builder.AddListeningPort(claim.address(), grpc::InsecureServerCredentials());
+  for (const ListenClaim& claim : parts_->claims)
+    builder.AddListeningPort(claim.address(), grpc::InsecureServerCredentials());
   builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);  // gRPC's default shares a TCP port with a second daemon
   builder.SetMaxReceiveMessageSize(static_cast<int>(parts_->config.limits.maxMessageBytes));
   builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 60'000);  // notice dead peers (docs/service.md §4)
@@ -108,19 +122,7 @@ void Daemon::start() {
   builder.RegisterService(&parts_->service);
   parts_->server = builder.BuildAndStart();
   if (!parts_->server) throw IoError("holotraced: cannot listen on the configured addresses (in use? permissions?)");
-  parts_->janitor = std::thread([this] {
-    const Limits& l = parts_->config.limits;
-    const double shortest = std::min({l.sceneIdleSeconds, l.uploadIdleSeconds, l.streamStallSeconds});
-    const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-        std::chrono::duration<double>(std::clamp(shortest / 4.0, 0.02, 1.0)));
-    while (parts_->state.sleepUntil(std::chrono::steady_clock::now() + period)) {
-      const bool cancelled = parts_->watchdog.check() != 0;
-      // glibc keeps freed blocks in the arena of the thread that freed them (every gRPC thread gets one), so
-      // released scenes and uploads stay resident (+70 MiB at rest after a one-minute soak, bench/soak_main.cpp);
-      // malloc_trim(0) hands the free pages of all arenas back to the OS (malloc_trim(3)).
-      if (parts_->scenes->sweep() || cancelled) ::malloc_trim(0);
-    }
-  });
+  parts_->janitor = std::thread([this] { runJanitor(parts_->state, parts_->watchdog, *parts_->scenes); });
   for (const ListenClaim& claim : parts_->claims) {
     claim.finish();
     parts_->log << "holotraced: listening on " << claim.address() << "\n";

@@ -90,8 +90,8 @@ int parseDevice(const json& doc, const std::string& source) {
 
 std::string defaultListenAddress() {
   const char* runtime = std::getenv("XDG_RUNTIME_DIR");
-  const std::filesystem::path dir = runtime && *runtime ? std::filesystem::path(runtime) / "holotrace"
-                                                        : std::filesystem::path("/run/holotrace");
+  const std::filesystem::path dir =
+      runtime && *runtime ? std::filesystem::path(runtime) / "holotrace" : std::filesystem::path("/run/holotrace");
   return "unix:" + (dir / "holotraced.sock").string();
 }
 

@@ -117,11 +117,13 @@ void removeStaleSocket(const std::string& address, const std::string& path) {
   struct stat st {};
   if (::lstat(path.c_str(), &st) != 0) return;
   if (!S_ISSOCK(st.st_mode)) {
-    throw AddressInUse("holotraced: " + address + ": " + path + " exists and is not a socket; remove it or choose "
+    throw AddressInUse("holotraced: " + address + ": " + path +
+                       " exists and is not a socket; remove it or choose "
                        "another listen address");
   }
   if (socketIsLive(path)) {
-    throw AddressInUse("holotraced: " + address + " is served by another process that holds no lock (an older "
+    throw AddressInUse("holotraced: " + address +
+                       " is served by another process that holds no lock (an older "
                        "holotraced?); stop it first or give this daemon another listen address");
   }
   ::unlink(path.c_str());
@@ -139,7 +141,8 @@ void probeTcpPort(const std::string& address) {
   ::close(fd);
   if (rc == 0) return;
   if (err == EADDRINUSE) {
-    throw AddressInUse("holotraced: " + address + " is in use by another process (another holotraced?); stop it "
+    throw AddressInUse("holotraced: " + address +
+                       " is in use by another process (another holotraced?); stop it "
                        "first or give this daemon another port");
   }
   throw IoError("holotraced: cannot bind " + address + ": " + errnoText(err));

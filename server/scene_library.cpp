@@ -23,14 +23,14 @@ std::string contentHash(std::span<const std::uint8_t> bytes) {
 std::uint64_t sceneMemoryBytes(const Scene& scene) {
   std::uint64_t texels = 0;
   for (const Texture& t : scene.textures) texels += t.texels.size();
-  const std::uint64_t vertices = scene.positions.size(), normals = scene.normals.size(),
-                      uvs = scene.texcoords.size(), triangles = scene.triangles.size();
+  const std::uint64_t vertices = scene.positions.size(), normals = scene.normals.size(), uvs = scene.texcoords.size(),
+                      triangles = scene.triangles.size();
   const std::uint64_t host = vertices * 12 + normals * 12 + uvs * 8 + triangles * 16 + texels * 16 +
                              scene.materials.size() * sizeof(Material) + scene.lights.size() * sizeof(Light);
   // Device: vec4 vertices and normals, vec2 uvs, uvec4 triangles, texels; BVH: <= 2 nodes of 64 bytes per triangle
   // plus a 48-byte triangle record (gpu/gpu_scene.h, bvh/gpu_layout.h).
-  const std::uint64_t device = vertices * 16 + normals * 16 + uvs * 8 + triangles * 16 + texels * 16 +
-                               triangles * (2 * 64 + 48);
+  const std::uint64_t device =
+      vertices * 16 + normals * 16 + uvs * 8 + triangles * 16 + texels * 16 + triangles * (2 * 64 + 48);
   return host + device;
 }
 
@@ -62,11 +62,13 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
   content->memoryBytes = sceneMemoryBytes(content->scene);
   if (content->memoryBytes > limits_.memoryBudget) {
     throw LimitExceeded("scene needs about " + std::to_string(content->memoryBytes >> 20) +
-                        " MiB (limits.max_scene_memory_bytes = " + std::to_string(limits_.memoryBudget >> 20) + " MiB)");
+                        " MiB (limits.max_scene_memory_bytes = " + std::to_string(limits_.memoryBudget >> 20) +
+                        " MiB)");
   }
   worker_
-      .submit(client,
-              [&](gpu::VulkanContext& context) { content->renderer = makeRenderer(context, content->scene); }, false)
+      .submit(
+          client, [&](gpu::VulkanContext& context) { content->renderer = makeRenderer(context, content->scene); },
+          false)
       .get();
   return content;
 }
@@ -118,7 +120,8 @@ std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client
     }
   }
   auto session = std::make_shared<SceneSession>();
-  session->id = "s" + std::to_string(nextSession_++) + "-" + (bytes.empty() ? std::string("builtin") : key.substr(0, 16));
+  session->id =
+      "s" + std::to_string(nextSession_++) + "-" + (bytes.empty() ? std::string("builtin") : key.substr(0, 16));
   session->content = content;
   session->reused = reused;
   sessions_[session->id] = SessionEntry{session, Clock::now(), 0};
@@ -274,7 +277,7 @@ void SceneLibrary::updateCamera(const std::string& id, const CameraPlacement& pl
 }
 
 SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, const std::string& id, bool movesGeometry,
-                                                const std::function<void(Scene&)>& edit) {
+                                                 const std::function<void(Scene&)>& edit) {
   std::lock_guard editing(editMutex_);  // one edit BVH build at a time, and edits of one session in order
   const std::shared_ptr<const SceneSession> session = find(id);
   auto content = std::make_shared<SceneContent>(*session->content);  // copies the scene, shares the Renderer
@@ -282,13 +285,17 @@ SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, cons
   const bool newRenderer = content->editedBy != id;
   const auto start = std::chrono::steady_clock::now();
   worker_
-      .submit(client,
-              [&](gpu::VulkanContext& context) {
-                if (newRenderer) content->renderer = makeRenderer(context, content->scene);
-                else if (movesGeometry) content->renderer->replaceScene(content->scene);
-                else content->renderer->updateLights(content->scene);
-              },
-              false)
+      .submit(
+          client,
+          [&](gpu::VulkanContext& context) {
+            if (newRenderer)
+              content->renderer = makeRenderer(context, content->scene);
+            else if (movesGeometry)
+              content->renderer->replaceScene(content->scene);
+            else
+              content->renderer->updateLights(content->scene);
+          },
+          false)
       .get();
   EditResult result;
   result.updateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

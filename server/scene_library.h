@@ -42,7 +42,7 @@ struct SceneContent {
 struct SceneSession {
   std::string id;
   std::shared_ptr<SceneContent> content;
-  CameraPlacement cameraOverride;  // target / size set by UpdateScene (unset = display's own)
+  CameraPlacement cameraOverride;                          // target / size set by UpdateScene (unset = display's own)
   std::optional<double> observerDistance, observerHeight;  // tracked HPO observer (UpdateScene)
   bool reused = false;
 };
@@ -56,8 +56,8 @@ struct SceneLibraryLimits {
 
 struct SceneLibraryStats {
   std::uint32_t sessions = 0;
-  std::uint32_t contents = 0;      // distinct contents alive (cached, or held by a session)
-  std::uint64_t memoryBytes = 0;   // their estimated memory
+  std::uint32_t contents = 0;     // distinct contents alive (cached, or held by a session)
+  std::uint64_t memoryBytes = 0;  // their estimated memory
   std::uint64_t sessionsReleased = 0;
   std::uint64_t contentsEvicted = 0;
 };
@@ -78,7 +78,7 @@ class SceneLibrary {
   std::shared_ptr<const SceneSession> open(const std::string& client, const std::string& spec,
                                            std::span<const std::uint8_t> bytes);
   std::shared_ptr<const SceneSession> find(const std::string& id);  // counts as use; throws UnknownScene
-  void unload(const std::string& id);                                // throws UnknownScene
+  void unload(const std::string& id);                               // throws UnknownScene
 
   // Keeps a session from idling out or being evicted while a call renders it (and counts as use at both ends).
   class Pin {

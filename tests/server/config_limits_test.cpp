@@ -17,9 +17,7 @@ std::string refusedField(const std::string& limitsJson) {
   try {
     parseDaemonConfig(R"({"scene_root": "s", "output_root": "o", "limits": )" + limitsJson + "}", "t.json", "/");
     return "";
-  } catch (const ConfigError& e) {
-    return e.field();
-  }
+  } catch (const ConfigError& e) { return e.field(); }
 }
 
 TEST(DaemonConfigLimitsTest, FractionalHugeAndWrappingValuesAreRefusedNamingTheField) {

@@ -29,9 +29,7 @@ std::string secondDaemonError(const DaemonConfig& config) {
   try {
     Daemon second(config, std::cerr);
     second.start();
-  } catch (const IoError& e) {
-    return e.what();
-  }
+  } catch (const IoError& e) { return e.what(); }
   return "";
 }
 
@@ -42,7 +40,7 @@ TEST(ListenOwnershipTest, SecondDaemonOnTheSameSocketIsRefusedAndTheFirstKeepsSe
   ASSERT_TRUE(daemonAnswers(files.socketAddress()));
   const std::string error = secondDaemonError(files.config());
   EXPECT_NE(error.find("another holotraced"), std::string::npos) << error;
-  EXPECT_NE(error.find(std::to_string(::getpid())), std::string::npos) << error;  // the holder's pid
+  EXPECT_NE(error.find(std::to_string(::getpid())), std::string::npos) << error;     // the holder's pid
   EXPECT_TRUE(std::filesystem::exists(files.dir.path / "run" / "holotraced.sock"));  // not unlinked by the loser
   EXPECT_TRUE(daemonAnswers(files.socketAddress()));
   first.shutdown(std::chrono::milliseconds(0));
@@ -111,8 +109,7 @@ grpc::Status streamAt(v1::Holotrace::Stub& stub, const std::string& sceneId, dou
   *frames = 0;
   while (*frames < 5 && readFrame(*reader, frame)) ++*frames;
   if (*frames == 5) context.TryCancel();  // else the stream ended with the daemon's status
-  while (readFrame(*reader, frame)) {
-  }
+  while (readFrame(*reader, frame)) {}
   return reader->Finish();
 }
 

@@ -110,8 +110,7 @@ TEST(SceneSessionTest, IdleSessionsEndAfterTheTtlButNotWhileAStreamRendersThem) 
   EXPECT_GE(sessionStatus(*d.stub).scene_sessions_released(), 1u);
   ASSERT_TRUE(readFrame(*reader, frame));  // the pinned session still renders
   context.TryCancel();
-  while (readFrame(*reader, frame)) {
-  }
+  while (readFrame(*reader, frame)) {}
   EXPECT_EQ(reader->Finish().error_code(), StatusCode::CANCELLED);
   const auto deadline = SessionClock::now() + std::chrono::seconds(5);  // unpinned now: it idles out too
   while (sessionStatus(*d.stub).scene_sessions() != 0 && SessionClock::now() < deadline) {

@@ -127,8 +127,7 @@ TEST(StalledClientTest, AStreamWhoseClientStopsReadingIsCancelledAndFreesItsSlot
   }
   EXPECT_EQ(stallStatus(*d.stub).active_streams(), 0u);
   EXPECT_TRUE(renderOne(*d.stub, tinyRequest(handle.scene_id())).ok());  // the daemon serves others meanwhile
-  while (readFrame(*reader, frame)) {
-  }
+  while (readFrame(*reader, frame)) {}
   EXPECT_EQ(reader->Finish().error_code(), StatusCode::CANCELLED);
 }
 
