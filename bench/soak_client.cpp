@@ -198,7 +198,7 @@ struct Worker {
   }
 
   void act() {
-    const int roll = pick(100);
+    const int roll = target.loadRenderOnly ? 0 : pick(100);
     if (roll < 35)
       loadRender();
     else if (roll < 50)

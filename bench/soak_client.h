@@ -16,6 +16,7 @@ struct SoakTarget {
   std::string display;
   std::filesystem::path outputRoot;  // captures are removed from here ("" = captures are skipped)
   bool hasGridScenes = false;        // scene root holds grid0..5.obj (a spawned daemon)
+  bool loadRenderOnly = false;       // every action is loadRender
 };
 
 // Outcomes of all workers' calls.

@@ -53,13 +53,18 @@ v1::StatusResponse waitReady(v1::Holotrace::Stub& stub) {
   throw std::runtime_error("holotraced did not answer Status within 60 s");
 }
 
-void runClients(const SoakTarget& target, const SoakOptions& o, std::uint64_t seed, double seconds, SoakTally& tally) {
+// Runs the workers for `seconds`, or until `tally` counts `cycles` load/render cycles (cycles > 0) if sooner.
+void runClients(const SoakTarget& target, const SoakOptions& o, std::uint64_t seed, double seconds,
+                std::uint64_t cycles, SoakTally& tally) {
   std::atomic<bool> stop{false};
   std::vector<std::thread> workers;
   for (int i = 0; i < o.clients; ++i) {
     workers.emplace_back([&, i] { runSoakWorker(target, seed, i, stop, tally); });
   }
-  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  while (Clock::now() < until && (cycles == 0 || tally.loadRenderCycles() < cycles)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
   stop = true;
   for (std::thread& w : workers) w.join();
 }
@@ -134,10 +139,10 @@ bool check(bool ok, const std::string& what) {
 
 int soak(const SoakOptions& o) {
   std::unique_ptr<SoakDaemon> spawned;
-  SoakTarget target{o.socket, o.display, o.outputRoot, false};
+  SoakTarget target{o.socket, o.display, o.outputRoot, false, o.loadRenderOnly};
   if (!o.daemonExe.empty()) {
     spawned = std::make_unique<SoakDaemon>(o.daemonExe, o.displaysDir);
-    target = {spawned->address(), o.display, spawned->outputRoot(), true};
+    target = {spawned->address(), o.display, spawned->outputRoot(), true, o.loadRenderOnly};
   }
   const double quiesce = o.quiesceSeconds > 0 ? o.quiesceSeconds : spawned ? kSoakSceneIdleSeconds + 1.5 : 5.0;
   auto stub = v1::Holotrace::NewStub(grpc::CreateChannel(target.address, grpc::InsecureChannelCredentials()));
@@ -147,10 +152,11 @@ int soak(const SoakOptions& o) {
   SoakTally tally;
   Sampler sampler(*stub, o.sampleSeconds, tally);
   const auto t0 = Clock::now();
-  runClients(target, o, o.seed, o.warmupSeconds, tally);
+  runClients(target, o, o.seed, o.warmupSeconds, 0, tally);
   const v1::StatusResponse base = atRest(*stub, quiesce);
   const double mainFrom = std::chrono::duration<double>(Clock::now() - t0).count();
-  runClients(target, o, o.seed + 1, o.seconds, tally);
+  const std::uint64_t warmCycles = tally.loadRenderCycles();
+  runClients(target, o, o.seed + 1, o.seconds, o.cycles == 0 ? 0 : warmCycles + o.cycles, tally);
   const v1::StatusResponse end = atRest(*stub, quiesce);
   const std::vector<Sample> samples = sampler.finish();
   if (!o.samplesCsv.empty()) writeCsv(samples, o.samplesCsv);

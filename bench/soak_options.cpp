@@ -9,11 +9,13 @@ namespace ht::bench {
 const char* const kSoakUsage =
     "usage: holotrace-soak (--daemon PATH --displays-dir DIR | --socket ADDR [--output-root DIR]) [--seconds 1800]\n"
     "                      [--warmup-seconds S] [--clients 8] [--seed 1] [--sample-seconds 2] [--display ID]\n"
-    "                      [--quiesce-seconds S] [--rss-tolerance-mib 24] [--samples-csv FILE]\n"
+    "                      [--quiesce-seconds S] [--rss-tolerance-mib 24] [--samples-csv FILE] [--cycles N]\n"
+    "                      [--mix all|load-render]\n"
     "  Mixed clients load, upload, stream, capture, cancel, stall and disconnect against holotraced for --seconds\n"
     "  after a warm-up; the daemon's RSS, threads and open fds are sampled through Status. At rest after the warm-up\n"
     "  and again after the run they must match (within the tolerances), and no call may fail unexpectedly; the\n"
-    "  exit status is 0 only then (docs/SERVICE.md §10).\n";
+    "  exit status is 0 only then (docs/SERVICE.md §10). --cycles N ends the run after N load/render cycles;\n"
+    "  --mix load-render makes every action a short-lived load + render client.\n";
 
 namespace {
 
@@ -46,6 +48,11 @@ void apply(SoakOptions& o, const std::string& key, const std::string& value) {
     o.sampleSeconds = number(key, value);
   } else if (key == "--quiesce-seconds") {
     o.quiesceSeconds = number(key, value);
+  } else if (key == "--cycles") {
+    o.cycles = static_cast<std::uint64_t>(number(key, value));
+  } else if (key == "--mix") {
+    if (value != "all" && value != "load-render") throw std::invalid_argument("--mix must be all or load-render");
+    o.loadRenderOnly = value == "load-render";
   } else if (key == "--rss-tolerance-mib") {
     o.rssToleranceKiB = static_cast<std::uint64_t>(number(key, value) * 1024);
   } else {

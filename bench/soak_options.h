@@ -19,7 +19,9 @@ struct SoakOptions {
   double quiesceSeconds = 0.0;  // wait after the workers stop before the at-rest sample (0 = TTL + 1.5 s spawned, 5 s)
   std::uint64_t rssToleranceKiB = 24 * 1024;  // at-rest RSS may exceed the baseline by this (or 10 %)
   std::uint32_t threadTolerance = 4, fdTolerance = 4;
-  std::string samplesCsv;  // every sample: seconds,rss_kib,threads,fds,sessions,scene_mib,cycles
+  std::string samplesCsv;       // every sample: seconds,rss_kib,threads,fds,sessions,scene_mib,cycles
+  std::uint64_t cycles = 0;     // > 0: the run ends after this many load/render cycles (or --seconds, if sooner)
+  bool loadRenderOnly = false;  // --mix load-render: every action is a short-lived load + render client
 };
 
 extern const char* const kSoakUsage;
