@@ -134,8 +134,8 @@ struct Renderer::Impl {
 
   bvh::BuildOptions buildOptions;
 
-  Impl(VulkanContext::Impl& v, const Scene& s, const bvh::BuildOptions& o)
-      : vk(v), scene(v, s, o), layout(v.pipelines->layout()), descriptors(v, layout.setLayout()), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
+  Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o)
+      : vk(v), scene(std::move(s)), layout(v.pipelines->layout()), descriptors(v, layout.setLayout()), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
         counters(v, sizeof(GpuCounters), MemoryPlace::HostReadback), buildOptions(o) {
     VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -708,7 +708,10 @@ std::vector<gpu_shared::HtHit> Renderer::Impl::traceBatch(std::span<const gpu_sh
 }
 
 Renderer::Renderer(VulkanContext& context, const Scene& scene, const bvh::BuildOptions& buildOptions)
-    : impl_(std::make_unique<Impl>(context.impl(), scene, buildOptions)) {}
+    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, buildOptions), buildOptions)) {}
+
+Renderer::Renderer(VulkanContext& context, const Scene& scene, bvh::GpuBvh bvh, const bvh::BuildOptions& buildOptions)
+    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, std::move(bvh)), buildOptions)) {}
 
 Renderer::~Renderer() = default;
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "bvh/gpu_layout.h"
 #include "scene/load_scene.h"
 #include "server/path_rules.h"
 
@@ -41,10 +42,10 @@ SceneLibrary::~SceneLibrary() {
   contents_.clear();
 }
 
-std::shared_ptr<gpu::Renderer> SceneLibrary::makeRenderer(gpu::VulkanContext& context, const Scene& scene) {
+std::shared_ptr<gpu::Renderer> SceneLibrary::adopt(gpu::Renderer* renderer) {
   // A Renderer frees command buffers of the device's shared pool: it must die on the render worker thread, wherever
   // its last owner lets go (an evicted session, a frame job that held it).
-  return std::shared_ptr<gpu::Renderer>(new gpu::Renderer(context, scene),
+  return std::shared_ptr<gpu::Renderer>(renderer,
                                         [&worker = worker_](gpu::Renderer* r) { worker.dispose([r] { delete r; }); });
 }
 
@@ -65,9 +66,15 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
                         " MiB (limits.max_scene_memory_bytes = " + std::to_string(limits_.memoryBudget >> 20) +
                         " MiB)");
   }
+  // The BVH is built here, on the loading call's thread: the render worker only uploads it, so other clients'
+  // frames wait for an upload, not for a build (loads never block other clients' frames, docs/SERVICE.md §5).
+  bvh::GpuBvh bvh = bvh::buildGpuBvh(content->scene.positions, content->scene.triangles, {});
   worker_
       .submit(
-          client, [&](gpu::VulkanContext& context) { content->renderer = makeRenderer(context, content->scene); },
+          client,
+          [&](gpu::VulkanContext& context) {
+            content->renderer = adopt(new gpu::Renderer(context, content->scene, std::move(bvh)));
+          },
           false)
       .get();
   return content;
@@ -284,12 +291,14 @@ SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, cons
   edit(content->scene);
   const bool newRenderer = content->editedBy != id;
   const auto start = std::chrono::steady_clock::now();
+  bvh::GpuBvh bvh;  // a first edit's BVH is built here, off the render worker (as a load's)
+  if (newRenderer) bvh = bvh::buildGpuBvh(content->scene.positions, content->scene.triangles, {});
   worker_
       .submit(
           client,
           [&](gpu::VulkanContext& context) {
             if (newRenderer)
-              content->renderer = makeRenderer(context, content->scene);
+              content->renderer = adopt(new gpu::Renderer(context, content->scene, std::move(bvh)));
             else if (movesGeometry)
               content->renderer->replaceScene(content->scene);
             else

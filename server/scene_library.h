@@ -130,7 +130,7 @@ class SceneLibrary {
   std::shared_ptr<SceneContent> build(const std::string& client, const std::string& key, const std::string& spec);
   std::shared_ptr<SceneContent> contentFor(const std::string& client, const std::string& key, const std::string& spec,
                                            bool& reused);
-  std::shared_ptr<gpu::Renderer> makeRenderer(gpu::VulkanContext& context, const Scene& scene);
+  std::shared_ptr<gpu::Renderer> adopt(gpu::Renderer* renderer);  // owned, destroyed on the render worker
   SessionEntry& entryLocked(const std::string& id);  // throws UnknownScene
   void expireLocked(Clock::time_point now);
   bool evictOneSessionLocked(const std::string& keep);
