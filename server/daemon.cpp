@@ -110,14 +110,14 @@ Daemon::~Daemon() {
 }
 
 void Daemon::start() {
-  grpc::EnableDefaultHealthCheckService(true);  // grpc.health.v1 (docs/service.md §4 "Health")
+  grpc::EnableDefaultHealthCheckService(true);  // grpc.health.v1 (docs/SERVICE.md §4 "Health")
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
   for (const ListenClaim& claim : parts_->claims)
     builder.AddListeningPort(claim.address(), grpc::InsecureServerCredentials());
   builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);  // gRPC's default shares a TCP port with a second daemon
   builder.SetMaxReceiveMessageSize(static_cast<int>(parts_->config.limits.maxMessageBytes));
-  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 60'000);  // notice dead peers (docs/service.md §4)
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 60'000);  // notice dead peers (docs/SERVICE.md §4)
   builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, 20'000);
   builder.RegisterService(&parts_->service);
   parts_->server = builder.BuildAndStart();

@@ -1,5 +1,5 @@
 // daemon_config.h - holotraced's configuration file (JSON, docs/SERVICE.md "Configuration"). Every limit has a
-// default and is enforced before anything is allocated (docs/service.md §6 "Limits at the API edge").
+// default and is enforced before anything is allocated (docs/SERVICE.md §6 "Limits at the API edge").
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -23,14 +23,14 @@ struct Limits {
   std::uint32_t maxSpp = 256;
   double maxFramesPerSecond = 120.0;
   // Scene sessions and contents (server/scene_library.h, docs/SERVICE.md §5 "Scene sessions and memory").
-  std::uint32_t maxSceneSessions = 256;             // open sessions; the least recently used idle one makes room
-  double sceneIdleSeconds = 600.0;                  // a session unused this long ends
-  std::uint64_t maxSceneMemoryBytes = 2ull << 30;   // estimated Scene + BVH + device buffers of all contents
+  std::uint32_t maxSceneSessions = 256;            // open sessions; the least recently used idle one makes room
+  double sceneIdleSeconds = 600.0;                 // a session unused this long ends
+  std::uint64_t maxSceneMemoryBytes = 2ull << 30;  // estimated Scene + BVH + device buffers of all contents
   // Stalled clients (server/call_watchdog.h, server/upload_budget.h, docs/SERVICE.md §5 "Stalled clients").
-  std::uint32_t maxUploads = 4;                          // UploadScene calls at once
-  std::uint64_t maxUploadBytesInFlight = 512ull << 20;   // declared bytes of the uploads in flight, >= max_scene_bytes
-  double uploadIdleSeconds = 30.0;                       // an upload waiting this long for its next chunk is cancelled
-  double streamStallSeconds = 30.0;                      // a Write held back this long (client not reading): cancelled
+  std::uint32_t maxUploads = 4;                         // UploadScene calls at once
+  std::uint64_t maxUploadBytesInFlight = 512ull << 20;  // declared bytes of the uploads in flight, >= max_scene_bytes
+  double uploadIdleSeconds = 30.0;                      // an upload waiting this long for its next chunk is cancelled
+  double streamStallSeconds = 30.0;                     // a Write held back this long (client not reading): cancelled
 };
 
 struct DaemonConfig {
@@ -41,7 +41,7 @@ struct DaemonConfig {
   std::vector<std::string> listen;    // gRPC addresses: "unix:/path" or "127.0.0.1:PORT"
   int deviceIndex = -1;               // Vulkan device, -1 = automatic
   Limits limits;
-  std::string sourcePath;             // file the config came from (for errors)
+  std::string sourcePath;  // file the config came from (for errors)
 };
 
 // The default socket: $XDG_RUNTIME_DIR/holotrace/holotraced.sock, else /run/holotrace/holotraced.sock.

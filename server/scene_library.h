@@ -131,7 +131,7 @@ class SceneLibrary {
   std::shared_ptr<SceneContent> contentFor(const std::string& client, const std::string& key, const std::string& spec,
                                            bool& reused);
   std::shared_ptr<gpu::Renderer> adopt(gpu::Renderer* renderer);  // owned, destroyed on the render worker
-  SessionEntry& entryLocked(const std::string& id);  // throws UnknownScene
+  SessionEntry& entryLocked(const std::string& id);               // throws UnknownScene
   void expireLocked(Clock::time_point now);
   bool evictOneSessionLocked(const std::string& keep);
   // Evicts unreferenced cached contents LRU, then (evictSessions) idle sessions LRU, until the budget holds; throws
