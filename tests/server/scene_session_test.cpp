@@ -168,7 +168,7 @@ TEST(SceneSessionTest, ASceneOverTheWholeBudgetIsRefusedNamingTheLimit) {
 
 // Item 3 (loads never block other clients' frames): the BVH of a large scene used to be built on the render
 // worker, so every other client's frame queued behind the whole build. Now it is built on the loading call's thread
-// and the worker only uploads it: frames rendered while the load runs wait for at most a fraction of the build.
+// and the worker only uploads it: frames rendered while the load runs wait in the queue for a fraction of the build.
 TEST(SceneLoadTest, ALargeLoadDoesNotHoldBackAnotherClientsFrames) {
   static const int kGrid = 400;  // 320,000 triangles
   SessionDaemon d([](Limits& l) { l.maxSceneBytes = 64u << 20; });
@@ -183,20 +183,22 @@ TEST(SceneLoadTest, ALargeLoadDoesNotHoldBackAnotherClientsFrames) {
     bigStatus = loadScene(*other, "big.obj", &big);
     loading = false;
   });
+  // FrameHeader.queue_ms: how long the frame waited for the render worker (other jobs), apart from its own render
+  // time, which CPU contention with the loader stretches either way.
   double worstMs = 0.0;
   int frames = 0;
   while (loading.load()) {
-    const auto start = SessionClock::now();
-    ASSERT_TRUE(renderOne(*d.stub, tinyRequest(small)).ok());
+    ReceivedFrame frame;
+    ASSERT_TRUE(renderOne(*d.stub, tinyRequest(small), &frame).ok());
     if (loading.load()) {
-      worstMs = std::max(worstMs, std::chrono::duration<double, std::milli>(SessionClock::now() - start).count());
+      worstMs = std::max(worstMs, frame.header.queue_ms());
       ++frames;
     }
   }
   loader.join();
   ASSERT_TRUE(bigStatus.ok()) << bigStatus.error_message();
-  std::cout << "BVH build " << big.bvh_build_ms() << " ms; " << frames << " frames during the load, worst " << worstMs
-            << " ms\n";
+  std::cout << "BVH build " << big.bvh_build_ms() << " ms; " << frames << " frames during the load, worst queue "
+            << worstMs << " ms\n";
   EXPECT_GT(frames, 0);
   EXPECT_LT(worstMs, 0.5 * big.bvh_build_ms());
 }
