@@ -81,17 +81,17 @@ std::string lockHolder(int fd) {
 int lockSocketPath(const std::string& address, const std::string& path) {
   const std::string lockPath = path + ".lock";
   const int fd = ::open(lockPath.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0600);
-  if (fd < 0) throw IoError("holotraced: cannot open lock file " + lockPath + ": " + errnoText(errno));
+  if (fd < 0) throw IoError("cannot open lock file " + lockPath + ": " + errnoText(errno));
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     const int err = errno;
     const std::string holder = lockHolder(fd);
     ::close(fd);
     if (err == EWOULDBLOCK) {
-      throw AddressInUse("holotraced: " + address + " is owned by another holotraced" +
+      throw AddressInUse(address + " is owned by another holotraced" +
                          (holder.empty() ? std::string() : " (pid " + holder + ")") + ", lock file " + lockPath +
                          "; stop it first or give this daemon another listen address");
     }
-    throw IoError("holotraced: cannot lock " + lockPath + ": " + errnoText(err));
+    throw IoError("cannot lock " + lockPath + ": " + errnoText(err));
   }
   const std::string pid = std::to_string(::getpid()) + "\n";
   if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
@@ -117,12 +117,12 @@ void removeStaleSocket(const std::string& address, const std::string& path) {
   struct stat st {};
   if (::lstat(path.c_str(), &st) != 0) return;
   if (!S_ISSOCK(st.st_mode)) {
-    throw AddressInUse("holotraced: " + address + ": " + path +
+    throw AddressInUse(address + ": " + path +
                        " exists and is not a socket; remove it or choose "
                        "another listen address");
   }
   if (socketIsLive(path)) {
-    throw AddressInUse("holotraced: " + address +
+    throw AddressInUse(address +
                        " is served by another process that holds no lock (an older "
                        "holotraced?); stop it first or give this daemon another listen address");
   }
@@ -133,7 +133,7 @@ void probeTcpPort(const std::string& address) {
   const std::optional<TcpAddress> tcp = parseLoopback(address);
   if (!tcp) return;  // checkListenAddress refuses it first
   const int fd = ::socket(tcp->storage.ss_family, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  if (fd < 0) throw IoError("holotraced: socket(): " + errnoText(errno));
+  if (fd < 0) throw IoError("socket(): " + errnoText(errno));
   const int one = 1;
   ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);  // TIME_WAIT of an earlier run is no owner
   const int rc = ::bind(fd, reinterpret_cast<const sockaddr*>(&tcp->storage), tcp->length);
@@ -141,11 +141,11 @@ void probeTcpPort(const std::string& address) {
   ::close(fd);
   if (rc == 0) return;
   if (err == EADDRINUSE) {
-    throw AddressInUse("holotraced: " + address +
+    throw AddressInUse(address +
                        " is in use by another process (another holotraced?); stop it "
                        "first or give this daemon another port");
   }
-  throw IoError("holotraced: cannot bind " + address + ": " + errnoText(err));
+  throw IoError("cannot bind " + address + ": " + errnoText(err));
 }
 
 }  // namespace
