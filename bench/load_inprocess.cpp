@@ -49,7 +49,7 @@ InProcessRun renderInProcess(const std::string& displaysDir, const std::string& 
                              std::uint32_t spp, std::uint64_t frames) {
   gpu::VulkanContext context({-1, false});
   server::RenderWorker worker(context, 2);
-  server::SceneLibrary scenes(worker, 5'000'000);
+  server::SceneLibrary scenes(worker, server::SceneLibraryLimits{});
   server::DisplayRegistry displays(displaysDir);
   displays.reload(std::cerr);
   server::FrameJob job;

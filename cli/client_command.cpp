@@ -143,6 +143,21 @@ v1::SceneHandle openScene(Stub& stub, const ParsedArguments& a, std::ostream& ou
   return handle;
 }
 
+// Ends the session when the command is done, also on errors (best effort: a session the daemon did not hear about
+// ends after its idle TTL, docs/SERVICE.md §5 "Scene sessions and memory").
+struct SessionRelease {
+  Stub& stub;
+  std::string sceneId;
+  ~SessionRelease() {
+    grpc::ClientContext context;
+    context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
+    v1::UnloadSceneRequest request;
+    request.set_scene_id(sceneId);
+    v1::UnloadSceneResponse response;
+    stub.UnloadScene(&context, request, &response);
+  }
+};
+
 v1::PixelFormat pixelFormat(const ParsedArguments& a, const std::string& fallback) {
   const std::string f = a.textOr("--format", fallback);
   if (f == "rgba8") return v1::PIXEL_FORMAT_RGBA8;
@@ -181,6 +196,7 @@ void printFrame(std::ostream& out, const v1::FrameHeader& h) {
 
 int render(Stub& stub, const ParsedArguments& a, std::ostream& out) {
   const v1::SceneHandle scene = openScene(stub, a, out);
+  const SessionRelease release{stub, scene.scene_id()};
   grpc::ClientContext context;
   auto reader = stub.RenderFrame(&context, renderRequest(a, scene.scene_id(), "png"));
   v1::FrameHeader header;
@@ -200,6 +216,7 @@ int render(Stub& stub, const ParsedArguments& a, std::ostream& out) {
 
 int stream(Stub& stub, const ParsedArguments& a, std::ostream& out) {
   const v1::SceneHandle scene = openScene(stub, a, out);
+  const SessionRelease release{stub, scene.scene_id()};
   v1::StreamRequest request;
   *request.mutable_render() = renderRequest(a, scene.scene_id(), "rgba8");
   request.set_frames_per_second(a.unsignedValue("--fps", 1, 120).value_or(10));
@@ -227,6 +244,7 @@ int capture(Stub& stub, const ParsedArguments& a, std::ostream& out) {
   const auto name = a.text("--name");
   if (!name) throw UsageError(usageMessage(kCommand, "capture needs --name NAME"));
   const v1::SceneHandle scene = openScene(stub, a, out);
+  const SessionRelease release{stub, scene.scene_id()};
   v1::CaptureRequest request;
   *request.mutable_render() = renderRequest(a, scene.scene_id(), "png");
   request.set_name(*name);

@@ -53,12 +53,14 @@ std::vector<gpu_shared::GpuLight> packLights(const Scene& scene) {
 
 }  // namespace
 
-GpuScene::GpuScene(VulkanContext::Impl& vk, const Scene& scene, const bvh::BuildOptions& options) {
+GpuScene::GpuScene(VulkanContext::Impl& vk, const Scene& scene, const bvh::BuildOptions& options)
+    : GpuScene(vk, scene, bvh::buildGpuBvh(scene.positions, scene.triangles, options)) {}
+
+GpuScene::GpuScene(VulkanContext::Impl& vk, const Scene& scene, bvh::GpuBvh bvh) {
   features_ = scene.features();
   background_ = scene.background;
   ambient_ = scene.ambient;
 
-  bvh::GpuBvh bvh = bvh::buildGpuBvh(scene.positions, scene.triangles, options);
   bvhReport_ = bvh.report;
   nodes = uploadVector(vk, bvh.nodes);
   bvhTriangles = uploadVector(vk, bvh.triangles);

@@ -13,6 +13,8 @@ namespace ht::gpu {
 class GpuScene {
  public:
   GpuScene(VulkanContext::Impl& vk, const Scene& scene, const bvh::BuildOptions& options);
+  // With the BVH of `scene` built beforehand (bvh::buildGpuBvh), e.g. on a thread that does not own the device.
+  GpuScene(VulkanContext::Impl& vk, const Scene& scene, bvh::GpuBvh bvh);
 
   const bvh::BuildReport& bvhReport() const { return bvhReport_; }
   const SceneFeatures& features() const { return features_; }

@@ -66,9 +66,9 @@ void checkShape(const FrameShape& shape, std::uint32_t spp) {
   }
 }
 
-Renderer::Impl::Impl(VulkanContext::Impl& v, const Scene& s, const bvh::BuildOptions& o)
+Renderer::Impl::Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o)
     : vk(v),
-      scene(v, s, o),
+      scene(std::move(s)),
       layout(v.pipelines->layout()),
       descriptors(v, layout.setLayout()),
       frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
@@ -223,7 +223,10 @@ void Renderer::Impl::fillFrame(const FrameCamera& camera, const FrameShape& shap
 }
 
 Renderer::Renderer(VulkanContext& context, const Scene& scene, const bvh::BuildOptions& buildOptions)
-    : impl_(std::make_unique<Impl>(context.impl(), scene, buildOptions)) {}
+    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, buildOptions), buildOptions)) {}
+
+Renderer::Renderer(VulkanContext& context, const Scene& scene, bvh::GpuBvh bvh, const bvh::BuildOptions& buildOptions)
+    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, std::move(bvh)), buildOptions)) {}
 
 Renderer::~Renderer() = default;
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bvh/bvh_builder.h"
+#include "bvh/gpu_layout.h"
 #include "bvh/ray_types.h"
 #include "camera_models/frame_camera.h"
 #include "camera_models/ray_table.h"
@@ -67,6 +68,9 @@ struct TraceStats {
 class Renderer {
  public:
   Renderer(VulkanContext& context, const Scene& scene, const bvh::BuildOptions& buildOptions = {});
+  // With `bvh` = bvh::buildGpuBvh(scene, buildOptions) built beforehand, off the thread that owns the device (the
+  // daemon's render worker keeps rendering other clients' frames meanwhile); the same frames as above.
+  Renderer(VulkanContext& context, const Scene& scene, bvh::GpuBvh bvh, const bvh::BuildOptions& buildOptions = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;

@@ -71,7 +71,7 @@ struct Renderer::Impl {
 
   bvh::BuildOptions buildOptions;
 
-  Impl(VulkanContext::Impl& v, const Scene& s, const bvh::BuildOptions& o);
+  Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o);
 
   ~Impl();
 

@@ -4,9 +4,11 @@
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>
+#include <malloc.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <thread>
 
 #include "common/error.h"
@@ -16,9 +18,18 @@
 
 namespace ht::server {
 
+namespace {
+
+SceneLibraryLimits sceneLimits(const Limits& limits) {
+  return {limits.maxTriangles, limits.maxSceneSessions, limits.sceneIdleSeconds, limits.maxSceneMemoryBytes};
+}
+
+}  // namespace
+
 struct Daemon::Parts {
   DaemonConfig config;
   std::ostream& log;
+  std::vector<ListenClaim> claims;  // before the device: a second daemon is refused before it opens anything
   bool ownsWorkDir = false;
   gpu::VulkanContext context;
   RenderWorker worker;
@@ -26,26 +37,47 @@ struct Daemon::Parts {
   DisplayRegistry displays;
   FileSink outputSink;
   FileSink uploadSink;
+  UploadBudget uploads;
+  CallWatchdog watchdog;
   ServiceState state;
   HolotraceService service;
   std::unique_ptr<grpc::Server> server;
+  std::thread janitor;  // ends idle scene sessions (SceneLibrary::sweep), cancels stalled calls (CallWatchdog)
   bool stopped = false;
 
-  Parts(DaemonConfig c, std::ostream& l, bool ownsWork)
+  Parts(DaemonConfig c, std::ostream& l, std::vector<ListenClaim> owned, bool ownsWork)
       : config(std::move(c)),
         log(l),
+        claims(std::move(owned)),
         ownsWorkDir(ownsWork),
         context({config.deviceIndex, false}),
         worker(context, config.limits.maxFramesInFlight),
-        scenes(std::make_unique<SceneLibrary>(worker, config.limits.maxTriangles)),
+        scenes(std::make_unique<SceneLibrary>(worker, sceneLimits(config.limits))),
         displays(config.displaysDir),
         outputSink(config.outputRoot),
         uploadSink(config.workDir),
-        state{config, displays, *scenes, worker, outputSink, uploadSink},
+        uploads(config.limits.maxUploads, config.limits.maxUploadBytesInFlight),
+        watchdog(l),
+        state{config, displays, *scenes, worker, outputSink, uploadSink, uploads, watchdog},
         service(state) {}
 };
 
 namespace {
+
+// Until shutdown, every min(1 s, shortest idle/stall limit / 4): cancels stalled calls, ends idle sessions, evicts.
+void runJanitor(ServiceState& state, CallWatchdog& watchdog, SceneLibrary& scenes) {
+  const Limits& l = state.config.limits;
+  const double shortest = std::min({l.sceneIdleSeconds, l.uploadIdleSeconds, l.streamStallSeconds});
+  const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(std::clamp(shortest / 4.0, 0.02, 1.0)));
+  while (state.sleepUntil(std::chrono::steady_clock::now() + period)) {
+    const bool cancelled = watchdog.check() != 0;
+    // glibc keeps freed blocks in the arena of the thread that freed them (every gRPC thread gets one), so released
+    // scenes and uploads stay resident (+70 MiB at rest after a one-minute soak, bench/soak_main.cpp);
+    // malloc_trim(0) hands the free pages of all arenas back to the OS (malloc_trim(3)).
+    if (scenes.sweep() || cancelled) ::malloc_trim(0);
+  }
+}
 
 DaemonConfig withWorkDir(DaemonConfig config, bool& owns) {
   owns = config.workDir.empty();
@@ -59,9 +91,11 @@ DaemonConfig withWorkDir(DaemonConfig config, bool& owns) {
 
 Daemon::Daemon(DaemonConfig config, std::ostream& log) {
   for (const std::string& address : config.listen) checkListenAddress(config.sourcePath, address);
+  std::vector<ListenClaim> claims;
+  for (const std::string& address : config.listen) claims.emplace_back(address);  // throws AddressInUse
   bool owns = false;
   config = withWorkDir(std::move(config), owns);
-  parts_ = std::make_unique<Parts>(std::move(config), log, owns);
+  parts_ = std::make_unique<Parts>(std::move(config), log, std::move(claims), owns);
   log << "holotraced: device " << parts_->context.device().name << ", " << parts_->displays.reload(log)
       << " displays\n";
 }
@@ -79,19 +113,19 @@ void Daemon::start() {
   grpc::EnableDefaultHealthCheckService(true);  // grpc.health.v1 (docs/SERVICE.md §4 "Health")
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
-  for (const std::string& address : parts_->config.listen) {
-    prepareListenAddress(address);
-    builder.AddListeningPort(address, grpc::InsecureServerCredentials());
-  }
+  for (const ListenClaim& claim : parts_->claims)
+    builder.AddListeningPort(claim.address(), grpc::InsecureServerCredentials());
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);  // gRPC's default shares a TCP port with a second daemon
   builder.SetMaxReceiveMessageSize(static_cast<int>(parts_->config.limits.maxMessageBytes));
   builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 60'000);  // notice dead peers (docs/SERVICE.md §4)
   builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, 20'000);
   builder.RegisterService(&parts_->service);
   parts_->server = builder.BuildAndStart();
   if (!parts_->server) throw IoError("holotraced: cannot listen on the configured addresses (in use? permissions?)");
-  for (const std::string& address : parts_->config.listen) {
-    finishListenAddress(address);
-    parts_->log << "holotraced: listening on " << address << "\n";
+  parts_->janitor = std::thread([this] { runJanitor(parts_->state, parts_->watchdog, *parts_->scenes); });
+  for (const ListenClaim& claim : parts_->claims) {
+    claim.finish();
+    parts_->log << "holotraced: listening on " << claim.address() << "\n";
   }
 }
 
@@ -99,6 +133,7 @@ void Daemon::shutdown(std::chrono::milliseconds grace) {
   if (parts_->stopped) return;
   parts_->stopped = true;
   parts_->state.beginShutdown();
+  if (parts_->janitor.joinable()) parts_->janitor.join();
   if (parts_->server) {
     if (auto* health = parts_->server->GetHealthCheckService()) health->Shutdown();
     // Our streams stop at their next frame boundary; wait for that (up to `grace`), then give gRPC a short
@@ -111,7 +146,7 @@ void Daemon::shutdown(std::chrono::milliseconds grace) {
     parts_->server->Wait();
   }
   parts_->worker.stop();
-  for (const std::string& address : parts_->config.listen) removeListenAddress(address);
+  parts_->claims.clear();  // removes our sockets, releases the locks
 }
 
 std::size_t Daemon::reloadDisplays() { return parts_->displays.reload(parts_->log); }

@@ -21,13 +21,31 @@ std::filesystem::path resolvePath(const json& doc, const char* key, const std::f
   return p.is_absolute() ? p : baseDir / p;
 }
 
+// An integer limit in [lo, hi]. JSON numbers with a fraction or an exponent (0.5, 1e20) are not integers: they are
+// refused, never truncated or wrapped into the field's type.
 template <typename T>
-void readLimit(const json& limits, const char* key, T& value, const std::string& source) {
+void readInteger(const json& limits, const char* key, T& value, std::uint64_t lo, std::uint64_t hi,
+                 const std::string& source) {
   if (!limits.contains(key)) return;
   const json& v = limits[key];
-  if (!v.is_number() || v.get<double>() <= 0)
-    throw ConfigError(source, std::string("limits.") + key, v.dump(), "a positive number");
-  value = v.get<T>();
+  const std::string expected = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  const std::string field = std::string("limits.") + key;
+  if (!v.is_number_integer()) throw ConfigError(source, field, v.dump(), expected);
+  const bool negative = !v.is_number_unsigned() && v.get<std::int64_t>() < 0;
+  if (negative || v.get<std::uint64_t>() < lo || v.get<std::uint64_t>() > hi) {
+    throw ConfigError(source, field, v.dump(), expected);
+  }
+  value = static_cast<T>(v.get<std::uint64_t>());
+}
+
+void readReal(const json& limits, const char* key, double& value, double lo, double hi, const std::string& source) {
+  if (!limits.contains(key)) return;
+  const json& v = limits[key];
+  if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi)) {
+    throw ConfigError(source, std::string("limits.") + key, v.dump(),
+                      "a number in [" + json(lo).dump() + ", " + json(hi).dump() + "]");
+  }
+  value = v.get<double>();
 }
 
 Limits parseLimits(const json& doc, const std::string& source) {
@@ -35,16 +53,37 @@ Limits parseLimits(const json& doc, const std::string& source) {
   if (!doc.contains("limits")) return l;
   const json& j = doc["limits"];
   if (!j.is_object()) throw ConfigError(source, "limits", j.dump(), "an object");
-  readLimit(j, "max_clients", l.maxClients, source);
-  readLimit(j, "max_message_bytes", l.maxMessageBytes, source);
-  readLimit(j, "max_scene_bytes", l.maxSceneBytes, source);
-  readLimit(j, "max_triangles", l.maxTriangles, source);
-  readLimit(j, "max_panel_pixels", l.maxPanelPixels, source);
-  readLimit(j, "max_frames_in_flight", l.maxFramesInFlight, source);
-  readLimit(j, "max_capture_frames", l.maxCaptureFrames, source);
-  readLimit(j, "max_spp", l.maxSpp, source);
-  readLimit(j, "max_frames_per_second", l.maxFramesPerSecond, source);
+  constexpr std::uint64_t kU32 = 0xffffffffull;
+  readInteger(j, "max_clients", l.maxClients, 1, 4096, source);
+  readInteger(j, "max_message_bytes", l.maxMessageBytes, 1024, 0x7fffffffull, source);  // gRPC takes an int
+  readInteger(j, "max_scene_bytes", l.maxSceneBytes, 1, 1ull << 40, source);
+  readInteger(j, "max_triangles", l.maxTriangles, 1, kU32, source);
+  readInteger(j, "max_panel_pixels", l.maxPanelPixels, 1, kU32, source);
+  readInteger(j, "max_frames_in_flight", l.maxFramesInFlight, 1, 64, source);
+  readInteger(j, "max_capture_frames", l.maxCaptureFrames, 1, 1'000'000, source);
+  readInteger(j, "max_spp", l.maxSpp, 1, 65536, source);
+  readReal(j, "max_frames_per_second", l.maxFramesPerSecond, kMinFramesPerSecond, 1000.0, source);
+  readInteger(j, "max_scene_sessions", l.maxSceneSessions, 1, 65536, source);
+  readReal(j, "scene_idle_seconds", l.sceneIdleSeconds, 0.05, 7 * 86400.0, source);
+  readInteger(j, "max_scene_memory_bytes", l.maxSceneMemoryBytes, 1ull << 20, 1ull << 44, source);
+  readInteger(j, "max_uploads", l.maxUploads, 1, 1024, source);
+  readInteger(j, "max_upload_bytes_in_flight", l.maxUploadBytesInFlight, 1, 1ull << 44, source);
+  readReal(j, "upload_idle_seconds", l.uploadIdleSeconds, 0.05, 86400.0, source);
+  readReal(j, "stream_stall_seconds", l.streamStallSeconds, 0.05, 86400.0, source);
+  if (l.maxUploadBytesInFlight < l.maxSceneBytes) {  // else the largest allowed upload could never run
+    throw ConfigError(source, "limits.max_upload_bytes_in_flight", std::to_string(l.maxUploadBytesInFlight),
+                      "at least limits.max_scene_bytes = " + std::to_string(l.maxSceneBytes));
+  }
   return l;
+}
+
+int parseDevice(const json& doc, const std::string& source) {
+  if (!doc.contains("device")) return -1;
+  const json& d = doc["device"];
+  if (!d.is_number_integer() || d.get<std::int64_t>() < -1 || d.get<std::int64_t>() > 1024) {
+    throw ConfigError(source, "device", d.dump(), "a Vulkan device index >= 0, or -1 for automatic");
+  }
+  return d.get<int>();
 }
 
 }  // namespace
@@ -82,7 +121,7 @@ DaemonConfig parseDaemonConfig(const std::string& text, const std::string& sourc
     }
   }
   if (c.listen.empty()) c.listen.push_back(defaultListenAddress());
-  if (doc.contains("device")) c.deviceIndex = doc["device"].get<int>();
+  c.deviceIndex = parseDevice(doc, source);
   c.limits = parseLimits(doc, source);
   return c;
 }

@@ -8,6 +8,10 @@
 
 namespace ht::server {
 
+// StreamFrames' lowest frame rate (one frame per 1000 s): below it 1/fps is refused, not computed (docs/SERVICE.md §2).
+inline constexpr double kMinFramesPerSecond = 0.001;
+
+// Ranges of every limit: docs/SERVICE.md §2; values outside them, or fractional counts, are a ConfigError.
 struct Limits {
   std::uint32_t maxClients = 16;                 // concurrent streaming calls (RenderFrame/StreamFrames/Capture)
   std::uint32_t maxMessageBytes = 4u << 20;      // gRPC receive limit per message
@@ -18,6 +22,15 @@ struct Limits {
   std::uint32_t maxCaptureFrames = 1000;
   std::uint32_t maxSpp = 256;
   double maxFramesPerSecond = 120.0;
+  // Scene sessions and contents (server/scene_library.h, docs/SERVICE.md §5 "Scene sessions and memory").
+  std::uint32_t maxSceneSessions = 256;            // open sessions; the least recently used idle one makes room
+  double sceneIdleSeconds = 600.0;                 // a session unused this long ends
+  std::uint64_t maxSceneMemoryBytes = 2ull << 30;  // estimated Scene + BVH + device buffers of all contents
+  // Stalled clients (server/call_watchdog.h, server/upload_budget.h, docs/SERVICE.md §5 "Stalled clients").
+  std::uint32_t maxUploads = 4;                         // UploadScene calls at once
+  std::uint64_t maxUploadBytesInFlight = 512ull << 20;  // declared bytes of the uploads in flight, >= max_scene_bytes
+  double uploadIdleSeconds = 30.0;                      // an upload waiting this long for its next chunk is cancelled
+  double streamStallSeconds = 30.0;                     // a Write held back this long (client not reading): cancelled
 };
 
 struct DaemonConfig {

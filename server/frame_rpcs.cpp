@@ -40,9 +40,11 @@ v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame
   return header;
 }
 
-// Renders one frame and sends it; false when the client went away.
+// Renders one frame and sends it; false when the client went away or stopped reading for longer than
+// limits.stream_stall_seconds (`watch` cancels the blocked Write).
 bool renderAndSend(ServiceState& state, const std::string& client, const FrameJob& job, v1::PixelFormat format,
-                   std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer) {
+                   std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer,
+                   CallWatchdog::Watch& watch) {
   const auto queued = Clock::now();
   const gpu::RenderResult frame = renderFrameJob(state.worker, client, job);
   const double queueMs = std::max(0.0, msBetween(queued, Clock::now()) - frame.totalMs);
@@ -50,6 +52,7 @@ bool renderAndSend(ServiceState& state, const std::string& client, const FrameJo
   const EncodedFrame encoded = encodeFrame(frame, checkPixelFormat(format), {display, jobCamera(job).quilt});
   v1::FrameHeader header = makeHeader(state.nextFrameId++, frame, encoded, format, queueMs);
   header.set_dropped_frames(dropped);
+  const CallWatchdog::Watch::Wait waiting(watch);
   return sendFrame(writer, std::move(header), encoded.bytes);
 }
 
@@ -58,6 +61,12 @@ void waitForTick(ServiceState& state, grpc::ServerContext& context, Clock::time_
   while (Clock::now() < due && !context.IsCancelled()) {
     if (!state.sleepUntil(std::min(due, Clock::now() + std::chrono::milliseconds(20)))) return;
   }
+}
+
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
 }
 
 std::string captureStem(const std::string& name, std::uint32_t index) {
@@ -102,7 +111,8 @@ grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v
   return guarded([&] {
     const FrameJob job = checkRenderRequest(state_, *request);
     StreamSlot slot(state_);
-    if (!renderAndSend(state_, clientKey(*context), job, request->format(), 0, *writer)) {
+    CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.streamStallSeconds, "RenderFrame");
+    if (!renderAndSend(state_, clientKey(*context), job, request->format(), 0, *writer, watch)) {
       throw ClientGone("client closed the stream");
     }
     return grpc::Status::OK;
@@ -115,14 +125,19 @@ grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v
 grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const v1::StreamRequest* request,
                                             grpc::ServerWriter<v1::FramePart>* writer) {
   return guarded([&] {
+    // The range first: 1/fps of a tiny rate overflows the clock's 64-bit nanoseconds (and a NaN compares false).
     const double fps = request->frames_per_second();
-    if (!(fps > 0.0) || fps > state_.config.limits.maxFramesPerSecond) {
-      throw BadRequest("frames_per_second",
-                       "must be in (0, " + std::to_string(state_.config.limits.maxFramesPerSecond) + "]");
+    if (!(fps >= kMinFramesPerSecond && fps <= state_.config.limits.maxFramesPerSecond)) {
+      throw BadRequest("frames_per_second", shortNumber(fps) + " is not in [" + shortNumber(kMinFramesPerSecond) +
+                                                ", " + shortNumber(state_.config.limits.maxFramesPerSecond) +
+                                                "] (limits.max_frames_per_second)");
     }
     FrameJob job = checkRenderRequest(state_, request->render());
     StreamSlot slot(state_);
+    const SceneLibrary::Pin pin(state_.scenes, request->render().scene_id());  // not idled out between slow frames
+    CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.streamStallSeconds, "StreamFrames");
     const std::string client = clientKey(*context);
+    // <= 1000 s after the check above, >= 1 ms (limits.max_frames_per_second <= 1000): no overflow, never zero.
     const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / fps));
     const auto start = Clock::now();
     std::uint64_t tick = 0, dropped = 0;
@@ -130,7 +145,7 @@ grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const 
       if (state_.shuttingDown) throw ShuttingDown("holotraced is shutting down");
       job.session = state_.scenes.find(request->render().scene_id());  // picks up UpdateScene
       job.seed = request->render().seed() + static_cast<std::uint32_t>(tick);
-      if (!renderAndSend(state_, client, job, request->render().format(), dropped, *writer)) break;
+      if (!renderAndSend(state_, client, job, request->render().format(), dropped, *writer, watch)) break;
       const auto now = Clock::now();
       const auto due = static_cast<std::uint64_t>((now - start) / period) + 1;  // next tick not yet passed
       dropped = due > tick + 1 ? due - tick - 1 : 0;
@@ -159,6 +174,8 @@ grpc::Status HolotraceService::Capture(grpc::ServerContext* context, const v1::C
                        "the views of display '" + job.display->id + "' do not form a quilt; use CAPTURE_LAYOUT_VIEWS");
     }
     StreamSlot slot(state_);
+    const SceneLibrary::Pin pin(state_.scenes, request->render().scene_id());
+    CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.streamStallSeconds, "Capture");
     const std::string client = clientKey(*context);
     for (std::uint32_t i = 0; i < frames; ++i) {
       if (context->IsCancelled()) throw ClientGone("capture cancelled after " + std::to_string(i) + " complete frames");
@@ -173,7 +190,8 @@ grpc::Status HolotraceService::Capture(grpc::ServerContext* context, const v1::C
         progress.set_frames_done(i + 1);
         progress.set_frames_total(frames);
         progress.set_file(file.name);
-        writer->Write(progress);  // a gone client is noticed at the next frame (IsCancelled)
+        const CallWatchdog::Watch::Wait waiting(watch);
+        writer->Write(progress);  // a gone or stalled client is noticed at the next frame (IsCancelled)
       }
     }
     return grpc::Status::OK;

@@ -29,6 +29,8 @@ class HolotraceService final : public holotrace::v1::Holotrace::Service {
                        grpc::ServerWriter<holotrace::v1::CaptureProgress>*) override;
   grpc::Status Status(grpc::ServerContext*, const holotrace::v1::StatusRequest*,
                       holotrace::v1::StatusResponse*) override;
+  grpc::Status UnloadScene(grpc::ServerContext*, const holotrace::v1::UnloadSceneRequest*,
+                           holotrace::v1::UnloadSceneResponse*) override;
 
  private:
   ServiceState& state_;

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -40,11 +41,19 @@ double readCpuSeconds(pid_t pid) {
   return static_cast<double>(utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
 }
 
+std::uint32_t countOpenFds(pid_t pid) {
+  std::error_code ec;
+  std::uint32_t n = 0;
+  for (std::filesystem::directory_iterator it(procFile(pid, "fd"), ec), end; !ec && it != end; it.increment(ec)) ++n;
+  return n;
+}
+
 }  // namespace
 
 ProcessStats readProcessStats(pid_t pid) {
   ProcessStats stats;
   readStatusFile(pid, stats);
+  stats.openFds = countOpenFds(pid);
   stats.cpuSeconds = readCpuSeconds(pid);
   return stats;
 }

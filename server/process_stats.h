@@ -12,6 +12,7 @@ struct ProcessStats {
   std::uint64_t residentKiB = 0;
   double cpuSeconds = 0.0;  // user + system, all threads
   std::uint32_t threads = 0;
+  std::uint32_t openFds = 0;  // entries of /proc/PID/fd (0 if unreadable: another user's process)
 };
 
 // Throws IoError if /proc/PID is unreadable (no such process, no /proc).

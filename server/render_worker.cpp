@@ -32,9 +32,30 @@ std::future<void> RenderWorker::submit(const std::string& client, Job job, bool 
   return future;
 }
 
+void RenderWorker::dispose(std::function<void()> release) {
+  {
+    std::lock_guard lock(mutex_);
+    if (!finished_ && std::this_thread::get_id() != thread_.get_id()) {
+      disposals_.push_back(std::move(release));
+      wake_.notify_one();
+      return;
+    }
+  }
+  release();
+}
+
 bool RenderWorker::takeNext(Task& task, std::string& client) {
   std::unique_lock lock(mutex_);
-  wake_.wait(lock, [this] { return stopping_ || !roundRobin_.empty(); });
+  for (;;) {
+    wake_.wait(lock, [this] { return stopping_ || !roundRobin_.empty() || !disposals_.empty(); });
+    if (disposals_.empty()) break;
+    std::vector<std::function<void()>> batch;
+    batch.swap(disposals_);
+    lock.unlock();
+    for (auto& release : batch) release();
+    batch.clear();
+    lock.lock();
+  }
   if (roundRobin_.empty()) return false;  // stopping and drained
   client = roundRobin_.front();
   roundRobin_.pop_front();
@@ -68,7 +89,15 @@ void RenderWorker::run() {
     } catch (...) { task.done.set_exception(std::current_exception()); }
     finish(client, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
            task.countsAsFrame);
+    task = Task{};  // the job's captures (a frame's scene session) go now, not with the next job
   }
+  std::vector<std::function<void()>> last;
+  {
+    std::lock_guard lock(mutex_);
+    finished_ = true;  // later disposals run in their caller
+    last.swap(disposals_);
+  }
+  for (auto& release : last) release();
 }
 
 void RenderWorker::stop() {

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "gpu/vulkan_context.h"
 #include "server/errors.h"
@@ -40,6 +41,11 @@ class RenderWorker {
   // `countsAsFrame` jobs update the frame statistics.
   std::future<void> submit(const std::string& client, Job job, bool countsAsFrame = true);
 
+  // Runs `release` on the worker thread, before its next job, without waiting (GPU objects whose destruction
+  // touches the device's shared pools: an evicted scene's Renderer). Runs it at once when called on the worker
+  // thread or after the worker stopped.
+  void dispose(std::function<void()> release);
+
   // Fails queued jobs with ShuttingDown, lets the running one finish, joins the thread. Idempotent.
   void stop();
   WorkerStats stats() const;
@@ -62,6 +68,8 @@ class RenderWorker {
   std::list<std::string> roundRobin_;              // clients with queued tasks, next first
   std::map<std::string, std::uint32_t> inFlight_;  // queued + running, per client
   bool stopping_ = false;
+  bool finished_ = false;  // the thread ran its last disposal
+  std::vector<std::function<void()>> disposals_;
   WorkerStats stats_;
   double totalFrameMs_ = 0.0;
   std::thread thread_;

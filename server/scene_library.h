@@ -1,10 +1,18 @@
 // scene_library.h - loaded scenes. Content (keyed by a hash of the file bytes, or the builtin name) is loaded and
 // its BVH built and uploaded once; every LoadScene returns a new session handle with its own camera placement
 // that shares that content (and its Renderer) with other sessions loading the same bytes.
+//
+// Nothing is kept for ever (docs/SERVICE.md §5 "Scene sessions and memory"): a session ends by UnloadScene, after
+// `idleSeconds` without use, or as the least recently used idle session when `maxSessions` are open; contents are
+// kept for reuse while their estimated memory (Scene + BVH + device buffers) fits `memoryBudget`, evicted least
+// recently used first. Sessions that a running call pinned (StreamFrames, Capture) are never ended by either.
+// Loads of different contents run concurrently; a second load of the same bytes waits for the first and reuses it.
 #pragma once
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -24,8 +32,9 @@ namespace ht::server {
 struct SceneContent {
   std::string contentKey;
   Scene scene;
-  std::shared_ptr<gpu::Renderer> renderer;  // used on the render worker thread only
+  std::shared_ptr<gpu::Renderer> renderer;  // used on the render worker thread only, and destroyed there
   double loadMs = 0.0;
+  std::uint64_t memoryBytes = 0;  // estimate: sceneMemoryBytes(scene)
   std::string editedBy;  // "" = loaded content, shared by every session of the same bytes; else the one session
                          // whose edits (UpdateScene nodes / lights) it carries
 };
@@ -38,16 +47,52 @@ struct SceneSession {
   bool reused = false;
 };
 
+struct SceneLibraryLimits {
+  std::uint64_t maxTriangles = 5'000'000;
+  std::uint32_t maxSessions = 256;
+  double idleSeconds = 600.0;
+  std::uint64_t memoryBudget = 2ull << 30;
+};
+
+struct SceneLibraryStats {
+  std::uint32_t sessions = 0;
+  std::uint32_t contents = 0;     // distinct contents alive (cached, or held by a session)
+  std::uint64_t memoryBytes = 0;  // their estimated memory
+  std::uint64_t sessionsReleased = 0;
+  std::uint64_t contentsEvicted = 0;
+};
+
+// What a scene costs in memory, host copy + device copy + BVH, estimated from its arrays: the budget's unit.
+std::uint64_t sceneMemoryBytes(const Scene& scene);
+
 class SceneLibrary {
  public:
-  SceneLibrary(RenderWorker& worker, std::uint64_t maxTriangles, std::size_t maxSessions = 256);
+  using Clock = std::chrono::steady_clock;
+
+  SceneLibrary(RenderWorker& worker, SceneLibraryLimits limits);
   ~SceneLibrary();  // releases the Renderers; call after the worker stopped, before the Vulkan context dies
 
   // `spec` is a file path (already confined by the caller) or "builtin:NAME"; `bytes` are its contents (empty
-  // for builtins). `client` is charged for the BVH upload job.
+  // for builtins). `client` is charged for the BVH upload job. Throws LimitExceeded when every session is pinned or
+  // the content does not fit the memory budget beside the pinned ones.
   std::shared_ptr<const SceneSession> open(const std::string& client, const std::string& spec,
                                            std::span<const std::uint8_t> bytes);
-  std::shared_ptr<const SceneSession> find(const std::string& id) const;  // throws UnknownScene
+  std::shared_ptr<const SceneSession> find(const std::string& id);  // counts as use; throws UnknownScene
+  void unload(const std::string& id);                               // throws UnknownScene
+
+  // Keeps a session from idling out or being evicted while a call renders it (and counts as use at both ends).
+  class Pin {
+   public:
+    Pin(SceneLibrary& library, std::string id);  // throws UnknownScene
+    ~Pin();
+    Pin(const Pin&) = delete;
+    Pin& operator=(const Pin&) = delete;
+
+   private:
+    SceneLibrary& library_;
+    std::string id_;
+  };
+
   // Replaces the camera override; observer values replace the tracked observer where given.
   void updateCamera(const std::string& id, const CameraPlacement& placement,
                     std::optional<double> observerDistance = std::nullopt,
@@ -63,19 +108,48 @@ class SceneLibrary {
   };
   EditResult editScene(const std::string& client, const std::string& id, bool movesGeometry,
                        const std::function<void(Scene&)>& edit);
+
+  // Ends sessions idle for longer than the TTL and evicts contents over the budget (the daemon calls it
+  // periodically; every open() does too). True if any session or content was released since the last sweep.
+  bool sweep();
   std::size_t contentCount() const;
+  SceneLibraryStats stats() const;
 
  private:
+  struct SessionEntry {
+    std::shared_ptr<const SceneSession> session;
+    Clock::time_point lastUsed;
+    std::uint32_t pins = 0;
+  };
+  struct CachedContent {
+    std::shared_ptr<SceneContent> content;
+    Clock::time_point lastUsed;
+  };
+  using Building = std::shared_future<std::shared_ptr<SceneContent>>;
+
   std::shared_ptr<SceneContent> build(const std::string& client, const std::string& key, const std::string& spec);
+  std::shared_ptr<SceneContent> contentFor(const std::string& client, const std::string& key, const std::string& spec,
+                                           bool& reused);
+  std::shared_ptr<gpu::Renderer> adopt(gpu::Renderer* renderer);  // owned, destroyed on the render worker
+  SessionEntry& entryLocked(const std::string& id);               // throws UnknownScene
+  void expireLocked(Clock::time_point now);
+  bool evictOneSessionLocked(const std::string& keep);
+  // Evicts unreferenced cached contents LRU, then (evictSessions) idle sessions LRU, until the budget holds; throws
+  // LimitExceeded if pinned sessions alone exceed it (evictSessions), else returns.
+  void fitBudgetLocked(const std::string& keepSession, bool evictSessions);
+  std::uint64_t memoryLocked() const;
+  std::map<const SceneContent*, std::uint64_t> liveContentsLocked() const;
 
   RenderWorker& worker_;
-  const std::uint64_t maxTriangles_;
-  const std::size_t maxSessions_;
+  const SceneLibraryLimits limits_;
   mutable std::mutex mutex_;
-  std::mutex buildMutex_;  // one content build at a time: a second load of the same bytes waits and reuses
-  std::map<std::string, std::shared_ptr<SceneContent>> contents_;
-  std::map<std::string, std::shared_ptr<const SceneSession>> sessions_;
+  std::mutex editMutex_;  // edits of one session in order, one edit BVH build at a time
+  std::map<std::string, CachedContent> contents_;
+  std::map<std::string, Building> building_;  // loads in progress, by content key
+  std::map<std::string, SessionEntry> sessions_;
   std::uint64_t nextSession_ = 1;
+  std::uint64_t sessionsReleased_ = 0, contentsEvicted_ = 0;
+  std::uint64_t releasedAtLastSweep_ = 0;
 };
 
 // 64-bit FNV-1a of `bytes`, as 16 hex digits (content key; not a security boundary).

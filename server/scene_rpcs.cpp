@@ -1,4 +1,4 @@
-// scene_rpcs.cpp - ListDisplays, GetDisplay, LoadScene, UploadScene, UpdateScene, Status.
+// scene_rpcs.cpp - ListDisplays, GetDisplay, LoadScene, UploadScene, UpdateScene, Status, UnloadScene.
 #include <unistd.h>
 
 #include <cmath>
@@ -141,21 +141,34 @@ grpc::Status HolotraceService::UploadScene(grpc::ServerContext* context,
                                            grpc::ServerReader<v1::UploadSceneChunk>* reader,
                                            v1::SceneHandle* response) {
   return guarded([&] {
+    // Bounded before the first byte: a slot (limits.max_uploads), a stall timeout on every Read
+    // (limits.upload_idle_seconds), the declared size against limits.max_upload_bytes_in_flight.
+    UploadBudget::Slot slot(state_.uploads);
+    CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.uploadIdleSeconds, "upload");
+    const auto read = [&](v1::UploadSceneChunk& chunk) {
+      const CallWatchdog::Watch::Wait waiting(watch);
+      return reader->Read(&chunk);
+    };
     v1::UploadSceneChunk chunk;
-    if (!reader->Read(&chunk) || !chunk.has_info()) throw BadRequest("info", "the first message must carry info");
+    if (!read(chunk) || !chunk.has_info()) {
+      if (watch.stalled()) throw ClientGone("upload stalled (limits.upload_idle_seconds)");
+      throw BadRequest("info", "the first message must carry info");
+    }
     const std::string ext = sceneExtension(chunk.info().file_name());
     const std::uint64_t total = chunk.info().total_bytes();
     if (total > state_.config.limits.maxSceneBytes) {
       throw LimitExceeded("upload of " + std::to_string(total) + " bytes (limits.max_scene_bytes = " +
                           std::to_string(state_.config.limits.maxSceneBytes) + ")");
     }
+    slot.reserve(total);
     std::vector<std::uint8_t> bytes;
     bytes.reserve(total);
-    while (reader->Read(&chunk)) {
+    while (read(chunk)) {
       if (!chunk.has_data()) throw BadRequest("data", "only the first message may carry info");
       if (bytes.size() + chunk.data().size() > total) throw BadRequest("data", "more bytes than info.total_bytes");
       bytes.insert(bytes.end(), chunk.data().begin(), chunk.data().end());
     }
+    if (watch.stalled()) throw ClientGone("upload stalled (limits.upload_idle_seconds)");
     if (context->IsCancelled()) throw ClientGone("upload cancelled");
     if (bytes.size() != total) throw BadRequest("data", "fewer bytes than info.total_bytes");
     // The loaders read files: the bytes go to a private file named by their hash (docs/SERVICE.md §6).
@@ -240,6 +253,19 @@ grpc::Status HolotraceService::Status(grpc::ServerContext*, const v1::StatusRequ
     response->set_resident_kib(self.residentKiB);
     response->set_cpu_seconds(self.cpuSeconds);
     response->set_threads(self.threads);
+    const SceneLibraryStats scenes = state_.scenes.stats();
+    response->set_scene_sessions(scenes.sessions);
+    response->set_scene_memory_bytes(scenes.memoryBytes);
+    response->set_scene_sessions_released(scenes.sessionsReleased);
+    response->set_open_fds(self.openFds);
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status HolotraceService::UnloadScene(grpc::ServerContext*, const v1::UnloadSceneRequest* request,
+                                           v1::UnloadSceneResponse*) {
+  return guarded([&] {
+    state_.scenes.unload(request->scene_id());
     return grpc::Status::OK;
   });
 }

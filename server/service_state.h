@@ -7,11 +7,13 @@
 #include <filesystem>
 #include <mutex>
 
+#include "server/call_watchdog.h"
 #include "server/daemon_config.h"
 #include "server/display_registry.h"
 #include "server/file_sink.h"
 #include "server/render_worker.h"
 #include "server/scene_library.h"
+#include "server/upload_budget.h"
 
 namespace ht::server {
 
@@ -22,6 +24,8 @@ struct ServiceState {
   RenderWorker& worker;
   FileSink& outputSink;
   FileSink& uploadSink;  // private work directory for uploaded scene bytes
+  UploadBudget& uploads;
+  CallWatchdog& watchdog;  // cancels stalled uploads and streams
 
   std::atomic<std::uint32_t> activeStreams{0};
   std::atomic<std::uint64_t> nextFrameId{1};

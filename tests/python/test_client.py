@@ -67,6 +67,14 @@ class DaemonTest(unittest.TestCase):
         with self.assertRaises(InvalidArgument):
             self.client.upload_scene(b"glTF\x02\x00\x00\x00garbage")  # GLB magic, broken container
 
+    def test_unload_scene_ends_the_session(self):
+        cube = self.client.load_scene("cube.obj")
+        self.client.unload_scene(cube)
+        with self.assertRaises(NotFound):
+            self.client.unload_scene(cube.scene_id)
+        with self.assertRaises(NotFound):
+            self.client.update_scene(cube, size=1.0)
+
     def test_loopback_tcp_target(self):
         with Client(self.daemon.tcp_target) as tcp:
             self.assertIn("tiny", [d.id for d in tcp.displays()])

@@ -233,6 +233,11 @@ class Client:
 
         return _scene(self._unary("UploadScene", chunks()))
 
+    def unload_scene(self, scene):
+        """Ends a scene session now (UnloadScene); the daemon also ends sessions left idle (docs/SERVICE.md §5).
+        `scene`: a Scene or its scene_id."""
+        self._unary("UnloadScene", pb.UnloadSceneRequest(scene_id=_id(scene, "scene")))
+
     def update_scene(self, scene, target=None, size=None, observer_distance=None, observer_height=None,
                      nodes=None, lights=None):
         """Edits one scene session (UpdateScene). target: focal-plane centre (x, y, z); size: focal-plane height;
