@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "common/json_nesting.h"
 #include "scene/file_bytes.h"
 #include "scene/scene_limits.h"
 
@@ -110,24 +111,10 @@ bool isSupported(const std::string& name) {
   return std::find(s.begin(), s.end(), name) != s.end();
 }
 
-// Deepest array/object nesting, measured iteratively. tinygltf converts `extras`/`extensions` with
-// recursive functions, so a hostile file nesting thousands of levels could exhaust the stack there.
-std::size_t nestingDepth(const nlohmann::json& root) {
-  std::size_t deepest = 0;
-  std::vector<std::pair<const nlohmann::json*, std::size_t>> stack{{&root, 1}};
-  while (!stack.empty()) {
-    const auto [node, depth] = stack.back();
-    stack.pop_back();
-    deepest = std::max(deepest, depth);
-    if (node->is_structured())
-      for (const auto& child : *node) stack.push_back({&child, depth + 1});
-  }
-  return deepest;
-}
-
-constexpr std::size_t kMaxJsonDepth = 64;
-
 void checkJson(const std::string& path, std::string_view text, std::vector<std::string>& warnings) {
+  // tinygltf converts `extras`/`extensions` with recursive functions: refuse deep nesting before anything parses.
+  if (const auto deep = findJsonNestingViolation(text))
+    throw SceneError(path, jsonNestingMessage(*deep) + " (not a plausible glTF file; check where it came from)");
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text.begin(), text.end());
@@ -136,9 +123,6 @@ void checkJson(const std::string& path, std::string_view text, std::vector<std::
                                " (a .gltf file must be glTF 2.0 JSON; check the file is not truncated or binary)");
   }
   if (!doc.is_object()) throw SceneError(path, "the JSON top level is not an object (not a glTF 2.0 file)");
-  if (nestingDepth(doc) > kMaxJsonDepth)
-    throw SceneError(path, "JSON nesting deeper than " + std::to_string(kMaxJsonDepth) +
-                               " levels (not a plausible glTF file; check where it came from)");
   const auto asset = doc.find("asset");
   if (asset == doc.end() || !asset->is_object() || !asset->contains("version") || !(*asset)["version"].is_string())
     throw SceneError(path, "no 'asset.version': not a glTF 2.0 file (glTF 1.0 files must be converted to 2.0)");

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/json_nesting.h"
 
 namespace ht::server {
 namespace {
@@ -59,6 +60,7 @@ std::string defaultListenAddress() {
 DaemonConfig parseDaemonConfig(const std::string& text, const std::string& source,
                                const std::filesystem::path& baseDir) {
   json doc;
+  if (const auto deep = findJsonNestingViolation(text)) throw ConfigError(source, "(document)", "", jsonNestingMessage(*deep));
   try {
     doc = json::parse(text);
   } catch (const json::exception& e) {
