@@ -19,12 +19,14 @@ struct StatusRule {
   StatusCode code;
 };
 
-// First match wins: a derived type comes before its base (DiskFull is an IoError).
+// First match wins: a derived type comes before its base (DiskFull and OutputConflict are IoErrors).
 constexpr std::array kRules = {
     StatusRule{is<AccessDenied>, StatusCode::PERMISSION_DENIED},
     StatusRule{is<BadRequest>, StatusCode::INVALID_ARGUMENT},
     StatusRule{is<LimitExceeded>, StatusCode::RESOURCE_EXHAUSTED},
     StatusRule{is<DiskFull>, StatusCode::RESOURCE_EXHAUSTED},
+    StatusRule{is<NameTaken>, StatusCode::ALREADY_EXISTS},
+    StatusRule{is<OutputConflict>, StatusCode::FAILED_PRECONDITION},
     StatusRule{is<UnknownDisplay>, StatusCode::NOT_FOUND},
     StatusRule{is<UnknownScene>, StatusCode::NOT_FOUND},
     StatusRule{is<ShuttingDown>, StatusCode::UNAVAILABLE},
