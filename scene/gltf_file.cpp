@@ -15,7 +15,6 @@
 
 #include "common/error.h"
 #include "common/json_nesting.h"
-#include "scene/file_bytes.h"
 #include "scene/scene_limits.h"
 
 namespace ht {
@@ -143,51 +142,58 @@ void checkJson(const std::string& path, std::string_view text, std::vector<std::
         warnings.push_back("optional extension " + name.get<std::string>() + " is ignored");
 }
 
-// ---- confined file access (replaces tinygltf's default callbacks: no wordexp, no reads outside the folder)
+// ---- file access: only the bytes of the SceneSource (read beforehand, beneath the scene folder) --------------
 
-struct FolderRoot {
-  fs::path root;  // canonical scene folder
-};
+// tinygltf looks a URI up as JoinPath(baseDir, uri) and then "./uri"; baseDir is "" here.
+std::string sourceKey(const std::string& file) { return file.rfind("./", 0) == 0 ? file.substr(2) : file; }
 
-bool insideRoot(const std::string& file, const FolderRoot& r) {
-  std::error_code ec;
-  const fs::path p = fs::weakly_canonical(fs::path(file), ec);
-  if (ec) return false;
-  const fs::path rel = p.lexically_relative(r.root);
-  return !rel.empty() && rel != "." && *rel.begin() != "..";
-}
-
-bool fileExistsInRoot(const std::string& file, void* user) {
-  std::error_code ec;
-  return insideRoot(file, *static_cast<FolderRoot*>(user)) && fs::is_regular_file(file, ec);
+bool fileInSource(const std::string& file, void* user) {
+  const SceneSource& source = *static_cast<const SceneSource*>(user);
+  const std::string key = sourceKey(file);
+  return source.externals.count(key) > 0 || source.externalProblems.count(key) > 0;
 }
 
 std::string expandNothing(const std::string& file, void*) { return file; }
 
-bool readFileInRoot(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
-  if (!insideRoot(file, *static_cast<FolderRoot*>(user))) {
-    if (err) *err += "'" + file + "' is outside the scene folder; external files must sit next to the .gltf\n";
-    return false;
+bool readFromSource(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
+  const SceneSource& source = *static_cast<const SceneSource*>(user);
+  const std::string key = sourceKey(file);
+  if (const auto it = source.externals.find(key); it != source.externals.end()) {
+    out->assign(it->second.begin(), it->second.end());
+    return true;
   }
-  std::error_code ec;
-  const std::uintmax_t size = fs::file_size(file, ec);
-  if (ec || size > limits::kMaxFileBytes) {
-    if (err) *err += "'" + file + "' is unreadable or larger than " + std::to_string(limits::kMaxFileBytes) + " bytes\n";
-    return false;
+  if (err) {
+    const auto problem = source.externalProblems.find(key);
+    *err += (problem != source.externalProblems.end() ? problem->second : "'" + file + "' was not read") + "\n";
   }
-  std::ifstream in(file, std::ios::binary);
-  out->resize(static_cast<std::size_t>(size));
-  in.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size));
-  if (!in || in.gcount() != static_cast<std::streamsize>(size)) {
-    if (err) *err += "failed to read '" + file + "'\n";
-    return false;
-  }
-  return true;
+  return false;
 }
 
 bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
   if (err) *err += "writing is disabled\n";
   return false;
+}
+
+// As tinygltf 2.7.0 decodes a URI before looking the file up (dlib::urldecode: '+' -> ' ', %XX -> byte).
+std::string decodedUri(const std::string& uri) {
+  const auto hex = [](char c) -> unsigned {
+    if (c >= '0' && c <= '9') return static_cast<unsigned>(c - '0');
+    if (c >= 'a' && c <= 'f') return static_cast<unsigned>(c - 'a' + 10);
+    if (c >= 'A' && c <= 'F') return static_cast<unsigned>(c - 'A' + 10);
+    return 0;
+  };
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '+') {
+      out += ' ';
+    } else if (uri[i] == '%' && uri.size() > i + 2) {
+      out += static_cast<char>(hex(uri[i + 1]) << 4 | hex(uri[i + 2]));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
 }
 
 // ---- image size sniffing before decoding -----------------------------------------------------------------
@@ -295,8 +301,35 @@ const std::vector<std::string>& supportedGltfExtensions() {
   return names;
 }
 
-GltfDocument readGltfDocument(const std::string& path) {
-  const std::string bytes = readSceneFile(path);
+std::vector<std::string> gltfExternalUris(const std::string& path, const std::string& bytes) {
+  std::string_view jsonText = bytes;
+  if (hasGlbMagic(bytes)) {
+    std::vector<std::string> ignored;
+    try {
+      jsonText = checkGlbLayout(path, bytes, ignored).json;
+    } catch (const SceneError&) {
+      return {};  // the loader reports it
+    }
+  }
+  if (findJsonNestingViolation(jsonText)) return {};
+  const nlohmann::json doc = nlohmann::json::parse(jsonText.begin(), jsonText.end(), nullptr, false);
+  if (!doc.is_object()) return {};
+  std::vector<std::string> uris;
+  for (const char* kind : {"buffers", "images"}) {
+    const auto list = doc.find(kind);
+    if (list == doc.end() || !list->is_array()) continue;
+    for (const nlohmann::json& item : *list) {
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string uri = item["uri"].get<std::string>();
+      if (!tinygltf::IsDataURI(uri)) uris.push_back(decodedUri(uri));
+    }
+  }
+  return uris;
+}
+
+GltfDocument readGltfDocument(const SceneSource& source) {
+  const std::string& path = source.name;
+  const std::string& bytes = source.bytes;
   GltfDocument doc;
   const bool glb = hasGlbMagic(bytes);
   std::string ext = fs::path(path).extension().string();
@@ -313,15 +346,13 @@ GltfDocument readGltfDocument(const std::string& path) {
   }
   checkJson(path, jsonText, doc.warnings);
 
-  std::error_code ec;
-  FolderRoot root{fs::weakly_canonical(fs::absolute(fs::path(path)).parent_path(), ec)};
-  if (ec) throw SceneError(path, "cannot resolve the scene folder (" + ec.message() + ")");
   tinygltf::TinyGLTF loader;
-  loader.SetFsCallbacks({&fileExistsInRoot, &expandNothing, &readFileInRoot, &refuseWrite, &root});
+  loader.SetFsCallbacks({&fileInSource, &expandNothing, &readFromSource, &refuseWrite,
+                         const_cast<SceneSource*>(&source)});
   loader.SetImageLoader(&imageLoaderCallback, nullptr);
 
   std::string err, warn;
-  const std::string baseDir = root.root.string();
+  const std::string baseDir;  // URIs are looked up in the source as written
   const bool ok = glb ? loader.LoadBinaryFromMemory(&doc.model, &err, &warn,
                                                     reinterpret_cast<const unsigned char*>(bytes.data()),
                                                     static_cast<unsigned int>(length), baseDir)

@@ -286,12 +286,15 @@ void readNodeMeshes(LoadContext& ctx, const NodeInstance& inst, std::vector<Prim
 
 }  // namespace
 
-Scene loadGltf(const std::string& path, SceneLoadReport* reportOut) {
+Scene loadGltf(const std::string& path, SceneLoadReport* report) { return loadGltf(readSceneSource(path), report); }
+
+Scene loadGltf(const SceneSource& source, SceneLoadReport* reportOut) {
   SceneLoadReport local;
   SceneLoadReport& report = reportOut ? *reportOut : local;
   report = SceneLoadReport{};
+  const std::string& path = source.name;
 
-  GltfDocument doc = readGltfDocument(path);
+  GltfDocument doc = readGltfDocument(source);
   report.warnings = std::move(doc.warnings);
   Scene scene;
   scene.name = path;

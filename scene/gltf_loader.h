@@ -16,9 +16,12 @@
 
 #include "scene/load_report.h"
 #include "scene/scene.h"
+#include "scene/scene_source.h"
 
 namespace ht {
 
 Scene loadGltf(const std::string& path, SceneLoadReport* report = nullptr);
+// From bytes read beforehand (scene_source.h): external files come only from `source`.
+Scene loadGltf(const SceneSource& source, SceneLoadReport* report = nullptr);
 
 }  // namespace ht

@@ -29,6 +29,13 @@ void summarize(const Scene& scene, SceneLoadReport& report) {
   report.lights = scene.lights.size();
 }
 
+[[noreturn]] void throwUnsupported(const std::string& spec) {
+  std::string builtins;
+  for (const std::string& n : builtinSceneNames()) builtins += ", " + n;
+  throw SceneError(spec, "unsupported scene '" + spec + "' (use a .gltf, .glb, .obj or .off file, or one of the" +
+                             " built-in scenes" + builtins.substr(1) + ")");
+}
+
 }  // namespace
 
 Scene loadScene(const std::string& spec, SceneLoadReport& report) {
@@ -39,14 +46,22 @@ Scene loadScene(const std::string& spec, SceneLoadReport& report) {
     return scene;
   }
   const std::string ext = lowercaseExtension(spec);
-  if (ext == ".gltf" || ext == ".glb") return loadGltf(spec, &report);
-  if (ext == ".obj") return loadObj(spec, &report);
-  if (ext == ".off") return loadOff(spec, &report);
+  if (ext == ".gltf" || ext == ".glb" || ext == ".obj" || ext == ".off") return loadScene(readSceneSource(spec), report);
+  throwUnsupported(spec);
+}
 
-  std::string builtins;
-  for (const std::string& n : builtinSceneNames()) builtins += ", " + n;
-  throw SceneError(spec, "unsupported scene '" + spec + "' (use a .gltf, .glb, .obj or .off file, or one of the" +
-                             " built-in scenes" + builtins.substr(1) + ")");
+Scene loadScene(const SceneSource& source, SceneLoadReport& report) {
+  report = SceneLoadReport{};
+  const std::string ext = lowercaseExtension(source.name);
+  if (ext == ".gltf" || ext == ".glb") return loadGltf(source, &report);
+  if (ext == ".obj") return parseObj(source.bytes, source.name, &report);
+  if (ext == ".off") return parseOff(source.bytes, source.name, &report);
+  throwUnsupported(source.name);
+}
+
+Scene loadScene(const SceneSource& source) {
+  SceneLoadReport report;
+  return loadScene(source, report);
 }
 
 Scene loadScene(const std::string& spec) {

@@ -4,11 +4,16 @@
 
 #include "scene/load_report.h"
 #include "scene/scene.h"
+#include "scene/scene_source.h"
 
 namespace ht {
 
 // Dispatches on "builtin:NAME" or the file extension (.gltf .glb .obj .off, case-insensitive) and fills
 // `report`. Throws SceneError naming the spec when the scheme or extension is not supported.
 Scene loadScene(const std::string& spec, SceneLoadReport& report);
+
+// Loads from bytes read beforehand (scene_source.h), dispatching on the extension of `source.name`.
+Scene loadScene(const SceneSource& source, SceneLoadReport& report);
+Scene loadScene(const SceneSource& source);
 
 }  // namespace ht

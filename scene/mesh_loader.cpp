@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "common/error.h"
-#include "scene/file_bytes.h"
+#include "scene/scene_source.h"
 #include "scene/scene_limits.h"
 
 namespace ht {
@@ -257,11 +257,11 @@ Scene parseOff(std::string_view text, const std::string& file, SceneLoadReport* 
 }
 
 Scene loadObj(const std::string& path, SceneLoadReport* report) {
-  return parseObj(readSceneFile(path), path, report);
+  return parseObj(readSceneSource(path).bytes, path, report);
 }
 
 Scene loadOff(const std::string& path, SceneLoadReport* report) {
-  return parseOff(readSceneFile(path), path, report);
+  return parseOff(readSceneSource(path).bytes, path, report);
 }
 
 }  // namespace ht

@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "common/error.h"
+
 namespace ht::limits {
 
 inline constexpr std::size_t kMaxTriangles = 50'000'000;            // per scene, after triangulation
@@ -12,3 +14,14 @@ inline constexpr std::uintmax_t kMaxFileBytes = 2'000'000'000;      // scene fil
                                                                     // tinygltf takes unsigned int lengths)
 
 }  // namespace ht::limits
+
+namespace ht {
+
+// A scene over one of the caps (size, counts): refused before the memory is allocated. The daemon answers
+// RESOURCE_EXHAUSTED, the CLI exits 1, both naming the file, the count and the limit.
+class SceneLimitExceeded : public SceneError {
+ public:
+  using SceneError::SceneError;
+};
+
+}  // namespace ht

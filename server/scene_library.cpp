@@ -20,6 +20,21 @@ std::string contentHash(std::span<const std::uint8_t> bytes) {
   return text;
 }
 
+namespace {
+
+std::span<const std::uint8_t> asBytes(const std::string& text) {
+  return {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()};
+}
+
+}  // namespace
+
+std::string sourceKey(const SceneSource& source) {
+  if (source.bytes.empty() && source.name.rfind("builtin:", 0) == 0) return source.name;
+  std::string key = contentHash(asBytes(source.bytes)) + source.name.substr(source.name.rfind('.') + 1);
+  for (const auto& [uri, bytes] : source.externals) key += "+" + contentHash(asBytes(uri)) + contentHash(asBytes(bytes));
+  return key;
+}
+
 SceneLibrary::SceneLibrary(RenderWorker& worker, std::uint64_t maxTriangles, std::size_t maxSessions)
     : worker_(worker), maxTriangles_(maxTriangles), maxSessions_(maxSessions) {}
 
@@ -29,11 +44,11 @@ SceneLibrary::~SceneLibrary() {
 }
 
 std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, const std::string& key,
-                                                  const std::string& spec) {
+                                                  const SceneSource& source) {
   auto content = std::make_shared<SceneContent>();
   content->contentKey = key;
   const auto start = std::chrono::steady_clock::now();
-  content->scene = loadScene(spec);
+  content->scene = source.name.rfind("builtin:", 0) == 0 ? loadScene(source.name) : loadScene(source);
   content->loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (content->scene.triangleCount() > maxTriangles_) {
     throw LimitExceeded("scene has " + std::to_string(content->scene.triangleCount()) +
@@ -49,9 +64,9 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
   return content;
 }
 
-std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client, const std::string& spec,
-                                                       std::span<const std::uint8_t> bytes) {
-  const std::string key = bytes.empty() ? spec : contentHash(bytes) + spec.substr(spec.rfind('.') + 1);
+std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client, const SceneSource& source) {
+  const std::string key = sourceKey(source);
+  const bool builtin = key == source.name;
   std::shared_ptr<SceneContent> content;
   bool reused = false;
   {
@@ -63,14 +78,14 @@ std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client
       if (it != contents_.end()) content = it->second, reused = true;
     }
     if (!content) {
-      content = build(client, key, spec);
+      content = build(client, key, source);
       std::lock_guard lock(mutex_);
       contents_[key] = content;
     }
   }
   std::lock_guard lock(mutex_);
   auto session = std::make_shared<SceneSession>();
-  session->id = "s" + std::to_string(nextSession_++) + "-" + (bytes.empty() ? std::string("builtin") : key.substr(0, 16));
+  session->id = "s" + std::to_string(nextSession_++) + "-" + (builtin ? std::string("builtin") : key.substr(0, 16));
   session->content = content;
   session->reused = reused;
   sessions_[session->id] = session;

@@ -15,6 +15,7 @@
 #include "camera_models/display_config.h"
 #include "gpu/renderer.h"
 #include "scene/scene.h"
+#include "scene/scene_source.h"
 #include "server/errors.h"
 #include "server/render_worker.h"
 
@@ -43,10 +44,10 @@ class SceneLibrary {
   SceneLibrary(RenderWorker& worker, std::uint64_t maxTriangles, std::size_t maxSessions = 256);
   ~SceneLibrary();  // releases the Renderers; call after the worker stopped, before the Vulkan context dies
 
-  // `spec` is a file path (already confined by the caller) or "builtin:NAME"; `bytes` are its contents (empty
-  // for builtins). `client` is charged for the BVH upload job.
-  std::shared_ptr<const SceneSession> open(const std::string& client, const std::string& spec,
-                                           std::span<const std::uint8_t> bytes);
+  // `source` holds every byte the scene is loaded from (scene/scene_source.h; read once beneath the scene root, or
+  // uploaded), or only a name "builtin:NAME". Contents are shared by a key over all those bytes. `client` is
+  // charged for the BVH upload job.
+  std::shared_ptr<const SceneSession> open(const std::string& client, const SceneSource& source);
   std::shared_ptr<const SceneSession> find(const std::string& id) const;  // throws UnknownScene
   // Replaces the camera override; observer values replace the tracked observer where given.
   void updateCamera(const std::string& id, const CameraPlacement& placement,
@@ -66,7 +67,7 @@ class SceneLibrary {
   std::size_t contentCount() const;
 
  private:
-  std::shared_ptr<SceneContent> build(const std::string& client, const std::string& key, const std::string& spec);
+  std::shared_ptr<SceneContent> build(const std::string& client, const std::string& key, const SceneSource& source);
 
   RenderWorker& worker_;
   const std::uint64_t maxTriangles_;
@@ -80,5 +81,8 @@ class SceneLibrary {
 
 // 64-bit FNV-1a of `bytes`, as 16 hex digits (content key; not a security boundary).
 std::string contentHash(std::span<const std::uint8_t> bytes);
+// The content key of a source: the builtin name, or hashes of the main file and of every external file with its
+// URI, plus the extension; two sources share a key only when every byte loaded is the same.
+std::string sourceKey(const SceneSource& source);
 
 }  // namespace ht::server
