@@ -27,12 +27,16 @@ inline std::optional<JsonNestingViolation> findJsonNestingViolation(std::string_
     ++column;
     if (c == '\n') ++line, column = 0;
     if (inString) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') inString = false;
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        inString = false;
       continue;
     }
-    if (c == '"') inString = true;
+    if (c == '"')
+      inString = true;
     else if (c == '[' || c == '{') {
       if (++depth > maxDepth) return JsonNestingViolation{line, column};
     } else if ((c == ']' || c == '}') && depth > 0) {

@@ -1,5 +1,5 @@
 // gltf_file.cpp - GLB container checks, JSON pre-checks, confined file access and checked image decoding
-// around tinygltf 2.7.0 (Debian 12; known issues listed in docs/service.md §6).
+// around tinygltf 2.7.0 (Debian 12; known issues listed in docs/SERVICE.md §6).
 #include "scene/gltf_file.h"
 
 #include <algorithm>
@@ -40,8 +40,8 @@ std::uint32_t readLe32(const std::string& bytes, std::size_t offset) {
 bool hasGlbMagic(const std::string& bytes) { return bytes.size() >= 4 && readLe32(bytes, 0) == kGlbMagic; }
 
 struct GlbLayout {
-  std::size_t length = 0;      // bytes of the GLB (header's total length)
-  std::string_view json;       // JSON chunk content
+  std::size_t length = 0;  // bytes of the GLB (header's total length)
+  std::string_view json;   // JSON chunk content
 };
 
 GlbLayout checkGlbLayout(const std::string& path, const std::string& bytes, std::vector<std::string>& warnings) {
@@ -94,13 +94,15 @@ std::string joined(const std::vector<std::string>& names) {
 
 [[noreturn]] void refuseRequiredExtension(const std::string& path, const std::string& name) {
   if (name == "KHR_draco_mesh_compression")
-    throw SceneError(path, "requires KHR_draco_mesh_compression: Draco-compressed meshes are not supported "
-                           "(decompress the file first, e.g. with glTF-Transform: read it with the draco3d decoder "
-                           "registered, dispose KHR_draco_mesh_compression and write it again; or re-export "
-                           "without Draco compression)");
+    throw SceneError(path,
+                     "requires KHR_draco_mesh_compression: Draco-compressed meshes are not supported "
+                     "(decompress the file first, e.g. with glTF-Transform: read it with the draco3d decoder "
+                     "registered, dispose KHR_draco_mesh_compression and write it again; or re-export "
+                     "without Draco compression)");
   if (name == "EXT_meshopt_compression" || name == "KHR_meshopt_compression")
-    throw SceneError(path, "requires " + name + ": meshoptimizer-compressed buffers are not supported "
-                           "(re-export without meshopt compression, e.g. glTF-Transform without --meshopt)");
+    throw SceneError(path, "requires " + name +
+                               ": meshoptimizer-compressed buffers are not supported "
+                               "(re-export without meshopt compression, e.g. glTF-Transform without --meshopt)");
   throw SceneError(path, "requires the glTF extension " + name + ", which holotrace does not support (supported: " +
                              joined(supportedGltfExtensions()) + "; re-export the file without it)");
 }
@@ -110,7 +112,8 @@ bool isSupported(const std::string& name) {
   return std::find(s.begin(), s.end(), name) != s.end();
 }
 
-void checkJson(const std::string& path, std::string_view text, std::vector<std::string>& warnings) {
+void checkJson(const std::string& path, std::string_view text, const SceneLimits& sceneLimits,
+               std::vector<std::string>& warnings) {
   // tinygltf converts `extras`/`extensions` with recursive functions: refuse deep nesting before anything parses.
   if (const auto deep = findJsonNestingViolation(text))
     throw SceneError(path, jsonNestingMessage(*deep) + " (not a plausible glTF file; check where it came from)");
@@ -122,6 +125,9 @@ void checkJson(const std::string& path, std::string_view text, std::vector<std::
                                " (a .gltf file must be glTF 2.0 JSON; check the file is not truncated or binary)");
   }
   if (!doc.is_object()) throw SceneError(path, "the JSON top level is not an object (not a glTF 2.0 file)");
+  if (const auto nodes = doc.find("nodes");
+      nodes != doc.end() && nodes->is_array() && nodes->size() > sceneLimits.maxNodes)
+    throwOverLimit(path, nodes->size(), "nodes", sceneLimits.maxNodes, "merge or remove nodes");
   const auto asset = doc.find("asset");
   if (asset == doc.end() || !asset->is_object() || !asset->contains("version") || !(*asset)["version"].is_string())
     throw SceneError(path, "no 'asset.version': not a glTF 2.0 file (glTF 1.0 files must be converted to 2.0)");
@@ -222,9 +228,15 @@ ImageSize jpegSize(const unsigned char* b, std::size_t n) {
   while (pos + 4 <= n) {
     if (b[pos] != 0xFF) return {};
     const unsigned char marker = b[pos + 1];
-    if (marker == 0xFF) { ++pos; continue; }                                           // fill byte
-    if ((marker >= 0xD0 && marker <= 0xD7) || marker == 0x01) { pos += 2; continue; }  // no length field
-    if (marker == 0xDA || marker == 0xD9) return {};                                   // scan/end before a frame
+    if (marker == 0xFF) {
+      ++pos;
+      continue;
+    }  // fill byte
+    if ((marker >= 0xD0 && marker <= 0xD7) || marker == 0x01) {
+      pos += 2;
+      continue;
+    }                                                 // no length field
+    if (marker == 0xDA || marker == 0xD9) return {};  // scan/end before a frame
     const std::size_t length = be16(b + pos + 2);
     const bool sof = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
     if (sof) {
@@ -237,8 +249,15 @@ ImageSize jpegSize(const unsigned char* b, std::size_t n) {
   return {};
 }
 
+// Pixels every texture of one load may decode together (SceneLimits::maxTexturePixels); charged from the image
+// headers before decoding. A refusal is remembered and rethrown as SceneLimitExceeded after tinygltf returns.
+struct TextureBudget {
+  std::uint64_t limit = 0, used = 0;
+  bool exceeded = false;
+};
+
 bool decodeImageChecked(tinygltf::Image* image, int index, std::string* err, std::string* warn,
-                        const unsigned char* bytes, std::size_t size) {
+                        const unsigned char* bytes, std::size_t size, TextureBudget& budget) {
   const auto fail = [&](const std::string& why) {
     if (err) *err += "image " + std::to_string(index) + ": " + why + "\n";
     return false;
@@ -252,6 +271,11 @@ bool decodeImageChecked(tinygltf::Image* image, int index, std::string* err, std
     return fail(std::to_string(dims.width) + " x " + std::to_string(dims.height) + " pixels, outside 1.." +
                 std::to_string(limits::kMaxImageDimension) + " per side (downscale the texture)");
   if (size > static_cast<std::size_t>(INT_MAX)) return fail("encoded image larger than 2 GiB");
+  budget.used += std::uint64_t{dims.width} * dims.height;
+  if (budget.used > budget.limit) {
+    budget.exceeded = true;
+    return fail("textures over the pixel limit");
+  }
   return tinygltf::LoadImageData(image, index, err, warn, 0, 0, bytes, static_cast<int>(size), nullptr);
 }
 
@@ -259,25 +283,34 @@ bool decodeImageChecked(tinygltf::Image* image, int index, std::string* err, std
 // decodeBufferViewImages(): tinygltf 2.7.0 passes `&buffer.data[bufferView.byteOffset]` with
 // `bufferView.byteLength` without checking that range against the buffer.
 bool imageLoaderCallback(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int, int,
-                         const unsigned char* bytes, int size, void*) {
+                         const unsigned char* bytes, int size, void* budget) {
   if (image->bufferView >= 0) return true;
   if (size <= 0) {
     if (err) *err += "image " + std::to_string(index) + " is empty\n";
     return false;
   }
-  return decodeImageChecked(image, index, err, warn, bytes, static_cast<std::size_t>(size));
+  return decodeImageChecked(image, index, err, warn, bytes, static_cast<std::size_t>(size),
+                            *static_cast<TextureBudget*>(budget));
 }
 
-void decodeBufferViewImages(const std::string& path, tinygltf::Model& model, std::vector<std::string>& warnings) {
+[[noreturn]] void throwTexturesOverLimit(const std::string& path, const TextureBudget& budget) {
+  throwOverLimit(path, budget.used, "texture pixels (width x height over its textures, counted up to the one over)",
+                 budget.limit, "downscale or drop textures");
+}
+
+void decodeBufferViewImages(const std::string& path, tinygltf::Model& model, TextureBudget& budget,
+                            std::vector<std::string>& warnings) {
   for (std::size_t i = 0; i < model.images.size(); ++i) {
     tinygltf::Image& image = model.images[i];
     if (image.bufferView < 0 || !image.image.empty()) continue;
     const std::string what = "image " + std::to_string(i);
     if (static_cast<std::size_t>(image.bufferView) >= model.bufferViews.size())
-      throw SceneError(path, what + " refers to missing bufferView " + std::to_string(image.bufferView) + " (fix the file)");
+      throw SceneError(path,
+                       what + " refers to missing bufferView " + std::to_string(image.bufferView) + " (fix the file)");
     const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(image.bufferView)];
     if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size())
-      throw SceneError(path, what + ": its bufferView refers to missing buffer " + std::to_string(view.buffer) + " (fix the file)");
+      throw SceneError(
+          path, what + ": its bufferView refers to missing buffer " + std::to_string(view.buffer) + " (fix the file)");
     const std::vector<unsigned char>& data = model.buffers[static_cast<std::size_t>(view.buffer)].data;
     if (view.byteLength == 0 || view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
       throw SceneError(path, what + ": bufferView bytes [" + std::to_string(view.byteOffset) + ", +" +
@@ -285,7 +318,8 @@ void decodeBufferViewImages(const std::string& path, tinygltf::Model& model, std
                                  std::to_string(data.size()) + " bytes (the file is truncated or corrupt)");
     std::string err, warn;
     const bool ok = decodeImageChecked(&image, static_cast<int>(i), &err, &warn, data.data() + view.byteOffset,
-                                       view.byteLength);
+                                       view.byteLength, budget);
+    if (budget.exceeded) throwTexturesOverLimit(path, budget);
     if (!warn.empty()) warnings.push_back(warn);
     if (!err.empty() && err.back() == '\n') err.pop_back();
     if (!ok) throw SceneError(path, err.empty() ? what + " cannot be decoded (re-export it as PNG or JPEG)" : err);
@@ -327,13 +361,14 @@ std::vector<std::string> gltfExternalUris(const std::string& path, const std::st
   return uris;
 }
 
-GltfDocument readGltfDocument(const SceneSource& source) {
+GltfDocument readGltfDocument(const SceneSource& source, const SceneLimits& sceneLimits) {
   const std::string& path = source.name;
   const std::string& bytes = source.bytes;
   GltfDocument doc;
   const bool glb = hasGlbMagic(bytes);
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".glb" && !glb)
     throw SceneError(path, "not a GLB file: the 'glTF' magic is missing (rename a JSON file to .gltf, or re-export)");
 
@@ -344,26 +379,28 @@ GltfDocument readGltfDocument(const SceneSource& source) {
     length = layout.length;
     jsonText = layout.json;
   }
-  checkJson(path, jsonText, doc.warnings);
+  checkJson(path, jsonText, sceneLimits, doc.warnings);
 
   tinygltf::TinyGLTF loader;
-  loader.SetFsCallbacks({&fileInSource, &expandNothing, &readFromSource, &refuseWrite,
-                         const_cast<SceneSource*>(&source)});
-  loader.SetImageLoader(&imageLoaderCallback, nullptr);
+  loader.SetFsCallbacks(
+      {&fileInSource, &expandNothing, &readFromSource, &refuseWrite, const_cast<SceneSource*>(&source)});
+  TextureBudget budget{sceneLimits.maxTexturePixels};
+  loader.SetImageLoader(&imageLoaderCallback, &budget);
 
   std::string err, warn;
   const std::string baseDir;  // URIs are looked up in the source as written
-  const bool ok = glb ? loader.LoadBinaryFromMemory(&doc.model, &err, &warn,
-                                                    reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                    static_cast<unsigned int>(length), baseDir)
-                      : loader.LoadASCIIFromString(&doc.model, &err, &warn, bytes.data(),
-                                                   static_cast<unsigned int>(length), baseDir);
+  const bool ok =
+      glb ? loader.LoadBinaryFromMemory(&doc.model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                        static_cast<unsigned int>(length), baseDir)
+          : loader.LoadASCIIFromString(&doc.model, &err, &warn, bytes.data(), static_cast<unsigned int>(length),
+                                       baseDir);
   if (!warn.empty()) doc.warnings.push_back(warn);
+  if (budget.exceeded) throwTexturesOverLimit(path, budget);
   if (!ok) {
     if (!err.empty() && err.back() == '\n') err.pop_back();
     throw SceneError(path, "invalid glTF: " + err + " (check the file with the Khronos glTF-Validator)");
   }
-  decodeBufferViewImages(path, doc.model, doc.warnings);
+  decodeBufferViewImages(path, doc.model, budget, doc.warnings);
   return doc;
 }
 

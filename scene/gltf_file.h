@@ -11,6 +11,7 @@
 
 #include <tiny_gltf.h>
 
+#include "scene/scene_limits.h"
 #include "scene/scene_source.h"
 
 namespace ht {
@@ -24,7 +25,9 @@ struct GltfDocument {
 };
 
 // Throws SceneError(source.name, ...) for every problem.
-GltfDocument readGltfDocument(const SceneSource& source);
+// `limits`: the node count (from the JSON, before tinygltf allocates) and the texture pixels (from each image's
+// header, before decoding) are refused as SceneLimitExceeded.
+GltfDocument readGltfDocument(const SceneSource& source, const SceneLimits& limits);
 
 // The external URIs (buffers, images; not data: URIs) of a .gltf/.glb, decoded as tinygltf looks them up. Malformed
 // files give an empty list (readGltfDocument reports what is wrong).

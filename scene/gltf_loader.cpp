@@ -24,7 +24,7 @@ struct PrimitiveGeometry {
   std::vector<glm::vec2> texcoords;  // empty: none
   std::vector<glm::uvec3> triangles;
   std::uint32_t material = 0;
-  std::uint32_t node = 0;            // index into Scene::nodes of the node instance it belongs to
+  std::uint32_t node = 0;  // index into Scene::nodes of the node instance it belongs to
 };
 
 struct LoadContext {
@@ -32,7 +32,8 @@ struct LoadContext {
   const std::string& file;
   SceneLoadReport& report;
   Scene& scene;
-  int defaultMaterial = -1;  // created on first use by a primitive without material
+  const SceneLimits& limits;
+  int defaultMaterial = -1;                   // created on first use by a primitive without material
   std::unordered_set<std::string> nodeNames;  // Scene::nodes names so far (kept unique; files may repeat names)
 };
 
@@ -62,13 +63,17 @@ const tinygltf::Mesh& checkedMesh(const LoadContext& ctx, int mesh, int node) {
   return ctx.model.meshes[static_cast<std::size_t>(mesh)];
 }
 
-// Refuses scenes whose triangle or vertex total (over all mesh instances) exceeds scene_limits.h, using only
-// accessor counts, before any geometry is read or allocated.
+// Refuses scenes whose instance, triangle or vertex total (over all mesh instances) exceeds ctx.limits, using only
+// node and accessor counts, before any geometry is read or allocated: a small file that instances one mesh
+// thousands of times is refused here, not after loading gigabytes.
 void checkSizeBudget(const LoadContext& ctx, const std::vector<NodeInstance>& instances) {
-  std::size_t triangles = 0, vertices = 0;
+  std::uint64_t triangles = 0, vertices = 0, meshInstances = 0;
   for (const NodeInstance& inst : instances) {
     const tinygltf::Node& node = ctx.model.nodes[static_cast<std::size_t>(inst.node)];
     if (node.mesh < 0) continue;
+    if (++meshInstances > ctx.limits.maxInstances)
+      throwOverLimit(ctx.file, meshInstances, "mesh instances or more", ctx.limits.maxInstances,
+                     "instance fewer meshes");
     const tinygltf::Mesh& mesh = checkedMesh(ctx, node.mesh, inst.node);
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
       const tinygltf::Primitive& prim = mesh.primitives[p];
@@ -76,16 +81,21 @@ void checkSizeBudget(const LoadContext& ctx, const std::vector<NodeInstance>& in
       const AccessorUse use{ctx.file, primitiveName(node.mesh, p) + " POSITION"};
       const int position = attribute(prim, "POSITION");
       if (position < 0)
-        throw SceneError(ctx.file, primitiveName(node.mesh, p) + " has no POSITION attribute (every primitive needs one)");
+        throw SceneError(ctx.file,
+                         primitiveName(node.mesh, p) + " has no POSITION attribute (every primitive needs one)");
       const std::size_t nv = checkedAccessorCount(ctx.model, position, use);
-      const std::size_t refs = prim.indices >= 0
-          ? checkedAccessorCount(ctx.model, prim.indices, {ctx.file, primitiveName(node.mesh, p) + " indices"}) : nv;
+      const std::size_t refs =
+          prim.indices >= 0
+              ? checkedAccessorCount(ctx.model, prim.indices, {ctx.file, primitiveName(node.mesh, p) + " indices"})
+              : nv;
       triangles += triangleCount(prim.mode, refs);
       vertices += nv;
-      if (triangles > limits::kMaxTriangles || vertices > 3 * limits::kMaxTriangles)
-        throw SceneError(ctx.file, "the scene has more than " + std::to_string(limits::kMaxTriangles) +
-                                       " triangles or " + std::to_string(3 * limits::kMaxTriangles) +
-                                       " vertices after instancing (simplify or decimate it)");
+      if (triangles > ctx.limits.maxTriangles)
+        throwOverLimit(ctx.file, triangles, "triangles or more after instancing (from the accessor counts)",
+                       ctx.limits.maxTriangles, "simplify or decimate it");
+      if (vertices > ctx.limits.maxVertices)
+        throwOverLimit(ctx.file, vertices, "vertices or more after instancing (from the accessor counts)",
+                       ctx.limits.maxVertices, "simplify or decimate it");
     }
   }
 }
@@ -99,9 +109,12 @@ std::vector<glm::uvec3> assembleTriangles(int mode, const std::vector<std::uint3
   const std::size_t n = triangleCount(mode, v.size());
   tris.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (mode == TINYGLTF_MODE_TRIANGLES) tris.push_back({v[3 * i], v[3 * i + 1], v[3 * i + 2]});
-    else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) tris.push_back({v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
-    else tris.push_back({v[i + 1], v[i + 2], v[0]});
+    if (mode == TINYGLTF_MODE_TRIANGLES)
+      tris.push_back({v[3 * i], v[3 * i + 1], v[3 * i + 2]});
+    else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+      tris.push_back({v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+    else
+      tris.push_back({v[i + 1], v[i + 2], v[0]});
   }
   return tris;
 }
@@ -150,7 +163,8 @@ std::vector<Vec> toVectors(const std::vector<float>& flat) {
 void checkAttributeCount(const LoadContext& ctx, std::size_t count, std::size_t vertexCount, const std::string& what) {
   if (count != vertexCount)
     throw SceneError(ctx.file, what + " has " + std::to_string(count) + " elements but POSITION has " +
-                                   std::to_string(vertexCount) + " (all attributes of a primitive need the same count)");
+                                   std::to_string(vertexCount) +
+                                   " (all attributes of a primitive need the same count)");
 }
 
 // Positions by the world matrix; normals by its inverse transpose (normals are covectors: n' = M^-T n keeps
@@ -175,8 +189,8 @@ void transformToWorld(PrimitiveGeometry& g, const glm::dmat4& world, SceneLoadRe
 PrimitiveGeometry readPrimitive(LoadContext& ctx, const tinygltf::Primitive& prim, const glm::dmat4& world,
                                 const std::string& what) {
   PrimitiveGeometry g;
-  g.positions = toVectors<glm::vec3>(readFloatAccessor(ctx.model, attribute(prim, "POSITION"), TINYGLTF_TYPE_VEC3,
-                                                       {ctx.file, what + " POSITION"}));
+  g.positions = toVectors<glm::vec3>(
+      readFloatAccessor(ctx.model, attribute(prim, "POSITION"), TINYGLTF_TYPE_VEC3, {ctx.file, what + " POSITION"}));
   const std::size_t nv = g.positions.size();
   if (const int a = attribute(prim, "NORMAL"); a >= 0) {
     g.normals = toVectors<glm::vec3>(readFloatAccessor(ctx.model, a, TINYGLTF_TYPE_VEC3, {ctx.file, what + " NORMAL"}));
@@ -288,19 +302,19 @@ void readNodeMeshes(LoadContext& ctx, const NodeInstance& inst, std::vector<Prim
 
 Scene loadGltf(const std::string& path, SceneLoadReport* report) { return loadGltf(readSceneSource(path), report); }
 
-Scene loadGltf(const SceneSource& source, SceneLoadReport* reportOut) {
+Scene loadGltf(const SceneSource& source, SceneLoadReport* reportOut, const SceneLimits& limits) {
   SceneLoadReport local;
   SceneLoadReport& report = reportOut ? *reportOut : local;
   report = SceneLoadReport{};
   const std::string& path = source.name;
 
-  GltfDocument doc = readGltfDocument(source);
+  GltfDocument doc = readGltfDocument(source, limits);
   report.warnings = std::move(doc.warnings);
   Scene scene;
   scene.name = path;
   appendGltfMaterials(doc.model, scene, path, report);
 
-  LoadContext ctx{doc.model, path, report, scene};
+  LoadContext ctx{doc.model, path, report, scene, limits};
   const std::vector<NodeInstance> instances = flattenSceneNodes(doc.model, path);
   checkSizeBudget(ctx, instances);
   std::vector<PrimitiveGeometry> prims;
@@ -312,8 +326,9 @@ Scene loadGltf(const SceneSource& source, SceneLoadReport* reportOut) {
   if (report.skippedPrimitives > 0)
     report.warnings.push_back(std::to_string(report.skippedPrimitives) + " point/line primitives skipped");
   if (scene.triangles.empty())
-    throw SceneError(path, "the scene has no triangles (nothing to render; check that the default scene contains "
-                           "meshes with triangle primitives)");
+    throw SceneError(path,
+                     "the scene has no triangles (nothing to render; check that the default scene contains "
+                     "meshes with triangle primitives)");
   if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
 
   report.triangles = scene.triangles.size();

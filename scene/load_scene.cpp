@@ -18,7 +18,8 @@ constexpr std::string_view kBuiltinPrefix = "builtin:";
 
 std::string lowercaseExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 
@@ -46,22 +47,23 @@ Scene loadScene(const std::string& spec, SceneLoadReport& report) {
     return scene;
   }
   const std::string ext = lowercaseExtension(spec);
-  if (ext == ".gltf" || ext == ".glb" || ext == ".obj" || ext == ".off") return loadScene(readSceneSource(spec), report);
+  if (ext == ".gltf" || ext == ".glb" || ext == ".obj" || ext == ".off")
+    return loadScene(readSceneSource(spec), report);
   throwUnsupported(spec);
 }
 
-Scene loadScene(const SceneSource& source, SceneLoadReport& report) {
+Scene loadScene(const SceneSource& source, SceneLoadReport& report, const SceneLimits& limits) {
   report = SceneLoadReport{};
   const std::string ext = lowercaseExtension(source.name);
-  if (ext == ".gltf" || ext == ".glb") return loadGltf(source, &report);
-  if (ext == ".obj") return parseObj(source.bytes, source.name, &report);
-  if (ext == ".off") return parseOff(source.bytes, source.name, &report);
+  if (ext == ".gltf" || ext == ".glb") return loadGltf(source, &report, limits);
+  if (ext == ".obj") return parseObj(source.bytes, source.name, &report, limits);
+  if (ext == ".off") return parseOff(source.bytes, source.name, &report, limits);
   throwUnsupported(source.name);
 }
 
-Scene loadScene(const SceneSource& source) {
+Scene loadScene(const SceneSource& source, const SceneLimits& limits) {
   SceneLoadReport report;
-  return loadScene(source, report);
+  return loadScene(source, report, limits);
 }
 
 Scene loadScene(const std::string& spec) {

@@ -13,7 +13,8 @@ namespace ht {
 Scene loadScene(const std::string& spec, SceneLoadReport& report);
 
 // Loads from bytes read beforehand (scene_source.h), dispatching on the extension of `source.name`.
-Scene loadScene(const SceneSource& source, SceneLoadReport& report);
-Scene loadScene(const SceneSource& source);
+// `limits` (scene_limits.h) are checked from the file's headers before allocating.
+Scene loadScene(const SceneSource& source, SceneLoadReport& report, const SceneLimits& limits = {});
+Scene loadScene(const SceneSource& source, const SceneLimits& limits = {});
 
 }  // namespace ht

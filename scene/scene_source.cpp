@@ -82,15 +82,16 @@ std::string readCharged(int fd, const std::string& name, std::uint64_t maxBytes,
   const auto size = static_cast<std::uint64_t>(st.st_size);
   if (size > budget)
     throw SceneLimitExceeded(name, "the scene's files are more than " + std::to_string(maxBytes) +
-                                       " bytes (limit on the bytes loaded; this file alone is " +
-                                       std::to_string(size) + ")");
+                                       " bytes (limit on the bytes loaded; this file alone is " + std::to_string(size) +
+                                       ")");
   std::string bytes(static_cast<std::size_t>(size), '\0');
   std::size_t done = 0;
   while (done < bytes.size()) {
     const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw SceneError(name, "read only " + std::to_string(done) + " of " + std::to_string(size) +
-                                           " bytes (the file changed while loading, or a read error occurred)");
+    if (n <= 0)
+      throw SceneError(name, "read only " + std::to_string(done) + " of " + std::to_string(size) +
+                                 " bytes (the file changed while loading, or a read error occurred)");
     done += static_cast<std::size_t>(n);
   }
   budget -= size;
@@ -99,7 +100,8 @@ std::string readCharged(int fd, const std::string& name, std::uint64_t maxBytes,
 
 bool referencesExternals(const std::string& name) {
   std::string ext = fs::path(name).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext == ".gltf" || ext == ".glb";
 }
 
@@ -110,7 +112,8 @@ void readExternals(int folderFd, SceneSource& source, std::uint64_t maxBytes, st
     if (source.externals.count(uri) || source.externalProblems.count(uri)) continue;
     const Fd fd(openBeneath(folderFd, uri));
     if (fd.fd < 0) {
-      source.externalProblems[uri] = openProblem(errno, "'" + uri + "'") + "; external files must sit in the folder of the glTF file";
+      source.externalProblems[uri] =
+          openProblem(errno, "'" + uri + "'") + "; external files must sit in the folder of the glTF file";
       continue;
     }
     source.externals[uri] = readCharged(fd.fd, source.name + " (external '" + uri + "')", maxBytes, budget);
@@ -130,7 +133,8 @@ SceneSource readOpened(int mainFd, int folderFd, const std::string& name, std::u
 
 SceneSource readSceneSourceBeneath(const fs::path& root, const std::string& relative, std::uint64_t maxBytes) {
   const Fd rootFd(::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
-  if (rootFd.fd < 0) throw SceneError(relative, "the scene root cannot be opened: " + std::string(std::strerror(errno)));
+  if (rootFd.fd < 0)
+    throw SceneError(relative, "the scene root cannot be opened: " + std::string(std::strerror(errno)));
   const Fd file(openBeneath(rootFd.fd, relative));
   if (file.fd < 0) throwOpenError(relative, errno);
   const std::string folder = fs::path(relative).parent_path().string();

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "camera_models/embedded_display_configs.h"
-#include "frame_io/ray_table_exr.h"
 #include "common/error.h"
+#include "frame_io/ray_table_exr.h"
 
 namespace ht::server {
 namespace {
@@ -24,9 +24,7 @@ void addBuiltins(std::map<std::string, std::shared_ptr<const RegisteredDisplay>>
     try {
       map[id] = std::make_shared<const RegisteredDisplay>(
           RegisteredDisplay{id, builtinDisplay(embedded.name), std::string(embedded.json), nullptr});
-    } catch (const Error& e) {
-      log << "holotraced: builtin display skipped: " << e.what() << "\n";
-    }
+    } catch (const Error& e) { log << "holotraced: builtin display skipped: " << e.what() << "\n"; }
   }
 }
 
@@ -43,14 +41,17 @@ std::size_t DisplayRegistry::reload(std::ostream& log) {
       if (entry.path().extension() != ".json" || !entry.is_regular_file()) continue;
       try {
         const std::string id = entry.path().stem().string();
+        if (id.rfind("builtin:", 0) == 0) {  // "builtin:portrait.json" must not replace the builtin
+          log << "holotraced: display config skipped: " << entry.path().string()
+              << ": ids starting with 'builtin:' are reserved for the builtin displays (rename the file)\n";
+          continue;
+        }
         RegisteredDisplay display{id, loadDisplayConfig(entry.path()), readText(entry.path()), nullptr};
         if (display.config.model == DisplayModel::RayTable) {
           display.rayTable = std::make_shared<const RayTable>(frame_io::loadDisplayRayTable(display.config));
         }
         (*map)[id] = std::make_shared<const RegisteredDisplay>(std::move(display));
-      } catch (const Error& e) {
-        log << "holotraced: display config skipped: " << e.what() << "\n";
-      }
+      } catch (const Error& e) { log << "holotraced: display config skipped: " << e.what() << "\n"; }
     }
   }
   const std::size_t count = map->size();

@@ -112,14 +112,14 @@ grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v
 
 // Frames on a fixed clock (frame k due at start + k/fps). A frame is rendered only when the previous one has been
 // written, so a slow client is never queued old frames: it gets the newest, and dropped_frames counts the ticks
-// it missed (latest-frame-wins, docs/service.md §4 "Backpressure").
+// it missed (latest-frame-wins, docs/SERVICE.md §4 "Backpressure").
 grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const v1::StreamRequest* request,
                                             grpc::ServerWriter<v1::FramePart>* writer) {
   return guarded([&] {
     const double fps = request->frames_per_second();
     if (!(fps > 0.0) || fps > state_.config.limits.maxFramesPerSecond) {
-      throw BadRequest("frames_per_second", "must be in (0, " +
-                                                std::to_string(state_.config.limits.maxFramesPerSecond) + "]");
+      throw BadRequest("frames_per_second",
+                       "must be in (0, " + std::to_string(state_.config.limits.maxFramesPerSecond) + "]");
     }
     FrameJob job = checkRenderRequest(state_, request->render());
     StreamSlot slot(state_);
@@ -156,14 +156,15 @@ grpc::Status HolotraceService::Capture(grpc::ServerContext* context, const v1::C
     FrameJob job = checkRenderRequest(state_, request->render());
     const gpu::DisplayCamera camera = jobCamera(job);
     if (!frame_io::layoutAllowed({job.display->config, camera.quilt}, camera.shape.views, layout)) {
-      throw BadRequest("layout", "the views of display '" + job.display->id +
-                                     "' do not form a quilt; use CAPTURE_LAYOUT_VIEWS");
+      throw BadRequest("layout",
+                       "the views of display '" + job.display->id + "' do not form a quilt; use CAPTURE_LAYOUT_VIEWS");
     }
     StreamSlot slot(state_);
     CaptureOutput output(state_.outputSink, request->name(), request->overwrite());  // the name is ours till the end
     const std::string client = clientKey(*context);
     const auto checkGoing = [&](std::uint32_t done) {  // before a render, and before writing what was rendered
-      if (context->IsCancelled()) throw ClientGone("capture cancelled after " + std::to_string(done) + " complete frames");
+      if (context->IsCancelled())
+        throw ClientGone("capture cancelled after " + std::to_string(done) + " complete frames");
       if (state_.shuttingDown) throw ShuttingDown("shutting down after " + std::to_string(done) + " complete frames");
     };
     for (std::uint32_t i = 0; i < frames; ++i) {
@@ -172,7 +173,7 @@ grpc::Status HolotraceService::Capture(grpc::ServerContext* context, const v1::C
       const gpu::RenderResult frame = renderFrameJob(state_.worker, client, job);
       const std::vector<frame_io::FrameFile> files =
           captureFiles(frame, job, captureStem(request->name(), i), format, layout);
-      checkGoing(i);  // no file after a cancel
+      checkGoing(i);             // no file after a cancel
       output.writeFrame(files);  // the frame's files whole or not at all
       for (const frame_io::FrameFile& file : files) {
         v1::CaptureProgress progress;

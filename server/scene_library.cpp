@@ -31,7 +31,8 @@ std::span<const std::uint8_t> asBytes(const std::string& text) {
 std::string sourceKey(const SceneSource& source) {
   if (source.bytes.empty() && source.name.rfind("builtin:", 0) == 0) return source.name;
   std::string key = contentHash(asBytes(source.bytes)) + source.name.substr(source.name.rfind('.') + 1);
-  for (const auto& [uri, bytes] : source.externals) key += "+" + contentHash(asBytes(uri)) + contentHash(asBytes(bytes));
+  for (const auto& [uri, bytes] : source.externals)
+    key += "+" + contentHash(asBytes(uri)) + contentHash(asBytes(bytes));
   return key;
 }
 
@@ -48,18 +49,22 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
   auto content = std::make_shared<SceneContent>();
   content->contentKey = key;
   const auto start = std::chrono::steady_clock::now();
-  content->scene = source.name.rfind("builtin:", 0) == 0 ? loadScene(source.name) : loadScene(source);
+  SceneLimits limits;  // counts refused from the file's headers, before the memory is allocated
+  limits.maxTriangles = maxTriangles_;
+  limits.maxVertices = 3 * maxTriangles_;
+  content->scene = source.name.rfind("builtin:", 0) == 0 ? loadScene(source.name) : loadScene(source, limits);
   content->loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (content->scene.triangleCount() > maxTriangles_) {
     throw LimitExceeded("scene has " + std::to_string(content->scene.triangleCount()) +
                         " triangles (limits.max_triangles = " + std::to_string(maxTriangles_) + ")");
   }
   worker_
-      .submit(client,
-              [&content](gpu::VulkanContext& context) {
-                content->renderer = std::make_shared<gpu::Renderer>(context, content->scene);
-              },
-              false)
+      .submit(
+          client,
+          [&content](gpu::VulkanContext& context) {
+            content->renderer = std::make_shared<gpu::Renderer>(context, content->scene);
+          },
+          false)
       .get();
   return content;
 }
@@ -112,7 +117,7 @@ void SceneLibrary::updateCamera(const std::string& id, const CameraPlacement& pl
 }
 
 SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, const std::string& id, bool movesGeometry,
-                                                const std::function<void(Scene&)>& edit) {
+                                                 const std::function<void(Scene&)>& edit) {
   std::lock_guard editing(buildMutex_);  // one BVH build at a time, and edits of one session in order
   const std::shared_ptr<const SceneSession> session = find(id);
   auto content = std::make_shared<SceneContent>(*session->content);  // copies the scene, shares the Renderer
@@ -120,13 +125,17 @@ SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, cons
   const bool newRenderer = content->editedBy != id;
   const auto start = std::chrono::steady_clock::now();
   worker_
-      .submit(client,
-              [&](gpu::VulkanContext& context) {
-                if (newRenderer) content->renderer = std::make_shared<gpu::Renderer>(context, content->scene);
-                else if (movesGeometry) content->renderer->replaceScene(content->scene);
-                else content->renderer->updateLights(content->scene);
-              },
-              false)
+      .submit(
+          client,
+          [&](gpu::VulkanContext& context) {
+            if (newRenderer)
+              content->renderer = std::make_shared<gpu::Renderer>(context, content->scene);
+            else if (movesGeometry)
+              content->renderer->replaceScene(content->scene);
+            else
+              content->renderer->updateLights(content->scene);
+          },
+          false)
       .get();
   EditResult result;
   result.updateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -47,8 +47,8 @@ std::vector<NodeEdit> readNodeEdits(const v1::UpdateSceneRequest& request) {
     const std::string field = "nodes[" + std::to_string(i) + "]";
     if (n.node().empty()) throw BadRequest(field + ".node", "name a node (SceneHandle.nodes lists them)");
     if (n.world_size() != 16) {
-      throw BadRequest(field + ".world", "expected 16 values (a 4x4 matrix, column-major), got " +
-                                             std::to_string(n.world_size()));
+      throw BadRequest(field + ".world",
+                       "expected 16 values (a 4x4 matrix, column-major), got " + std::to_string(n.world_size()));
     }
     NodeEdit edit{n.node(), glm::dmat4(1.0)};
     for (int k = 0; k < 16; ++k) edit.world[k / 4][k % 4] = n.world(k);  // finiteness: setNodeWorldMatrix
@@ -106,7 +106,8 @@ grpc::Status HolotraceService::LoadScene(grpc::ServerContext* context, const v1:
       return grpc::Status::OK;
     }
     resolveBeneath(state_.config.sceneRoot, "path", given);  // the name's rules; then one open beneath the root
-    const SceneSource source = readSceneSourceBeneath(state_.config.sceneRoot, given, state_.config.limits.maxSceneBytes);
+    const SceneSource source =
+        readSceneSourceBeneath(state_.config.sceneRoot, given, state_.config.limits.maxSceneBytes);
     fillHandle(*state_.scenes.open(clientKey(*context), source), *response);
     return grpc::Status::OK;
   });

@@ -33,12 +33,10 @@ const std::filesystem::path& emptyBaseDir() {
 void parseBoth(std::string_view text) {
   try {
     (void)ht::parseDisplayConfig(text, "fuzz.json", emptyBaseDir());
-  } catch (const ht::ConfigError&) {
-  }
+  } catch (const ht::ConfigError&) {}
   try {
     (void)ht::parseLookingGlassCalibrationText(text, "fuzz-visual.json");
-  } catch (const ht::ConfigError&) {
-  }
+  } catch (const ht::ConfigError&) {}
 }
 
 // The input inside `levels` arrays [ ... ] or objects {"k": ... }.

@@ -31,7 +31,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const ht::SceneSource source{"input" + extensionFor(bytes), std::string(bytes), {}, {}};
   try {
     (void)ht::loadScene(source);
-  } catch (const ht::SceneError&) {
-  }
+  } catch (const ht::SceneError&) {}
   return 0;
 }

@@ -32,8 +32,7 @@ class CaptureNamesTest : public InProcessDaemonTest<CaptureNamesTest> {
     context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
     auto reader = stub_->Capture(&context, r);
     v1::CaptureProgress progress;
-    while (reader->Read(&progress)) {
-    }
+    while (reader->Read(&progress)) {}
     return reader->Finish();
   }
   std::vector<std::string> filesOf(const std::string& name) const {
@@ -86,8 +85,7 @@ TEST_F(CaptureNamesTest, ARunningCapturesNameIsExclusive) {
   const grpc::Status second = run(request("busy", 1, true));
   EXPECT_EQ(second.error_code(), StatusCode::ALREADY_EXISTS) << second.error_message();
   EXPECT_THAT(second.error_message(), HasSubstr("running capture"));
-  while (reader->Read(&progress)) {
-  }
+  while (reader->Read(&progress)) {}
   ASSERT_TRUE(reader->Finish().ok());
   EXPECT_EQ(filesOf("busy").size(), 50u);
   EXPECT_TRUE(run(request("busy", 1, true)).ok());

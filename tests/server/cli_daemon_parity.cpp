@@ -104,7 +104,8 @@ void ParityRunner::check(const ParityCase& c) {
     // One view ignores the layout: the CLI runs once, with the first layout, and every capture is compared with that.
     const std::string cliStem = c.singleView ? display + "_" + c.layouts.front() : stem;
     if (!c.singleView || layout == c.layouts.front()) {
-      for (const std::string& old : filesWithStem(cliDir(), cliStem + "_")) fs::remove(cliDir() / old);  // earlier cases'
+      for (const std::string& old : filesWithStem(cliDir(), cliStem + "_"))
+        fs::remove(cliDir() / old);  // earlier cases'
       cliCode = runCli(c, layout, cliStem);
     }
     // Each format's Capture replaces the previous one's files of this name (CaptureRequest.overwrite), so the set

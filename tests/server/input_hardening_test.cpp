@@ -20,8 +20,8 @@ std::string deepArray(std::size_t depth) { return std::string(depth, '[') + std:
 
 // Item 2: a daemon config nested 100,000 levels deep crashed holotraced at start (stack overflow in dump()).
 TEST(InputHardeningTest, DeeplyNestedDaemonConfigIsAConfigError) {
-  for (const std::string& text : {deepArray(100000),
-                                  R"({"scene_root": "s", "output_root": "o", "listen": )" + deepArray(100000) + "}"}) {
+  for (const std::string& text :
+       {deepArray(100000), R"({"scene_root": "s", "output_root": "o", "listen": )" + deepArray(100000) + "}"}) {
     try {
       parseDaemonConfig(text, "deep.json", "/");
       FAIL() << "accepted a deeply nested config";
@@ -46,6 +46,17 @@ TEST(InputHardeningTest, DeeplyNestedDisplayFileIsLoggedAndSkipped) {
     EXPECT_NO_THROW(registry.find("tiny"));
     EXPECT_THROW(registry.find("deep"), UnknownDisplay);
   }
+}
+
+// Item 10: a file named builtin:portrait.json in the displays directory replaced the builtin Portrait.
+TEST(InputHardeningTest, ADisplayFileCannotShadowABuiltin) {
+  TempDir dir;
+  writeText(dir.path / "builtin:portrait.json", tinyDisplayJson());
+  DisplayRegistry registry(dir.path);
+  std::ostringstream log;
+  registry.reload(log);
+  EXPECT_THAT(log.str(), HasSubstr("reserved for the builtin displays"));
+  EXPECT_EQ(registry.find("builtin:portrait")->config.sourcePath, "builtin:portrait");
 }
 
 }  // namespace
