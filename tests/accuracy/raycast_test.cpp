@@ -118,6 +118,16 @@ TEST(RaysFile, MalformedCsvNamesTheLine) {
   EXPECT_EQ(readError(dir.path() / "c.csv"), "");  // tmin > tmax: that ray is refused by raycast, not the file
 }
 
+// `holotrace raycast` of `rays` against builtin:sphere in `dir`; the closest hits it wrote.
+std::vector<HtHit> raycastSphere(const TempDirectory& dir, const std::vector<HtRay>& rays, std::ostringstream& out) {
+  writeRaysFile(dir.path() / "rays.bin", rays);
+  const std::vector<std::string> args = {"--scene", "builtin:sphere",
+                                         "--rays",  (dir.path() / "rays.bin").string(),
+                                         "-o",      (dir.path() / "hits.bin").string()};
+  EXPECT_EQ(runRaycast(args, out), kExitOk) << out.str();
+  return readHitsFile(dir.path() / "hits.bin");
+}
+
 TEST(RaycastCommand, HitsEqualTheCpuReference) {
   TempDirectory dir;
   const Scene scene = loadScene("builtin:sphere");
@@ -126,13 +136,8 @@ TEST(RaycastCommand, HitsEqualTheCpuReference) {
     const float x = -1.5f + 3.0f * static_cast<float>(i) / 63.0f;
     rays.push_back(HtRay{{x, 0.1f, 5.0f}, 0.0f, {0.0f, 0.0f, -1.0f}, 3e38f});
   }
-  writeRaysFile(dir.path() / "rays.bin", rays);
   std::ostringstream out;
-  const std::vector<std::string> args = {"--scene", "builtin:sphere",
-                                         "--rays",  (dir.path() / "rays.bin").string(),
-                                         "-o",      (dir.path() / "hits.bin").string()};
-  ASSERT_EQ(runRaycast(args, out), kExitOk) << out.str();
-  const auto hits = readHitsFile(dir.path() / "hits.bin");
+  const auto hits = raycastSphere(dir, rays, out);
   const bvh::GpuBvh bvh = bvh::buildGpuBvh(scene.positions, scene.triangles, bvh::BuildOptions{});
   ASSERT_EQ(hits.size(), rays.size());
   int hitCount = 0;
@@ -163,13 +168,8 @@ TEST(RaycastCommand, EachRayIsAnsweredOrRefusedAlone) {
   rays[30].tmin = nan;
   rays[40].tmin = 20.0f;
   rays[40].tmax = 10.0f;
-  writeRaysFile(dir.path() / "rays.bin", rays);
   std::ostringstream out;
-  const std::vector<std::string> args = {"--scene", "builtin:sphere",
-                                         "--rays",  (dir.path() / "rays.bin").string(),
-                                         "-o",      (dir.path() / "hits.bin").string()};
-  ASSERT_EQ(runRaycast(args, out), kExitOk) << out.str();
-  const auto hits = readHitsFile(dir.path() / "hits.bin");
+  const auto hits = raycastSphere(dir, rays, out);
   ASSERT_EQ(hits.size(), rays.size());
   for (std::size_t i : {10u, 20u, 30u, 40u}) {
     EXPECT_EQ(hits[i].triId, kRefusedTriangle) << "ray " << i;
