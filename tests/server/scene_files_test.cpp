@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstring>
+#include <fstream>
 #include <thread>
 
 #include "tests/server/server_fixture.h"
@@ -47,12 +48,12 @@ TEST_F(SceneFilesTest, ASymlinkSwappedInDuringALoadNeverLeadsOut) {
   std::atomic<bool> stop{false};
   std::thread swapper([&] {
     for (int i = 0; !stop; ++i) {
-      writeText(root / "swap_tmp.obj", cubeObj() + "# " + std::to_string(i) + "\n");
-      std::filesystem::rename(root / "swap_tmp.obj", root / "swap.obj");
-      std::error_code ec;
+      std::error_code ec;  // no exceptions on this thread: a throw here would terminate the test program
+      std::ofstream(root / "swap_tmp.obj") << cubeObj() << "# " << i << "\n";
+      std::filesystem::rename(root / "swap_tmp.obj", root / "swap.obj", ec);
       std::filesystem::remove(root / "swap_lnk", ec);
-      std::filesystem::create_symlink(outside, root / "swap_lnk");
-      std::filesystem::rename(root / "swap_lnk", root / "swap.obj");
+      std::filesystem::create_symlink(outside, root / "swap_lnk", ec);
+      std::filesystem::rename(root / "swap_lnk", root / "swap.obj", ec);
     }
   });
   int loaded = 0, denied = 0;
