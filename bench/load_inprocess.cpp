@@ -4,12 +4,10 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <fstream>
 #include <iostream>
-#include <iterator>
-#include <vector>
 
 #include "gpu/vulkan_context.h"
+#include "scene/scene_source.h"
 #include "server/display_registry.h"
 #include "server/frame_encoding.h"
 #include "server/frame_job.h"
@@ -19,11 +17,10 @@
 namespace ht::bench {
 namespace {
 
-std::vector<std::uint8_t> sceneBytes(const std::string& scene) {
-  if (scene.rfind("builtin:", 0) == 0) return {};
-  std::ifstream in(scene, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read scene " + scene);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+// The bytes LoadScene would load (scene/scene_source.h); a builtin is its name alone.
+SceneSource sceneSource(const std::string& scene) {
+  if (scene.rfind("builtin:", 0) == 0) return SceneSource{scene, {}, {}, {}};
+  return readSceneSource(scene);
 }
 
 InProcessRun timeFrames(server::RenderWorker& worker, const server::FrameJob& base, std::uint64_t frames) {
@@ -54,7 +51,7 @@ InProcessRun renderInProcess(const std::string& displaysDir, const std::string& 
   displays.reload(std::cerr);
   server::FrameJob job;
   job.display = displays.find(display);
-  job.session = scenes.open("baseline", scene, sceneBytes(scene));
+  job.session = scenes.open("baseline", sceneSource(scene));
   job.spp = spp;
   timeFrames(worker, job, 3);  // warm-up: pipelines, per-size buffers
   InProcessRun run = timeFrames(worker, job, frames);

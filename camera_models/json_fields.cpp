@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "common/json_nesting.h"
 
 namespace ht::detail {
 
@@ -42,6 +43,11 @@ std::pair<std::size_t, std::size_t> lineAndColumn(std::string_view text, std::si
 }  // namespace
 
 json parseJsonText(std::string_view text, const std::string& file) {
+  if (const auto deep = findJsonNestingViolation(text)) {  // before parsing: printing deep JSON overflows the stack
+    throw ConfigError(file, "(json)", "line " + std::to_string(deep->line) + ", column " + std::to_string(deep->column),
+                      "expected JSON nested at most " + std::to_string(kMaxJsonNesting) +
+                          " levels deep (display configs need 5; check where the file came from)");
+  }
   try {
     return json::parse(text.begin(), text.end());
   } catch (const json::parse_error& e) {

@@ -24,7 +24,8 @@ struct JsonLocation {
   JsonLocation child(std::string_view key) const { return {file, field(key)}; }
 };
 
-// Parses JSON text; a syntax error becomes ConfigError(file, "(json)", "line L, column C", "expected valid JSON ...").
+// Parses JSON text; a syntax error becomes ConfigError(file, "(json)", "line L, column C", "expected valid JSON ..."),
+// nesting deeper than kMaxJsonNesting (common/json_nesting.h) is refused the same way before parsing.
 nlohmann::json parseJsonText(std::string_view text, const std::string& file);
 
 // Reads a whole file; a missing / unreadable file becomes ConfigError(file, field, quoted path, expected).

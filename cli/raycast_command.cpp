@@ -5,6 +5,7 @@
 
 #include "cli/arguments.h"
 #include "cli/cli_app.h"
+#include "cli/ray_batch.h"
 #include "cli/rays_file.h"
 #include "common/error.h"
 #include "frame_io/atomic_output_file.h"
@@ -41,7 +42,11 @@ std::string raycastHelp() {
          "Binary rays: 16-byte header \"HTRY\", u32 version 1, u64 count; per ray origin xyz, tmin, dir xyz, tmax\n"
          "(float32, little-endian). Binary hits: \"HTHT\", u16 version 1, u16 kind (0 closest, 1 any), u64 count;\n"
          "per ray t, triangle id (0xFFFFFFFF = miss), u, v (closest) or a u32 0/1 (any). CSV by the .csv\n"
-         "extension: \"ox,oy,oz,tmin,dx,dy,dz,tmax\" in, \"t,triangle,u,v\" or \"occluded\" out.\n\nOptions:\n" +
+         "extension: \"ox,oy,oz,tmin,dx,dy,dz,tmax\" in, \"t,triangle,u,v\" or \"occluded\" out.\n"
+         "Every ray is answered or refused on its own: a ray with a non-finite origin or direction, a zero direction,\n"
+         "a NaN tmin/tmax or tmin > tmax (+-Inf tmin/tmax are fine), or one the device cannot finish, gets triangle\n"
+         "id 0xFFFFFFFE (CSV -2) and t = NaN, or occlusion 2, and is listed by record index; the rest are traced.\n\n"
+         "Options:\n" +
          formatOptions(kOptions);
 }
 
@@ -61,15 +66,17 @@ int runRaycast(std::span<const std::string> argv, std::ostream& out) {
       << "\n";
   const auto t0 = std::chrono::steady_clock::now();
   gpu::TraceStats stats;
+  std::vector<RayRefusal> refusals;  // every ray is answered or refused on its own (cli/ray_batch.h)
   if (args.has("--any")) {
-    const auto occluded = renderer.traceOccluded(rays, &stats);
-    writeOcclusionFile(hitsPath, occluded);
+    const auto trace = [&](std::span<const gpu_shared::HtRay> batch) { return renderer.traceOccluded(batch, &stats); };
+    writeOcclusionFile(hitsPath, traceOccludedEach(rays, trace, refusals));
   } else {
-    const auto hits = renderer.traceClosest(rays, &stats);
-    writeHitsFile(hitsPath, hits);
+    const auto trace = [&](std::span<const gpu_shared::HtRay> batch) { return renderer.traceClosest(batch, &stats); };
+    writeHitsFile(hitsPath, traceClosestEach(rays, trace, refusals));
   }
-  out << "traced " << rays.size() << (args.has("--any") ? " any-hit" : " closest-hit") << " rays in " << msSince(t0)
-      << " ms (GPU " << stats.gpuMs << " ms) -> " << hitsPath << "\n";
+  out << "traced " << rays.size() - refusals.size() << (args.has("--any") ? " any-hit" : " closest-hit") << " rays in "
+      << msSince(t0) << " ms (GPU " << stats.gpuMs << " ms) -> " << hitsPath << "\n";
+  if (!refusals.empty()) out << refusalSummary(refusals, rays.size()) << "\n";
   return kExitOk;
 }
 

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli/ray_batch.h"
 #include "common/error.h"
 #include "frame_io/atomic_output_file.h"
 
@@ -79,11 +80,6 @@ std::uint64_t checkedCount(const std::filesystem::path& path, const std::string&
   return count;
 }
 
-bool validRay(const gpu_shared::HtRay& r) {
-  // NaN/Inf are legal input (they miss, docs/ACCURACY.md); only an inverted or NaN range is flagged.
-  return !(r.tmin > r.tmax) && r.tmin == r.tmin && r.tmax == r.tmax;
-}
-
 std::vector<gpu_shared::HtRay> readBinaryRays(const std::filesystem::path& path) {
   const std::string bytes = readAll(path);
   const std::uint64_t count = checkedCount(path, bytes, kRaysMagic, kRayRecordBytes);
@@ -93,10 +89,7 @@ std::vector<gpu_shared::HtRay> readBinaryRays(const std::filesystem::path& path)
     fail(path, "header", "unsupported version " + std::to_string(version) + " (expected 1)");
   std::vector<gpu_shared::HtRay> rays(count);
   std::memcpy(rays.data(), bytes.data() + kRaysHeaderBytes, count * kRayRecordBytes);
-  for (std::uint64_t i = 0; i < count; ++i) {
-    if (!validRay(rays[i])) fail(path, "record " + std::to_string(i), "tmin/tmax is NaN or tmin > tmax");
-  }
-  return rays;
+  return rays;  // each record's values are judged on its own (cli/ray_batch.h), not here
 }
 
 // Parses one CSV line of exactly `n` floats.
@@ -138,9 +131,7 @@ std::vector<gpu_shared::HtRay> readCsvRays(const std::filesystem::path& path) {
       continue;  // header line
     }
     const auto v = parseFloats(path, lineNo, line, 8);
-    gpu_shared::HtRay r{{v[0], v[1], v[2]}, v[3], {v[4], v[5], v[6]}, v[7]};
-    if (!validRay(r)) fail(path, "line " + std::to_string(lineNo), "tmin/tmax is NaN or tmin > tmax");
-    rays.push_back(r);
+    rays.push_back({{v[0], v[1], v[2]}, v[3], {v[4], v[5], v[6]}, v[7]});
   }
   return rays;
 }
@@ -184,7 +175,9 @@ void writeHitsFile(const std::filesystem::path& path, std::span<const gpu_shared
   if (isCsv(path)) {
     bytes = "t,triangle,u,v\n";
     for (const auto& h : hits) {
-      const std::string tri = h.triId == gpu_shared::HT_MISS ? "-1" : std::to_string(h.triId);
+      const std::string tri = h.triId == gpu_shared::HT_MISS ? "-1"
+                              : h.triId == kRefusedTriangle  ? "-2"
+                                                             : std::to_string(h.triId);
       bytes += csvFloat(h.t) + "," + tri + "," + csvFloat(h.u) + "," + csvFloat(h.v) + "\n";
     }
   } else {
@@ -198,7 +191,7 @@ void writeOcclusionFile(const std::filesystem::path& path, std::span<const std::
   std::string bytes;
   if (isCsv(path)) {
     bytes = "occluded\n";
-    for (std::uint32_t o : occluded) bytes += o ? "1\n" : "0\n";
+    for (std::uint32_t o : occluded) bytes += std::to_string(o) + "\n";
   } else {
     bytes = binaryHeader(kHitsMagic, kRaysFileVersion | (std::uint32_t(kKindAny) << 16), occluded.size());
     bytes.append(reinterpret_cast<const char*>(occluded.data()), occluded.size_bytes());

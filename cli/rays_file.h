@@ -6,14 +6,18 @@
 //               (dir need not be unit length; t is measured in units of |dir|).
 //   hits file:  header 16 bytes = magic "HTHT", version u16 = 1, kind u16 (0 = closest, 1 = any), count u64;
 //               closest: count records of 16 bytes: t f32 (tmax on a miss), triangle id u32 (0xFFFFFFFF on a
-//               miss; the index into the scene's triangle list), u f32, v f32 (barycentrics of vertices 1, 2);
-//               any: count records of 4 bytes: u32 1 = occluded in [tmin, tmax], 0 = not.
+//               miss, 0xFFFFFFFE for a refused ray with t = NaN; else the index into the scene's triangle list),
+//               u f32, v f32 (barycentrics of vertices 1, 2);
+//               any: count records of 4 bytes: u32 1 = occluded in [tmin, tmax], 0 = not, 2 = refused.
+//               Which rays are refused: cli/ray_batch.h.
 // CSV (chosen by the .csv extension), for small batches:
 //   rays: one ray per line "ox,oy,oz,tmin,dx,dy,dz,tmax"; an optional first header line starting with a
 //         letter; blank lines and lines starting with '#' are skipped.
-//   hits: header "t,triangle,u,v" (closest; triangle -1 on a miss) or "occluded" (any), one line per ray.
-// Every error is an ht::IoError naming the file and the offending record (binary) or line (CSV). A binary
-// header whose count disagrees with the file size is refused before anything is allocated.
+//   hits: header "t,triangle,u,v" (closest; triangle -1 on a miss, -2 refused) or "occluded" (any: 0, 1, 2 =
+//         refused), one line per ray.
+// Every file error is an ht::IoError naming the file and the offending record (binary) or line (CSV). A binary
+// header whose count disagrees with the file size is refused before anything is allocated. The values of a ray
+// (NaN, Inf, tmin > tmax) are not file errors: raycast refuses such a ray alone (cli/ray_batch.h).
 #pragma once
 #include <cstdint>
 #include <filesystem>

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
-#include "scene/file_bytes.h"
+#include "common/json_nesting.h"
 #include "scene/scene_limits.h"
 
 namespace ht {
@@ -112,24 +112,11 @@ bool isSupported(const std::string& name) {
   return std::find(s.begin(), s.end(), name) != s.end();
 }
 
-// Deepest array/object nesting, measured iteratively. tinygltf converts `extras`/`extensions` with
-// recursive functions, so a hostile file nesting thousands of levels could exhaust the stack there.
-std::size_t nestingDepth(const nlohmann::json& root) {
-  std::size_t deepest = 0;
-  std::vector<std::pair<const nlohmann::json*, std::size_t>> stack{{&root, 1}};
-  while (!stack.empty()) {
-    const auto [node, depth] = stack.back();
-    stack.pop_back();
-    deepest = std::max(deepest, depth);
-    if (node->is_structured())
-      for (const auto& child : *node) stack.push_back({&child, depth + 1});
-  }
-  return deepest;
-}
-
-constexpr std::size_t kMaxJsonDepth = 64;
-
-void checkJson(const std::string& path, std::string_view text, std::vector<std::string>& warnings) {
+void checkJson(const std::string& path, std::string_view text, const SceneLimits& sceneLimits,
+               std::vector<std::string>& warnings) {
+  // tinygltf converts `extras`/`extensions` with recursive functions: refuse deep nesting before anything parses.
+  if (const auto deep = findJsonNestingViolation(text))
+    throw SceneError(path, jsonNestingMessage(*deep) + " (not a plausible glTF file; check where it came from)");
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text.begin(), text.end());
@@ -138,9 +125,9 @@ void checkJson(const std::string& path, std::string_view text, std::vector<std::
                                " (a .gltf file must be glTF 2.0 JSON; check the file is not truncated or binary)");
   }
   if (!doc.is_object()) throw SceneError(path, "the JSON top level is not an object (not a glTF 2.0 file)");
-  if (nestingDepth(doc) > kMaxJsonDepth)
-    throw SceneError(path, "JSON nesting deeper than " + std::to_string(kMaxJsonDepth) +
-                               " levels (not a plausible glTF file; check where it came from)");
+  if (const auto nodes = doc.find("nodes");
+      nodes != doc.end() && nodes->is_array() && nodes->size() > sceneLimits.maxNodes)
+    throwOverLimit(path, nodes->size(), "nodes", sceneLimits.maxNodes, "merge or remove nodes");
   const auto asset = doc.find("asset");
   if (asset == doc.end() || !asset->is_object() || !asset->contains("version") || !(*asset)["version"].is_string())
     throw SceneError(path, "no 'asset.version': not a glTF 2.0 file (glTF 1.0 files must be converted to 2.0)");
@@ -161,52 +148,58 @@ void checkJson(const std::string& path, std::string_view text, std::vector<std::
         warnings.push_back("optional extension " + name.get<std::string>() + " is ignored");
 }
 
-// ---- confined file access (replaces tinygltf's default callbacks: no wordexp, no reads outside the folder)
+// ---- file access: only the bytes of the SceneSource (read beforehand, beneath the scene folder) --------------
 
-struct FolderRoot {
-  fs::path root;  // canonical scene folder
-};
+// tinygltf looks a URI up as JoinPath(baseDir, uri) and then "./uri"; baseDir is "" here.
+std::string sourceKey(const std::string& file) { return file.rfind("./", 0) == 0 ? file.substr(2) : file; }
 
-bool insideRoot(const std::string& file, const FolderRoot& r) {
-  std::error_code ec;
-  const fs::path p = fs::weakly_canonical(fs::path(file), ec);
-  if (ec) return false;
-  const fs::path rel = p.lexically_relative(r.root);
-  return !rel.empty() && rel != "." && *rel.begin() != "..";
-}
-
-bool fileExistsInRoot(const std::string& file, void* user) {
-  std::error_code ec;
-  return insideRoot(file, *static_cast<FolderRoot*>(user)) && fs::is_regular_file(file, ec);
+bool fileInSource(const std::string& file, void* user) {
+  const SceneSource& source = *static_cast<const SceneSource*>(user);
+  const std::string key = sourceKey(file);
+  return source.externals.count(key) > 0 || source.externalProblems.count(key) > 0;
 }
 
 std::string expandNothing(const std::string& file, void*) { return file; }
 
-bool readFileInRoot(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
-  if (!insideRoot(file, *static_cast<FolderRoot*>(user))) {
-    if (err) *err += "'" + file + "' is outside the scene folder; external files must sit next to the .gltf\n";
-    return false;
+bool readFromSource(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
+  const SceneSource& source = *static_cast<const SceneSource*>(user);
+  const std::string key = sourceKey(file);
+  if (const auto it = source.externals.find(key); it != source.externals.end()) {
+    out->assign(it->second.begin(), it->second.end());
+    return true;
   }
-  std::error_code ec;
-  const std::uintmax_t size = fs::file_size(file, ec);
-  if (ec || size > limits::kMaxFileBytes) {
-    if (err)
-      *err += "'" + file + "' is unreadable or larger than " + std::to_string(limits::kMaxFileBytes) + " bytes\n";
-    return false;
+  if (err) {
+    const auto problem = source.externalProblems.find(key);
+    *err += (problem != source.externalProblems.end() ? problem->second : "'" + file + "' was not read") + "\n";
   }
-  std::ifstream in(file, std::ios::binary);
-  out->resize(static_cast<std::size_t>(size));
-  in.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size));
-  if (!in || in.gcount() != static_cast<std::streamsize>(size)) {
-    if (err) *err += "failed to read '" + file + "'\n";
-    return false;
-  }
-  return true;
+  return false;
 }
 
 bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
   if (err) *err += "writing is disabled\n";
   return false;
+}
+
+// As tinygltf 2.7.0 decodes a URI before looking the file up (dlib::urldecode: '+' -> ' ', %XX -> byte).
+std::string decodedUri(const std::string& uri) {
+  const auto hex = [](char c) -> unsigned {
+    if (c >= '0' && c <= '9') return static_cast<unsigned>(c - '0');
+    if (c >= 'a' && c <= 'f') return static_cast<unsigned>(c - 'a' + 10);
+    if (c >= 'A' && c <= 'F') return static_cast<unsigned>(c - 'A' + 10);
+    return 0;
+  };
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '+') {
+      out += ' ';
+    } else if (uri[i] == '%' && uri.size() > i + 2) {
+      out += static_cast<char>(hex(uri[i + 1]) << 4 | hex(uri[i + 2]));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
 }
 
 // ---- image size sniffing before decoding -----------------------------------------------------------------
@@ -256,8 +249,15 @@ ImageSize jpegSize(const unsigned char* b, std::size_t n) {
   return {};
 }
 
+// Pixels every texture of one load may decode together (SceneLimits::maxTexturePixels); charged from the image
+// headers before decoding. A refusal is remembered and rethrown as SceneLimitExceeded after tinygltf returns.
+struct TextureBudget {
+  std::uint64_t limit = 0, used = 0;
+  bool exceeded = false;
+};
+
 bool decodeImageChecked(tinygltf::Image* image, int index, std::string* err, std::string* warn,
-                        const unsigned char* bytes, std::size_t size) {
+                        const unsigned char* bytes, std::size_t size, TextureBudget& budget) {
   const auto fail = [&](const std::string& why) {
     if (err) *err += "image " + std::to_string(index) + ": " + why + "\n";
     return false;
@@ -271,6 +271,11 @@ bool decodeImageChecked(tinygltf::Image* image, int index, std::string* err, std
     return fail(std::to_string(dims.width) + " x " + std::to_string(dims.height) + " pixels, outside 1.." +
                 std::to_string(limits::kMaxImageDimension) + " per side (downscale the texture)");
   if (size > static_cast<std::size_t>(INT_MAX)) return fail("encoded image larger than 2 GiB");
+  budget.used += std::uint64_t{dims.width} * dims.height;
+  if (budget.used > budget.limit) {
+    budget.exceeded = true;
+    return fail("textures over the pixel limit");
+  }
   return tinygltf::LoadImageData(image, index, err, warn, 0, 0, bytes, static_cast<int>(size), nullptr);
 }
 
@@ -278,16 +283,23 @@ bool decodeImageChecked(tinygltf::Image* image, int index, std::string* err, std
 // decodeBufferViewImages(): tinygltf 2.7.0 passes `&buffer.data[bufferView.byteOffset]` with
 // `bufferView.byteLength` without checking that range against the buffer.
 bool imageLoaderCallback(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int, int,
-                         const unsigned char* bytes, int size, void*) {
+                         const unsigned char* bytes, int size, void* budget) {
   if (image->bufferView >= 0) return true;
   if (size <= 0) {
     if (err) *err += "image " + std::to_string(index) + " is empty\n";
     return false;
   }
-  return decodeImageChecked(image, index, err, warn, bytes, static_cast<std::size_t>(size));
+  return decodeImageChecked(image, index, err, warn, bytes, static_cast<std::size_t>(size),
+                            *static_cast<TextureBudget*>(budget));
 }
 
-void decodeBufferViewImages(const std::string& path, tinygltf::Model& model, std::vector<std::string>& warnings) {
+[[noreturn]] void throwTexturesOverLimit(const std::string& path, const TextureBudget& budget) {
+  throwOverLimit(path, budget.used, "texture pixels (width x height over its textures, counted up to the one over)",
+                 budget.limit, "downscale or drop textures");
+}
+
+void decodeBufferViewImages(const std::string& path, tinygltf::Model& model, TextureBudget& budget,
+                            std::vector<std::string>& warnings) {
   for (std::size_t i = 0; i < model.images.size(); ++i) {
     tinygltf::Image& image = model.images[i];
     if (image.bufferView < 0 || !image.image.empty()) continue;
@@ -305,8 +317,9 @@ void decodeBufferViewImages(const std::string& path, tinygltf::Model& model, std
                                  std::to_string(view.byteLength) + ") exceed its buffer of " +
                                  std::to_string(data.size()) + " bytes (the file is truncated or corrupt)");
     std::string err, warn;
-    const bool ok =
-        decodeImageChecked(&image, static_cast<int>(i), &err, &warn, data.data() + view.byteOffset, view.byteLength);
+    const bool ok = decodeImageChecked(&image, static_cast<int>(i), &err, &warn, data.data() + view.byteOffset,
+                                       view.byteLength, budget);
+    if (budget.exceeded) throwTexturesOverLimit(path, budget);
     if (!warn.empty()) warnings.push_back(warn);
     if (!err.empty() && err.back() == '\n') err.pop_back();
     if (!ok) throw SceneError(path, err.empty() ? what + " cannot be decoded (re-export it as PNG or JPEG)" : err);
@@ -322,8 +335,35 @@ const std::vector<std::string>& supportedGltfExtensions() {
   return names;
 }
 
-GltfDocument readGltfDocument(const std::string& path) {
-  const std::string bytes = readSceneFile(path);
+std::vector<std::string> gltfExternalUris(const std::string& path, const std::string& bytes) {
+  std::string_view jsonText = bytes;
+  if (hasGlbMagic(bytes)) {
+    std::vector<std::string> ignored;
+    try {
+      jsonText = checkGlbLayout(path, bytes, ignored).json;
+    } catch (const SceneError&) {
+      return {};  // the loader reports it
+    }
+  }
+  if (findJsonNestingViolation(jsonText)) return {};
+  const nlohmann::json doc = nlohmann::json::parse(jsonText.begin(), jsonText.end(), nullptr, false);
+  if (!doc.is_object()) return {};
+  std::vector<std::string> uris;
+  for (const char* kind : {"buffers", "images"}) {
+    const auto list = doc.find(kind);
+    if (list == doc.end() || !list->is_array()) continue;
+    for (const nlohmann::json& item : *list) {
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string uri = item["uri"].get<std::string>();
+      if (!tinygltf::IsDataURI(uri)) uris.push_back(decodedUri(uri));
+    }
+  }
+  return uris;
+}
+
+GltfDocument readGltfDocument(const SceneSource& source, const SceneLimits& sceneLimits) {
+  const std::string& path = source.name;
+  const std::string& bytes = source.bytes;
   GltfDocument doc;
   const bool glb = hasGlbMagic(bytes);
   std::string ext = fs::path(path).extension().string();
@@ -339,28 +379,28 @@ GltfDocument readGltfDocument(const std::string& path) {
     length = layout.length;
     jsonText = layout.json;
   }
-  checkJson(path, jsonText, doc.warnings);
+  checkJson(path, jsonText, sceneLimits, doc.warnings);
 
-  std::error_code ec;
-  FolderRoot root{fs::weakly_canonical(fs::absolute(fs::path(path)).parent_path(), ec)};
-  if (ec) throw SceneError(path, "cannot resolve the scene folder (" + ec.message() + ")");
   tinygltf::TinyGLTF loader;
-  loader.SetFsCallbacks({&fileExistsInRoot, &expandNothing, &readFileInRoot, &refuseWrite, &root});
-  loader.SetImageLoader(&imageLoaderCallback, nullptr);
+  loader.SetFsCallbacks(
+      {&fileInSource, &expandNothing, &readFromSource, &refuseWrite, const_cast<SceneSource*>(&source)});
+  TextureBudget budget{sceneLimits.maxTexturePixels};
+  loader.SetImageLoader(&imageLoaderCallback, &budget);
 
   std::string err, warn;
-  const std::string baseDir = root.root.string();
+  const std::string baseDir;  // URIs are looked up in the source as written
   const bool ok =
       glb ? loader.LoadBinaryFromMemory(&doc.model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
                                         static_cast<unsigned int>(length), baseDir)
           : loader.LoadASCIIFromString(&doc.model, &err, &warn, bytes.data(), static_cast<unsigned int>(length),
                                        baseDir);
   if (!warn.empty()) doc.warnings.push_back(warn);
+  if (budget.exceeded) throwTexturesOverLimit(path, budget);
   if (!ok) {
     if (!err.empty() && err.back() == '\n') err.pop_back();
     throw SceneError(path, "invalid glTF: " + err + " (check the file with the Khronos glTF-Validator)");
   }
-  decodeBufferViewImages(path, doc.model, doc.warnings);
+  decodeBufferViewImages(path, doc.model, budget, doc.warnings);
   return doc;
 }
 

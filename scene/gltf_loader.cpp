@@ -32,6 +32,7 @@ struct LoadContext {
   const std::string& file;
   SceneLoadReport& report;
   Scene& scene;
+  const SceneLimits& limits;
   int defaultMaterial = -1;                   // created on first use by a primitive without material
   std::unordered_set<std::string> nodeNames;  // Scene::nodes names so far (kept unique; files may repeat names)
 };
@@ -62,13 +63,17 @@ const tinygltf::Mesh& checkedMesh(const LoadContext& ctx, int mesh, int node) {
   return ctx.model.meshes[static_cast<std::size_t>(mesh)];
 }
 
-// Refuses scenes whose triangle or vertex total (over all mesh instances) exceeds scene_limits.h, using only
-// accessor counts, before any geometry is read or allocated.
+// Refuses scenes whose instance, triangle or vertex total (over all mesh instances) exceeds ctx.limits, using only
+// node and accessor counts, before any geometry is read or allocated: a small file that instances one mesh
+// thousands of times is refused here, not after loading gigabytes.
 void checkSizeBudget(const LoadContext& ctx, const std::vector<NodeInstance>& instances) {
-  std::size_t triangles = 0, vertices = 0;
+  std::uint64_t triangles = 0, vertices = 0, meshInstances = 0;
   for (const NodeInstance& inst : instances) {
     const tinygltf::Node& node = ctx.model.nodes[static_cast<std::size_t>(inst.node)];
     if (node.mesh < 0) continue;
+    if (++meshInstances > ctx.limits.maxInstances)
+      throwOverLimit(ctx.file, meshInstances, "mesh instances or more", ctx.limits.maxInstances,
+                     "instance fewer meshes");
     const tinygltf::Mesh& mesh = checkedMesh(ctx, node.mesh, inst.node);
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
       const tinygltf::Primitive& prim = mesh.primitives[p];
@@ -85,10 +90,12 @@ void checkSizeBudget(const LoadContext& ctx, const std::vector<NodeInstance>& in
               : nv;
       triangles += triangleCount(prim.mode, refs);
       vertices += nv;
-      if (triangles > limits::kMaxTriangles || vertices > 3 * limits::kMaxTriangles)
-        throw SceneError(ctx.file, "the scene has more than " + std::to_string(limits::kMaxTriangles) +
-                                       " triangles or " + std::to_string(3 * limits::kMaxTriangles) +
-                                       " vertices after instancing (simplify or decimate it)");
+      if (triangles > ctx.limits.maxTriangles)
+        throwOverLimit(ctx.file, triangles, "triangles or more after instancing (from the accessor counts)",
+                       ctx.limits.maxTriangles, "simplify or decimate it");
+      if (vertices > ctx.limits.maxVertices)
+        throwOverLimit(ctx.file, vertices, "vertices or more after instancing (from the accessor counts)",
+                       ctx.limits.maxVertices, "simplify or decimate it");
     }
   }
 }
@@ -293,18 +300,21 @@ void readNodeMeshes(LoadContext& ctx, const NodeInstance& inst, std::vector<Prim
 
 }  // namespace
 
-Scene loadGltf(const std::string& path, SceneLoadReport* reportOut) {
+Scene loadGltf(const std::string& path, SceneLoadReport* report) { return loadGltf(readSceneSource(path), report); }
+
+Scene loadGltf(const SceneSource& source, SceneLoadReport* reportOut, const SceneLimits& limits) {
   SceneLoadReport local;
   SceneLoadReport& report = reportOut ? *reportOut : local;
   report = SceneLoadReport{};
+  const std::string& path = source.name;
 
-  GltfDocument doc = readGltfDocument(path);
+  GltfDocument doc = readGltfDocument(source, limits);
   report.warnings = std::move(doc.warnings);
   Scene scene;
   scene.name = path;
   appendGltfMaterials(doc.model, scene, path, report);
 
-  LoadContext ctx{doc.model, path, report, scene};
+  LoadContext ctx{doc.model, path, report, scene, limits};
   const std::vector<NodeInstance> instances = flattenSceneNodes(doc.model, path);
   checkSizeBudget(ctx, instances);
   std::vector<PrimitiveGeometry> prims;

@@ -16,9 +16,14 @@
 
 #include "scene/load_report.h"
 #include "scene/scene.h"
+#include "scene/scene_limits.h"
+#include "scene/scene_source.h"
 
 namespace ht {
 
 Scene loadGltf(const std::string& path, SceneLoadReport* report = nullptr);
+// From bytes read beforehand (scene_source.h): external files come only from `source`.
+// Every count of `limits` is refused (SceneLimitExceeded) from the headers, before the memory is allocated.
+Scene loadGltf(const SceneSource& source, SceneLoadReport* report = nullptr, const SceneLimits& limits = {});
 
 }  // namespace ht

@@ -30,6 +30,13 @@ void summarize(const Scene& scene, SceneLoadReport& report) {
   report.lights = scene.lights.size();
 }
 
+[[noreturn]] void throwUnsupported(const std::string& spec) {
+  std::string builtins;
+  for (const std::string& n : builtinSceneNames()) builtins += ", " + n;
+  throw SceneError(spec, "unsupported scene '" + spec + "' (use a .gltf, .glb, .obj or .off file, or one of the" +
+                             " built-in scenes" + builtins.substr(1) + ")");
+}
+
 }  // namespace
 
 Scene loadScene(const std::string& spec, SceneLoadReport& report) {
@@ -40,14 +47,23 @@ Scene loadScene(const std::string& spec, SceneLoadReport& report) {
     return scene;
   }
   const std::string ext = lowercaseExtension(spec);
-  if (ext == ".gltf" || ext == ".glb") return loadGltf(spec, &report);
-  if (ext == ".obj") return loadObj(spec, &report);
-  if (ext == ".off") return loadOff(spec, &report);
+  if (ext == ".gltf" || ext == ".glb" || ext == ".obj" || ext == ".off")
+    return loadScene(readSceneSource(spec), report);
+  throwUnsupported(spec);
+}
 
-  std::string builtins;
-  for (const std::string& n : builtinSceneNames()) builtins += ", " + n;
-  throw SceneError(spec, "unsupported scene '" + spec + "' (use a .gltf, .glb, .obj or .off file, or one of the" +
-                             " built-in scenes" + builtins.substr(1) + ")");
+Scene loadScene(const SceneSource& source, SceneLoadReport& report, const SceneLimits& limits) {
+  report = SceneLoadReport{};
+  const std::string ext = lowercaseExtension(source.name);
+  if (ext == ".gltf" || ext == ".glb") return loadGltf(source, &report, limits);
+  if (ext == ".obj") return parseObj(source.bytes, source.name, &report, limits);
+  if (ext == ".off") return parseOff(source.bytes, source.name, &report, limits);
+  throwUnsupported(source.name);
+}
+
+Scene loadScene(const SceneSource& source, const SceneLimits& limits) {
+  SceneLoadReport report;
+  return loadScene(source, report, limits);
 }
 
 Scene loadScene(const std::string& spec) {

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "common/error.h"
-#include "scene/file_bytes.h"
 #include "scene/scene_limits.h"
+#include "scene/scene_source.h"
 
 namespace ht {
 namespace {
@@ -88,10 +88,12 @@ void countNonFinite(const Scene& scene, SceneLoadReport* report) {
 }
 
 // Fan triangulation (v0, vi, vi+1) of one polygon; appends to the scene with material 0.
-void appendFan(Scene& scene, const std::vector<std::uint32_t>& polygon, const std::string& file, std::size_t line) {
-  if (scene.triangles.size() + polygon.size() - 2 > limits::kMaxTriangles)
-    throw SceneError(
-        file, at(line) + "more than " + std::to_string(limits::kMaxTriangles) + " triangles (simplify the mesh)");
+void appendFan(Scene& scene, const std::vector<std::uint32_t>& polygon, const std::string& file, std::size_t line,
+               const SceneLimits& sceneLimits) {
+  const std::uint64_t triangles = scene.triangles.size() + polygon.size() - 2;
+  if (triangles > sceneLimits.maxTriangles)
+    throwOverLimit(file, triangles, "triangles or more at " + at(line).substr(0, at(line).size() - 2),
+                   sceneLimits.maxTriangles, "simplify the mesh");
   for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
     scene.triangles.push_back({polygon[0], polygon[i], polygon[i + 1]});
     scene.triangleMaterial.push_back(0);
@@ -121,7 +123,12 @@ std::uint32_t objVertexRef(std::string_view token, std::size_t definedVertices, 
   return static_cast<std::uint32_t>(resolved);
 }
 
-void parseObjVertex(Scene& scene, LineCursor& line, const std::string& file, std::size_t lineNumber) {
+void parseObjVertex(Scene& scene, LineCursor& line, const std::string& file, std::size_t lineNumber,
+                    const SceneLimits& sceneLimits) {
+  if (scene.positions.size() >= sceneLimits.maxVertices)
+    throwOverLimit(file, scene.positions.size() + 1,
+                   "vertices or more at " + at(lineNumber).substr(0, at(lineNumber).size() - 2),
+                   sceneLimits.maxVertices, "simplify the mesh");
   glm::vec3 p;
   if (!line.number(p.x) || !line.number(p.y) || !line.number(p.z))
     throw SceneError(file, at(lineNumber) + "vertex needs three numbers 'v x y z'");
@@ -129,13 +136,13 @@ void parseObjVertex(Scene& scene, LineCursor& line, const std::string& file, std
 }
 
 void parseObjFace(Scene& scene, LineCursor& line, std::vector<std::uint32_t>& polygon, const std::string& file,
-                  std::size_t lineNumber) {
+                  std::size_t lineNumber, const SceneLimits& sceneLimits) {
   polygon.clear();
   while (!line.atEnd()) polygon.push_back(objVertexRef(line.word(), scene.positions.size(), file, lineNumber));
   if (polygon.size() < 3)
     throw SceneError(file,
                      at(lineNumber) + "face has " + std::to_string(polygon.size()) + " vertices (need at least 3)");
-  appendFan(scene, polygon, file, lineNumber);
+  appendFan(scene, polygon, file, lineNumber, sceneLimits);
 }
 
 // ---- OFF -------------------------------------------------------------------------------------------------
@@ -159,6 +166,7 @@ struct OffParser {
   std::string_view text;
   const std::string& file;
   Scene scene;
+  const SceneLimits& limits;
   Stage stage = Stage::Keyword;
   OffHeader header;
   std::size_t facesRead = 0;
@@ -198,6 +206,12 @@ struct OffParser {
       throw SceneError(file, at(lineNumber) + "declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
                                  " faces, more than a " + std::to_string(text.size()) +
                                  "-byte file can hold (the header counts are wrong or the file is truncated)");
+    if (static_cast<unsigned long long>(nv) > limits.maxVertices)
+      throwOverLimit(file, static_cast<std::uint64_t>(nv), "vertices (OFF header)", limits.maxVertices,
+                     "simplify the mesh");
+    if (static_cast<unsigned long long>(nf) > limits.maxTriangles)  // every face is at least one triangle
+      throwOverLimit(file, static_cast<std::uint64_t>(nf), "faces (OFF header)", limits.maxTriangles,
+                     "simplify the mesh");
     header = {static_cast<std::size_t>(nv), static_cast<std::size_t>(nf)};
     scene.positions.reserve(header.vertices);
     stage = header.vertices > 0 ? Stage::Vertices : header.faces > 0 ? Stage::Faces : Stage::Done;
@@ -225,23 +239,24 @@ struct OffParser {
                                    std::to_string(header.vertices) + ") (OFF indices are 0-based)");
       polygon.push_back(static_cast<std::uint32_t>(index));
     }
-    appendFan(scene, polygon, file, lineNumber);
+    appendFan(scene, polygon, file, lineNumber, limits);
     if (++facesRead == header.faces) stage = Stage::Done;
   }
 };
 
 }  // namespace
 
-Scene parseObj(std::string_view text, const std::string& file, SceneLoadReport* report) {
+Scene parseObj(std::string_view text, const std::string& file, SceneLoadReport* report,
+               const SceneLimits& sceneLimits) {
   Scene scene = emptyMeshScene(file);
   std::vector<std::uint32_t> polygon;
   forEachLine(text, [&](std::size_t lineNumber, LineCursor& line) {
     if (line.atEnd()) return true;
     const std::string_view keyword = line.word();
     if (keyword == "v")
-      parseObjVertex(scene, line, file, lineNumber);
+      parseObjVertex(scene, line, file, lineNumber, sceneLimits);
     else if (keyword == "f")
-      parseObjFace(scene, line, polygon, file, lineNumber);
+      parseObjFace(scene, line, polygon, file, lineNumber, sceneLimits);
     // vt, vn, usemtl, mtllib, o, g, s, l, p and unknown statements: not needed for positions-only meshes.
     return true;
   });
@@ -250,8 +265,9 @@ Scene parseObj(std::string_view text, const std::string& file, SceneLoadReport* 
   return scene;
 }
 
-Scene parseOff(std::string_view text, const std::string& file, SceneLoadReport* report) {
-  OffParser parser{text, file, emptyMeshScene(file)};
+Scene parseOff(std::string_view text, const std::string& file, SceneLoadReport* report,
+               const SceneLimits& sceneLimits) {
+  OffParser parser{text, file, emptyMeshScene(file), sceneLimits};
   forEachLine(text, [&](std::size_t lineNumber, LineCursor& line) { return parser.line(lineNumber, line); });
   if (parser.stage != OffParser::Stage::Done)
     throw SceneError(file, "file ends before all vertices and faces declared in the header were read (truncated?)");
@@ -260,8 +276,12 @@ Scene parseOff(std::string_view text, const std::string& file, SceneLoadReport* 
   return std::move(parser.scene);
 }
 
-Scene loadObj(const std::string& path, SceneLoadReport* report) { return parseObj(readSceneFile(path), path, report); }
+Scene loadObj(const std::string& path, SceneLoadReport* report) {
+  return parseObj(readSceneSource(path).bytes, path, report);
+}
 
-Scene loadOff(const std::string& path, SceneLoadReport* report) { return parseOff(readSceneFile(path), path, report); }
+Scene loadOff(const std::string& path, SceneLoadReport* report) {
+  return parseOff(readSceneSource(path).bytes, path, report);
+}
 
 }  // namespace ht

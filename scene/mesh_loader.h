@@ -10,6 +10,7 @@
 
 #include "scene/load_report.h"
 #include "scene/scene.h"
+#include "scene/scene_limits.h"
 
 namespace ht {
 
@@ -17,11 +18,14 @@ namespace ht {
 // relative to the vertices defined so far). vt/vn data, materials (usemtl/mtllib), groups, smoothing
 // groups, lines and points are ignored.
 Scene loadObj(const std::string& path, SceneLoadReport* report = nullptr);
-Scene parseObj(std::string_view text, const std::string& file, SceneLoadReport* report = nullptr);
+Scene parseObj(std::string_view text, const std::string& file, SceneLoadReport* report = nullptr,
+               const SceneLimits& limits = {});
 
 // OFF (Geomview / CGAL): header `OFF` (also COFF, NOFF, CNOFF: extra per-vertex values are ignored), counts
 // `nVertices nFaces nEdges`, vertices, then faces `n i0 ... i(n-1) [colour]` with 0-based indices.
 Scene loadOff(const std::string& path, SceneLoadReport* report = nullptr);
-Scene parseOff(std::string_view text, const std::string& file, SceneLoadReport* report = nullptr);
+// The header counts are checked against `limits` before anything is reserved (OBJ: as the lines are read).
+Scene parseOff(std::string_view text, const std::string& file, SceneLoadReport* report = nullptr,
+               const SceneLimits& limits = {});
 
 }  // namespace ht

@@ -27,6 +27,9 @@ std::optional<std::size_t> findNode(const Scene& scene, std::string_view name) {
   return std::nullopt;
 }
 
+// |det(M)| / (|m0| |m1| |m2|) below this is a flattened matrix, whatever its scale.
+constexpr double kMinMatrixConditioning = 1e-9;
+
 void setNodeWorldMatrix(Scene& scene, std::string_view name, const glm::dmat4& world) {
   const std::optional<std::size_t> index = findNode(scene, name);
   if (!index) {
@@ -37,10 +40,15 @@ void setNodeWorldMatrix(Scene& scene, std::string_view name, const glm::dmat4& w
   }
   if (!isFinite(world))
     throw SceneError(scene.name, "node '" + std::string(name) + "': the matrix has non-finite entries");
-  const double det = glm::determinant(glm::dmat3(world));
-  if (!(std::fabs(det) > 1e-12)) {
+  // Scale-relative: |det| over the product of the column lengths is 1 for any rotation x scale (a node scaled by
+  // 1e-4 has det 1e-12 but is fine) and 0 when the columns are dependent (flattened).
+  const glm::dmat3 linear(world);
+  const double det = glm::determinant(linear);
+  const double scale = glm::length(linear[0]) * glm::length(linear[1]) * glm::length(linear[2]);
+  if (!(scale > 0.0) || !(std::fabs(det) > kMinMatrixConditioning * scale)) {
     throw SceneError(scene.name, "node '" + std::string(name) + "': the matrix's 3x3 part is singular (determinant " +
-                                     std::to_string(det) + "); a node can be scaled but not flattened");
+                                     std::to_string(det) + " for column lengths multiplying to " +
+                                     std::to_string(scale) + "); a node can be scaled but not flattened");
   }
   SceneNode& node = scene.nodes[*index];
   const glm::dmat4 delta = world * glm::inverse(node.world);

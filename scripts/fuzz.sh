@@ -4,6 +4,8 @@
 # (tests/fuzz/corpus/<target>/; new inputs go to a scratch copy, the checked-in seeds are not changed).
 # Exit status 1 on any crash, sanitizer report, leak, timeout or out-of-memory; reproducers are kept in
 # $HOLOTRACE_FUZZ_BUILD_DIR (default build-fuzz)/artifacts/<target>/.
+# fuzz_display_config also parses each input deeply nested and repeated to 1 MiB (tests/fuzz/fuzz_display_config.cpp),
+# so nesting and length bugs are found although -max_len stays 64 KiB.
 # Usage: bash scripts/fuzz.sh [seconds per target, default 30]
 set -uo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

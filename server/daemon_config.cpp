@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/json_nesting.h"
 
 namespace ht::server {
 namespace {
@@ -98,6 +99,8 @@ std::string defaultListenAddress() {
 DaemonConfig parseDaemonConfig(const std::string& text, const std::string& source,
                                const std::filesystem::path& baseDir) {
   json doc;
+  if (const auto deep = findJsonNestingViolation(text))
+    throw ConfigError(source, "(document)", "", jsonNestingMessage(*deep));
   try {
     doc = json::parse(text);
   } catch (const json::exception& e) {

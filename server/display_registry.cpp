@@ -41,6 +41,11 @@ std::size_t DisplayRegistry::reload(std::ostream& log) {
       if (entry.path().extension() != ".json" || !entry.is_regular_file()) continue;
       try {
         const std::string id = entry.path().stem().string();
+        if (id.rfind("builtin:", 0) == 0) {  // "builtin:portrait.json" must not replace the builtin
+          log << "holotraced: display config skipped: " << entry.path().string()
+              << ": ids starting with 'builtin:' are reserved for the builtin displays (rename the file)\n";
+          continue;
+        }
         RegisteredDisplay display{id, loadDisplayConfig(entry.path()), readText(entry.path()), nullptr};
         if (display.config.model == DisplayModel::RayTable) {
           display.rayTable = std::make_shared<const RayTable>(frame_io::loadDisplayRayTable(display.config));

@@ -38,6 +38,19 @@ class DiskFull : public IoError {
   using IoError::IoError;
 };
 
+// A capture name already has files under the output root, or another capture is writing it (-> ALREADY_EXISTS).
+class NameTaken : public Error {
+ public:
+  using Error::Error;
+};
+
+// Something that is not a file of ours sits where an output file must go, e.g. a directory (-> FAILED_PRECONDITION):
+// the message names it; the operator must move it.
+class OutputConflict : public IoError {
+ public:
+  using IoError::IoError;
+};
+
 // An unknown display id (-> NOT_FOUND).
 class UnknownDisplay : public Error {
  public:

@@ -1,6 +1,7 @@
 // file_sink.cpp - see file_sink.h.
 #include "server/file_sink.h"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <linux/openat2.h>
 #include <sys/stat.h>
@@ -22,6 +23,9 @@ std::string errnoText(int err) { return std::strerror(err); }
 [[noreturn]] void throwWriteError(const std::string& name, int err) {
   if (err == ENOSPC || err == EDQUOT) throw DiskFull("output disk full while writing " + name + ": " + errnoText(err));
   if (err == EFBIG) throw DiskFull("file size limit reached while writing " + name + ": " + errnoText(err));
+  if (err == EISDIR || err == ENOTEMPTY || err == EEXIST || err == ENOTDIR)
+    throw OutputConflict("cannot write " + name + ": a directory of that name is in the way (" + errnoText(err) +
+                         "); move it or choose another name");
   throw IoError("cannot write " + name + ": " + errnoText(err));
 }
 
@@ -102,6 +106,41 @@ void FileSink::writeFiles(std::span<const frame_io::FrameFile> files) {
       throwWriteError(files[i].name, err);
     }
   }
+}
+
+std::vector<std::string> FileSink::list(const std::function<bool(const std::string&)>& keep) const {
+  const int fd = ::openat(rootFd_, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);  // fdopendir owns (and closes) it
+  DIR* dir = fd < 0 ? nullptr : ::fdopendir(fd);
+  if (dir == nullptr) {
+    const int err = errno;
+    if (fd >= 0) ::close(fd);
+    throw IoError("cannot list the output root: " + errnoText(err));
+  }
+  std::vector<std::string> names;
+  while (const dirent* entry = ::readdir(dir)) {
+    const std::string name = entry->d_name;
+    if (!name.empty() && name.front() != '.' && keep(name)) names.push_back(name);
+  }
+  ::closedir(dir);
+  return names;
+}
+
+void FileSink::remove(const std::string& name) {
+  if (::unlinkat(rootFd_, name.c_str(), 0) == 0 || errno == ENOENT) return;
+  const int err = errno;
+  if (err == EISDIR || err == EPERM)
+    throw OutputConflict("cannot replace " + name + ": it is a directory (move it or choose another name)");
+  throw IoError("cannot remove " + name + ": " + errnoText(err));
+}
+
+bool FileSink::claim(const std::string& name) {
+  std::lock_guard lock(claimsMutex_);
+  return claims_.insert(name).second;
+}
+
+void FileSink::release(const std::string& name) {
+  std::lock_guard lock(claimsMutex_);
+  claims_.erase(name);
 }
 
 }  // namespace ht::server

@@ -9,8 +9,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <mutex>
+#include <set>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "frame_io/frame_package.h"
 #include "server/errors.h"
@@ -32,8 +35,9 @@ class FileSink {
   FileSink(const FileSink&) = delete;
   FileSink& operator=(const FileSink&) = delete;
 
-  // `name` must be one validated path component. Throws DiskFull (ENOSPC, EDQUOT, EFBIG) or IoError; either way
-  // the temp file is removed and `name` is untouched.
+  // `name` must be one validated path component. Throws DiskFull (ENOSPC, EDQUOT, EFBIG), OutputConflict (a
+  // directory or other non-file in the way of `name`) or IoError; either way the temp file is removed and `name`
+  // is untouched.
   void writeFile(const std::string& name, std::span<const std::uint8_t> bytes);
 
   // The files of one frame (frame_io::packageFrame) as a set: every file is written and fsynced under its temp name
@@ -42,12 +46,24 @@ class FileSink {
   // writeFile.
   void writeFiles(std::span<const frame_io::FrameFile> files);
 
+  // Names of the entries directly under the root (files, directories, anything; not temp names) accepted by `keep`.
+  std::vector<std::string> list(const std::function<bool(const std::string&)>& keep) const;
+  // Removes the file `name` (one checked component); a missing file is fine. A directory or another entry that
+  // cannot be unlinked throws OutputConflict naming it.
+  void remove(const std::string& name);
+
+  // Exclusive use of a name among the sink's users (Capture names): false when another holder has it.
+  bool claim(const std::string& name);
+  void release(const std::string& name);
+
  private:
   int openTemp(const std::string& tempName);
   int writeAll(int fd, std::span<const std::uint8_t> bytes);                    // 0 or the errno
   int writeTemp(const std::string& temp, std::span<const std::uint8_t> bytes);  // 0 or the errno; fd closed
   FileOps ops_;
   int rootFd_ = -1;
+  std::mutex claimsMutex_;
+  std::set<std::string> claims_;
 };
 
 }  // namespace ht::server

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "frame_io/frame_package.h"
+#include "server/capture_output.h"
 #include "server/frame_encoding.h"
 #include "server/frame_job.h"
 #include "server/frame_sender.h"
@@ -176,15 +177,21 @@ grpc::Status HolotraceService::Capture(grpc::ServerContext* context, const v1::C
     StreamSlot slot(state_);
     const SceneLibrary::Pin pin(state_.scenes, request->render().scene_id());
     CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.streamStallSeconds, "Capture");
+    CaptureOutput output(state_.outputSink, request->name(), request->overwrite());  // the name is ours till the end
     const std::string client = clientKey(*context);
+    const auto checkGoing = [&](std::uint32_t done) {  // before a render, and before writing what was rendered
+      if (context->IsCancelled())
+        throw ClientGone("capture cancelled after " + std::to_string(done) + " complete frames");
+      if (state_.shuttingDown) throw ShuttingDown("shutting down after " + std::to_string(done) + " complete frames");
+    };
     for (std::uint32_t i = 0; i < frames; ++i) {
-      if (context->IsCancelled()) throw ClientGone("capture cancelled after " + std::to_string(i) + " complete frames");
-      if (state_.shuttingDown) throw ShuttingDown("shutting down after " + std::to_string(i) + " complete frames");
+      checkGoing(i);
       job.seed = request->render().seed() + i;
       const gpu::RenderResult frame = renderFrameJob(state_.worker, client, job);
       const std::vector<frame_io::FrameFile> files =
           captureFiles(frame, job, captureStem(request->name(), i), format, layout);
-      state_.outputSink.writeFiles(files);  // the frame's files whole or not at all
+      checkGoing(i);             // no file after a cancel
+      output.writeFrame(files);  // the frame's files whole or not at all
       for (const frame_io::FrameFile& file : files) {
         v1::CaptureProgress progress;
         progress.set_frames_done(i + 1);

@@ -50,11 +50,14 @@ std::shared_ptr<gpu::Renderer> SceneLibrary::adopt(gpu::Renderer* renderer) {
 }
 
 std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, const std::string& key,
-                                                  const std::string& spec) {
+                                                  const SceneSource& source) {
   auto content = std::make_shared<SceneContent>();
   content->contentKey = key;
   const auto start = std::chrono::steady_clock::now();
-  content->scene = loadScene(spec);
+  SceneLimits limits;  // counts refused from the file's headers, before the memory is allocated
+  limits.maxTriangles = limits_.maxTriangles;
+  limits.maxVertices = 3 * limits_.maxTriangles;
+  content->scene = source.name.rfind("builtin:", 0) == 0 ? loadScene(source.name) : loadScene(source, limits);
   content->loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (content->scene.triangleCount() > limits_.maxTriangles) {
     throw LimitExceeded("scene has " + std::to_string(content->scene.triangleCount()) +
@@ -81,7 +84,7 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
 }
 
 std::shared_ptr<SceneContent> SceneLibrary::contentFor(const std::string& client, const std::string& key,
-                                                       const std::string& spec, bool& reused) {
+                                                       const SceneSource& source, bool& reused) {
   std::unique_lock lock(mutex_);
   if (auto cached = contents_.find(key); cached != contents_.end()) {
     cached->second.lastUsed = Clock::now();
@@ -99,7 +102,7 @@ std::shared_ptr<SceneContent> SceneLibrary::contentFor(const std::string& client
   lock.unlock();  // other contents load meanwhile
   std::shared_ptr<SceneContent> content;
   try {
-    content = build(client, key, spec);
+    content = build(client, key, source);
   } catch (...) {
     lock.lock();
     building_.erase(key);
@@ -113,11 +116,11 @@ std::shared_ptr<SceneContent> SceneLibrary::contentFor(const std::string& client
   return content;
 }
 
-std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client, const std::string& spec,
-                                                       std::span<const std::uint8_t> bytes) {
-  const std::string key = bytes.empty() ? spec : contentHash(bytes) + spec.substr(spec.rfind('.') + 1);
+std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client, const SceneSource& source) {
+  const std::string key = sourceKey(source);
+  const bool builtin = key == source.name;
   bool reused = false;
-  std::shared_ptr<SceneContent> content = contentFor(client, key, spec, reused);
+  std::shared_ptr<SceneContent> content = contentFor(client, key, source, reused);
   std::lock_guard lock(mutex_);
   expireLocked(Clock::now());
   while (sessions_.size() >= limits_.maxSessions) {
@@ -127,8 +130,7 @@ std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client
     }
   }
   auto session = std::make_shared<SceneSession>();
-  session->id =
-      "s" + std::to_string(nextSession_++) + "-" + (bytes.empty() ? std::string("builtin") : key.substr(0, 16));
+  session->id = "s" + std::to_string(nextSession_++) + "-" + (builtin ? std::string("builtin") : key.substr(0, 16));
   session->content = content;
   session->reused = reused;
   sessions_[session->id] = SessionEntry{session, Clock::now(), 0};

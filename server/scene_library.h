@@ -23,6 +23,7 @@
 #include "camera_models/display_config.h"
 #include "gpu/renderer.h"
 #include "scene/scene.h"
+#include "scene/scene_source.h"
 #include "server/errors.h"
 #include "server/render_worker.h"
 
@@ -72,11 +73,11 @@ class SceneLibrary {
   SceneLibrary(RenderWorker& worker, SceneLibraryLimits limits);
   ~SceneLibrary();  // releases the Renderers; call after the worker stopped, before the Vulkan context dies
 
-  // `spec` is a file path (already confined by the caller) or "builtin:NAME"; `bytes` are its contents (empty
-  // for builtins). `client` is charged for the BVH upload job. Throws LimitExceeded when every session is pinned or
-  // the content does not fit the memory budget beside the pinned ones.
-  std::shared_ptr<const SceneSession> open(const std::string& client, const std::string& spec,
-                                           std::span<const std::uint8_t> bytes);
+  // `source` holds every byte the scene is loaded from (scene/scene_source.h; read once beneath the scene root, or
+  // uploaded), or only a name "builtin:NAME". Contents are shared by a key over all those bytes. `client` is
+  // charged for the BVH upload job. Throws LimitExceeded when every session is pinned or the content does not fit
+  // the memory budget beside the pinned ones.
+  std::shared_ptr<const SceneSession> open(const std::string& client, const SceneSource& source);
   std::shared_ptr<const SceneSession> find(const std::string& id);  // counts as use; throws UnknownScene
   void unload(const std::string& id);                               // throws UnknownScene
 
@@ -127,8 +128,8 @@ class SceneLibrary {
   };
   using Building = std::shared_future<std::shared_ptr<SceneContent>>;
 
-  std::shared_ptr<SceneContent> build(const std::string& client, const std::string& key, const std::string& spec);
-  std::shared_ptr<SceneContent> contentFor(const std::string& client, const std::string& key, const std::string& spec,
+  std::shared_ptr<SceneContent> build(const std::string& client, const std::string& key, const SceneSource& source);
+  std::shared_ptr<SceneContent> contentFor(const std::string& client, const std::string& key, const SceneSource& source,
                                            bool& reused);
   std::shared_ptr<gpu::Renderer> adopt(gpu::Renderer* renderer);  // owned, destroyed on the render worker
   SessionEntry& entryLocked(const std::string& id);               // throws UnknownScene
@@ -154,5 +155,8 @@ class SceneLibrary {
 
 // 64-bit FNV-1a of `bytes`, as 16 hex digits (content key; not a security boundary).
 std::string contentHash(std::span<const std::uint8_t> bytes);
+// The content key of a source: the builtin name, or hashes of the main file and of every external file with its
+// URI, plus the extension; two sources share a key only when every byte loaded is the same.
+std::string sourceKey(const SceneSource& source);
 
 }  // namespace ht::server

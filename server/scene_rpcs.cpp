@@ -2,10 +2,9 @@
 #include <unistd.h>
 
 #include <cmath>
-#include <fstream>
-#include <iterator>
 
 #include "scene/scene_edits.h"
+#include "scene/scene_source.h"
 #include "server/display_messages.h"
 #include "server/holotrace_service.h"
 #include "server/path_rules.h"
@@ -15,28 +14,6 @@
 namespace ht::server {
 namespace v1 = holotrace::v1;
 namespace {
-
-std::vector<std::uint8_t> readCapped(const std::filesystem::path& file, std::uint64_t maxBytes) {
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(file, ec);
-  if (ec) throw BadRequest("path", "cannot read '" + file.filename().string() + "': " + ec.message());
-  if (size > maxBytes) {
-    throw LimitExceeded("scene file is " + std::to_string(size) +
-                        " bytes (limits.max_scene_bytes = " + std::to_string(maxBytes) + ")");
-  }
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// Symlinks inside the scene root must not lead out of it.
-void checkStaysBeneath(const std::filesystem::path& root, const std::filesystem::path& file, const std::string& given) {
-  std::error_code ec;
-  const auto realRoot = std::filesystem::canonical(root, ec);
-  const auto realFile = std::filesystem::canonical(file, ec);
-  if (ec) throw BadRequest("path", "'" + given + "' does not exist below the scene root");
-  const auto rel = realFile.lexically_relative(realRoot);
-  if (rel.empty() || *rel.begin() == "..") throw AccessDenied("path '" + given + "' resolves outside the scene root");
-}
 
 void fillHandle(const SceneSession& session, v1::SceneHandle& out) {
   out.set_scene_id(session.id);
@@ -49,14 +26,13 @@ void fillHandle(const SceneSession& session, v1::SceneHandle& out) {
   out.set_lights(static_cast<std::uint32_t>(session.content->scene.lights.size()));
 }
 
-std::string sceneExtension(const std::string& fileName) {
+void checkSceneExtension(const std::string& fileName) {
   checkFileNameComponent("info.file_name", fileName);
   const auto dot = fileName.rfind('.');
   const std::string ext = dot == std::string::npos ? "" : fileName.substr(dot);
   if (ext != ".glb" && ext != ".gltf" && ext != ".obj" && ext != ".off") {
     throw BadRequest("info.file_name", "'" + fileName + "' must end in .glb, .gltf, .obj or .off");
   }
-  return ext;
 }
 
 struct NodeEdit {
@@ -126,13 +102,13 @@ grpc::Status HolotraceService::LoadScene(grpc::ServerContext* context, const v1:
   return guarded([&] {
     const std::string& given = request->path();
     if (given.rfind("builtin:", 0) == 0) {
-      fillHandle(*state_.scenes.open(clientKey(*context), given, {}), *response);
+      fillHandle(*state_.scenes.open(clientKey(*context), SceneSource{given, {}, {}, {}}), *response);
       return grpc::Status::OK;
     }
-    const auto file = resolveBeneath(state_.config.sceneRoot, "path", given);
-    checkStaysBeneath(state_.config.sceneRoot, file, given);
-    const auto bytes = readCapped(file, state_.config.limits.maxSceneBytes);
-    fillHandle(*state_.scenes.open(clientKey(*context), file.string(), bytes), *response);
+    resolveBeneath(state_.config.sceneRoot, "path", given);  // the name's rules; then one open beneath the root
+    const SceneSource source =
+        readSceneSourceBeneath(state_.config.sceneRoot, given, state_.config.limits.maxSceneBytes);
+    fillHandle(*state_.scenes.open(clientKey(*context), source), *response);
     return grpc::Status::OK;
   });
 }
@@ -154,7 +130,8 @@ grpc::Status HolotraceService::UploadScene(grpc::ServerContext* context,
       if (watch.stalled()) throw ClientGone("upload stalled (limits.upload_idle_seconds)");
       throw BadRequest("info", "the first message must carry info");
     }
-    const std::string ext = sceneExtension(chunk.info().file_name());
+    const std::string fileName = chunk.info().file_name();
+    checkSceneExtension(fileName);
     const std::uint64_t total = chunk.info().total_bytes();
     if (total > state_.config.limits.maxSceneBytes) {
       throw LimitExceeded("upload of " + std::to_string(total) + " bytes (limits.max_scene_bytes = " +
@@ -171,18 +148,9 @@ grpc::Status HolotraceService::UploadScene(grpc::ServerContext* context,
     if (watch.stalled()) throw ClientGone("upload stalled (limits.upload_idle_seconds)");
     if (context->IsCancelled()) throw ClientGone("upload cancelled");
     if (bytes.size() != total) throw BadRequest("data", "fewer bytes than info.total_bytes");
-    // The loaders read files: the bytes go to a private file named by their hash (docs/SERVICE.md §6).
-    const std::string name = "upload-" + contentHash(bytes) + ext;
-    state_.uploadSink.writeFile(name, bytes);
-    const auto path = state_.config.workDir / name;
-    struct Remove {
-      std::filesystem::path p;
-      ~Remove() {
-        std::error_code ec;
-        std::filesystem::remove(p, ec);
-      }
-    } remove{path};
-    fillHandle(*state_.scenes.open(clientKey(*context), path.string(), bytes), *response);
+    // Loaded from memory under the client's file name (an uploaded .gltf can only use data: URIs).
+    const SceneSource source{fileName, std::string(bytes.begin(), bytes.end()), {}, {}};
+    fillHandle(*state_.scenes.open(clientKey(*context), source), *response);
     return grpc::Status::OK;
   });
 }

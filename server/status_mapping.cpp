@@ -4,6 +4,9 @@
 #include <array>
 #include <new>
 
+#include "scene/scene_limits.h"
+#include "scene/scene_source.h"
+
 namespace ht::server {
 namespace {
 
@@ -19,16 +22,21 @@ struct StatusRule {
   StatusCode code;
 };
 
-// First match wins: a derived type comes before its base (DiskFull is an IoError).
+// First match wins: a derived type comes before its base (DiskFull and OutputConflict are IoErrors,
+// SceneOutsideRoot and SceneLimitExceeded SceneErrors).
 constexpr std::array kRules = {
     StatusRule{is<AccessDenied>, StatusCode::PERMISSION_DENIED},
     StatusRule{is<BadRequest>, StatusCode::INVALID_ARGUMENT},
     StatusRule{is<LimitExceeded>, StatusCode::RESOURCE_EXHAUSTED},
     StatusRule{is<DiskFull>, StatusCode::RESOURCE_EXHAUSTED},
+    StatusRule{is<NameTaken>, StatusCode::ALREADY_EXISTS},
+    StatusRule{is<OutputConflict>, StatusCode::FAILED_PRECONDITION},
     StatusRule{is<UnknownDisplay>, StatusCode::NOT_FOUND},
     StatusRule{is<UnknownScene>, StatusCode::NOT_FOUND},
     StatusRule{is<ShuttingDown>, StatusCode::UNAVAILABLE},
     StatusRule{is<ClientGone>, StatusCode::CANCELLED},
+    StatusRule{is<SceneOutsideRoot>, StatusCode::PERMISSION_DENIED},
+    StatusRule{is<SceneLimitExceeded>, StatusCode::RESOURCE_EXHAUSTED},
     StatusRule{is<ConfigError>, StatusCode::INVALID_ARGUMENT},
     StatusRule{is<SceneError>, StatusCode::INVALID_ARGUMENT},
     StatusRule{is<UsageError>, StatusCode::INVALID_ARGUMENT},

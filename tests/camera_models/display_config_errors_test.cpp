@@ -277,5 +277,29 @@ TEST(DisplayConfigErrors, PinholeUpParallelToView) {
   EXPECT_THAT(e.expected(), HasSubstr("not parallel"));
 }
 
+// Issue 14 item 2: 100,000 levels of nesting overflowed the stack while the error was printed (dump()). The depth is
+// refused on the text, before parsing, as ConfigError naming where the nesting went too deep; so is a deep value
+// inside an otherwise valid config, and a deep visual.json. Long flat input stays fine.
+TEST(DisplayConfigErrors, DeepNestingIsRefusedBeforeParsing) {
+  const std::size_t depth = 100000;
+  const std::string deepArray = std::string(depth, '[') + std::string(depth, ']');
+  ConfigError e = catchConfigError([&] { parseDisplayConfig(deepArray, "deep.json", ""); });
+  EXPECT_EQ(e.file(), "deep.json");
+  EXPECT_EQ(e.field(), "(json)");
+  EXPECT_EQ(e.value(), "line 1, column 65");
+  EXPECT_THAT(e.expected(), HasSubstr("at most 64 levels"));
+
+  const std::string deepValue = R"({"model": "pinhole", "description": )" + deepArray + "}";
+  EXPECT_EQ(catchConfigError([&] { parseDisplayConfig(deepValue, "deep.json", ""); }).field(), "(json)");
+  const std::string deepObject = std::string(depth, '{') + std::string(depth, '}');
+  EXPECT_EQ(catchConfigError([&] { parseLookingGlassCalibrationText(deepObject, "visual.json"); }).field(), "(json)");
+
+  // Brackets inside strings do not count; 64 levels are allowed (and then refused for their content).
+  const std::string inString = R"({"model": "pinhole", "name": ")" + deepArray + R"("})";
+  EXPECT_NO_THROW(parseDisplayConfig(inString, "long.json", ""));
+  const std::string sixtyFour = std::string(64, '[') + std::string(64, ']');
+  EXPECT_NE(catchConfigError([&] { parseDisplayConfig(sixtyFour, "ok.json", ""); }).field(), "(json)");
+}
+
 }  // namespace
 }  // namespace ht

@@ -5,6 +5,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -24,6 +26,18 @@ CliRun run(std::vector<std::string> args) {
   std::ostringstream out, err;
   const int code = runCli(args, out, err);
   return {code, out.str(), err.str()};
+}
+
+// Issue 14 item 2: a display config nested 100,000 levels deep made `holotrace render --display` exit 139 (stack
+// overflow printing it); now it is a config error naming the file, exit 1, before any GPU work.
+TEST(CliApp, DeeplyNestedDisplayConfigIsAConfigError) {
+  const std::filesystem::path file = std::filesystem::path(::testing::TempDir()) / "cli_deep_display.json";
+  std::ofstream(file) << std::string(100000, '[') << std::string(100000, ']');
+  const CliRun r = run({"render", "--display", file.string(), "--scene", "builtin:plain"});
+  EXPECT_EQ(r.code, kExitError);
+  EXPECT_THAT(r.err, HasSubstr(file.string() + ": field '(json)' = line 1, column 65"));
+  EXPECT_THAT(r.err, HasSubstr("at most 64 levels"));
+  std::filesystem::remove(file);
 }
 
 TEST(CliApp, UnknownRenderOptionExitsTwoWithTheExactMessage) {

@@ -110,6 +110,23 @@ TEST(SceneEdits, BadEditsAreRefusedAndChangeNothing) {
   EXPECT_EQ(s.nodes[0].world, before.nodes[0].world);
 }
 
+// Issue 14 item 10: a node scaled uniformly by 1e-4 (determinant 1e-12) was refused as "singular"; the test is
+// scale-relative now, so tiny and huge uniform scales are moves, and a flattened matrix of any scale is refused.
+TEST(SceneEdits, SingularityIsJudgedRelativeToTheScale) {
+  TempDir dir;
+  Scene s = loadGltf(twoNodeFile(dir, "a.gltf", {{"translation", {3, 0, 0}}}));
+  for (const double scale : {1e-4, 1e-6, 1e4}) {
+    glm::dmat4 m(scale);
+    m[3] = glm::dvec4(3, 0, 0, 1);
+    EXPECT_NO_THROW(setNodeWorldMatrix(s, "right", m)) << "uniform scale " << scale;
+    EXPECT_EQ(s.nodes[1].world, m);
+  }
+  glm::dmat4 flatTiny(1e-4);
+  flatTiny[3][3] = 1.0;
+  flatTiny[2] = glm::dvec4(1e-4, 1e-4, 0, 0);  // third column in the plane of the first two
+  EXPECT_THROW(setNodeWorldMatrix(s, "right", flatTiny), SceneError);
+}
+
 TEST(SceneEdits, LightEditsAreCheckedThenApplied) {
   Scene s = loadScene("builtin:showcase");
   ASSERT_EQ(s.lights.size(), 2u);

@@ -141,6 +141,7 @@ grpc::Status captureFrame(v1::Holotrace::Stub& stub, const std::string& name, co
   request.set_frames(1);
   request.set_format(format);
   request.set_layout(layout);
+  request.set_overwrite(true);  // callers compare formats and layouts under one name
   auto reader = stub.Capture(&context, request);
   v1::CaptureProgress progress;
   while (reader->Read(&progress)) files.push_back(progress.file());

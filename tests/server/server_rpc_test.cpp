@@ -380,13 +380,15 @@ TEST_F(ServerTest, TooManyStreamingClientsIsResourceExhausted) {
 }
 
 grpc::Status capture(v1::Holotrace::Stub& stub, const std::string& name, std::uint32_t frames,
-                     const v1::RenderRequest& render, std::vector<std::string>* files = nullptr) {
+                     const v1::RenderRequest& render, std::vector<std::string>* files = nullptr,
+                     bool overwrite = false) {
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
   v1::CaptureRequest request;
   *request.mutable_render() = render;
   request.set_name(name);
   request.set_frames(frames);
+  request.set_overwrite(overwrite);
   auto reader = stub.Capture(&context, request);
   v1::CaptureProgress progress;
   while (reader->Read(&progress)) {
@@ -483,11 +485,13 @@ TEST_F(ServerTest, UpdateSceneMovesTheTrackedObserver) {
 }
 
 TEST_F(ServerTest, CaptureOverAnExistingSymlinkDoesNotFollowIt) {
-  // A planted symlink named like a capture output is replaced by rename(), the target is never written.
+  // A planted symlink named like a capture output is an existing name; with overwrite it is removed (unlink, never
+  // followed) and replaced, the target is never written.
   const auto outside = files_->dir.path / "victim.png";
   writeText(outside, "untouched");
   std::filesystem::create_symlink(outside, files_->outputRoot() / "trap_f0000.png");
-  ASSERT_TRUE(capture(*stub_, "trap", 1, tinyRequest(sceneId_)).ok());
+  EXPECT_EQ(capture(*stub_, "trap", 1, tinyRequest(sceneId_)).error_code(), StatusCode::ALREADY_EXISTS);
+  ASSERT_TRUE(capture(*stub_, "trap", 1, tinyRequest(sceneId_), nullptr, true).ok());
   std::ifstream in(outside);
   std::string text;
   std::getline(in, text);

@@ -73,6 +73,8 @@ TEST(StatusMappingTest, EveryErrorTypeHasItsCode) {
   EXPECT_EQ(statusCodeOf(BadRequest("field", "b")), StatusCode::INVALID_ARGUMENT);
   EXPECT_EQ(statusCodeOf(LimitExceeded("c")), StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_EQ(statusCodeOf(DiskFull("d")), StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(statusCodeOf(NameTaken("d")), StatusCode::ALREADY_EXISTS);
+  EXPECT_EQ(statusCodeOf(OutputConflict("d")), StatusCode::FAILED_PRECONDITION);
   EXPECT_EQ(statusCodeOf(UnknownDisplay("e")), StatusCode::NOT_FOUND);
   EXPECT_EQ(statusCodeOf(UnknownScene("f")), StatusCode::NOT_FOUND);
   EXPECT_EQ(statusCodeOf(ShuttingDown("g")), StatusCode::UNAVAILABLE);
