@@ -41,16 +41,17 @@ class PageReader {
     while (got < reply.size()) {
       const std::span<std::uint8_t> rest = std::span(reply).subspan(got);
       std::size_t n = 0;
+      std::string cause = "nothing more arrived";
       try {
         n = transport_.readInput(rest, transferTimeout(page));
       } catch (const DeviceError& e) {
-        if (got == 0 || e.fault() != DeviceFault::Timeout) throw;
-        n = 0;
+        if (got == 0 || e.fault() == DeviceFault::Disconnected) throw;
+        cause = std::string(deviceFaultName(e.fault())) + ": " + e.detail();
       }
       if (n == 0 && got > 0) {
         throw DeviceError(transport_.name(), DeviceFault::TruncatedReport,
                           "page " + std::to_string(page) + ": the reply stopped after " + std::to_string(got) + " of " +
-                              std::to_string(reply.size()) + " bytes");
+                              std::to_string(reply.size()) + " bytes (" + cause + ")");
       }
       if (n == 0) {
         throw DeviceError(transport_.name(), DeviceFault::Timeout,
