@@ -38,7 +38,7 @@ struct Daemon::Parts {
         context({config.deviceIndex, false}),
         worker(context, config.limits.maxFramesInFlight),
         scenes(std::make_unique<SceneLibrary>(worker, config.limits.maxTriangles)),
-        displays(config.displaysDir),
+        displays(config.displaysDir, deviceScanFor(config.devices)),
         outputSink(config.outputRoot),
         uploadSink(config.workDir),
         state{config, displays, *scenes, worker, outputSink, uploadSink},
