@@ -100,6 +100,11 @@ Discovery discoverDevices(const DiscoveryOptions& options) {
   addConfigFile(options, list);
   addDrives(options, list);
   addUsb(options, out, list);
+  if (options.matchMonitor) {
+    for (FoundDevice& device : out.devices) {
+      if (device.loaded()) device.matchedMonitor = options.matchMonitor(device);
+    }
+  }
   return out;
 }
 

@@ -27,8 +27,7 @@ struct FoundDevice {
   std::string deviceType;  // from the serial prefix (device_types.h); empty when unknown
   std::optional<LoadedCalibration> calibration;  // set exactly when everything loaded and validated
   std::optional<DeviceError> error;              // why it did not load
-  // The RandR monitor showing this panel. Left empty here: the monitor picker of the display sink fills it
-  // (docs/DISPLAY.md); `holotrace devices` prints "-" while it is empty.
+  // The monitor showing this panel, from DiscoveryOptions::matchMonitor; `holotrace devices` prints "-" while empty.
   std::string matchedMonitor;
 
   bool loaded() const { return calibration.has_value(); }
@@ -43,6 +42,9 @@ struct DiscoveryOptions {
   UsbScanOptions usb;
   // Replaces the libusb scan (tests); unset = scanUsbHid(usb).
   std::function<UsbScan(const UsbScanOptions&)> usbScanner;
+  // Hook for the display sink's monitor picker (RandR monitor by EDID name / panel size / configuration): called for
+  // every panel that loaded, returns the monitor's name or "" when none matches. Unset = no monitor matching yet.
+  std::function<std::string(const FoundDevice&)> matchMonitor;
 };
 
 struct Discovery {

@@ -1,6 +1,7 @@
 // drive_scan.cpp - see drive_scan.h.
 #include "devices/drive_scan.h"
 
+#include <array>
 #include <cctype>
 #include <fstream>
 #include <set>
@@ -58,14 +59,17 @@ std::string readCappedFile(const std::filesystem::path& file, std::size_t maxByt
   }
   std::ifstream in(file, std::ios::binary);
   if (!in) throw DeviceError(file.string(), DeviceFault::Unreadable, "cannot open it for reading (permissions?)");
-  std::string text(maxBytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (in.bad()) throw DeviceError(file.string(), DeviceFault::Unreadable, "read error");
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.size() > maxBytes) {
-    throw DeviceError(file.string(), DeviceFault::FileTooLarge,
-                      "larger than the " + std::to_string(maxBytes) + "-byte cap for a calibration file");
+  // In pieces: memory follows the file, never the cap (proc files report size 0, so the size cannot be asked first).
+  std::string text;
+  std::array<char, 16384> piece;
+  while (in.read(piece.data(), piece.size()) || in.gcount() > 0) {
+    text.append(piece.data(), static_cast<std::size_t>(in.gcount()));
+    if (text.size() > maxBytes) {
+      throw DeviceError(file.string(), DeviceFault::FileTooLarge,
+                        "larger than the " + std::to_string(maxBytes) + "-byte cap");
+    }
   }
+  if (in.bad()) throw DeviceError(file.string(), DeviceFault::Unreadable, "read error");
   return text;
 }
 

@@ -196,6 +196,28 @@ TEST_F(DiscoveryTest, UsbOnlyAndTheSwitchesTurnSourcesOff) {
   EXPECT_TRUE(discoverDevices(o).devices.empty());
 }
 
+TEST_F(DiscoveryTest, TheMonitorHookNamesTheMonitorOfLoadedPanelsOnly) {
+  writeFile(root() / "explicit.json", fixtureText("portrait_issue3_visual.json"));
+  writeFile(root() / "broken.json", "{");
+  DiscoveryOptions o;
+  o.calibrationFile = root() / "explicit.json";
+  o.drives = options();
+  o.usbScanner = [](const UsbScanOptions&) {
+    UsbScan scan;
+    scan.devices.push_back({"USB 001/002", std::nullopt,
+                            DeviceError("USB 001/002", DeviceFault::Stall, "endpoint 0x84")});
+    return scan;
+  };
+  o.matchMonitor = [](const FoundDevice& d) {
+    return d.calibration->calibration.screenW == 1536 ? std::string("LKG-P (DP-1)") : std::string();
+  };
+  const Discovery d = discoverDevices(o);
+  ASSERT_EQ(d.devices.size(), 2u);
+  EXPECT_EQ(d.devices[0].matchedMonitor, "LKG-P (DP-1)");
+  EXPECT_EQ(d.devices[1].matchedMonitor, "");
+  EXPECT_FALSE(d.devices[1].loaded());
+}
+
 TEST_F(DiscoveryTest, ABrokenExplicitFileIsListedWithItsError) {
   writeFile(root() / "explicit.json", "not json");
   DiscoveryOptions o;
