@@ -2,6 +2,7 @@
 // the kernel's usbdevfs interface as umockdev replays it (umockdev_panel.h writes the device and its URBs from a
 // fixture JSON). Skips with a message when umockdev-run is not installed.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <fstream>
