@@ -47,8 +47,10 @@ std::string column(const std::string& text, std::size_t width) {
 }
 
 void printTable(const devices::Discovery& found, std::ostream& out) {
-  if (found.devices.empty()) out << "no Looking Glass panels found\n";
-  else out << column("SERIAL", 14) << column("TYPE", 22) << column("SOURCE", 18) << column("MONITOR", 10) << "LOCATION\n";
+  if (found.devices.empty())
+    out << "no Looking Glass panels found\n";
+  else
+    out << column("SERIAL", 14) << column("TYPE", 22) << column("SOURCE", 18) << column("MONITOR", 10) << "LOCATION\n";
   for (const devices::FoundDevice& d : found.devices) {
     out << column(orDash(d.serial), 14) << column(orDash(d.deviceType), 22)
         << column(std::string(devices::calibrationSourceName(d.source)), 18) << column(orDash(d.matchedMonitor), 10)
@@ -60,13 +62,10 @@ void printTable(const devices::Discovery& found, std::ostream& out) {
 
 void printJson(const devices::Discovery& found, std::ostream& out) {
   for (const devices::FoundDevice& d : found.devices) {
-    nlohmann::json line = {{"serial", d.serial},
-                           {"type", d.deviceType},
-                           {"source", devices::calibrationSourceName(d.source)},
-                           {"location", d.location},
-                           {"monitor", d.matchedMonitor},
-                           {"loaded", d.loaded()},
-                           {"problem", d.problem()}};
+    nlohmann::json line = {
+        {"serial", d.serial},     {"type", d.deviceType},        {"source", devices::calibrationSourceName(d.source)},
+        {"location", d.location}, {"monitor", d.matchedMonitor}, {"loaded", d.loaded()},
+        {"problem", d.problem()}};
     if (d.error) line["fault"] = devices::deviceFaultName(d.error->fault());
     if (d.calibration) {
       line["screenW"] = d.calibration->calibration.screenW;
@@ -91,8 +90,10 @@ std::string devicesHelp() {
 int runDevices(std::span<const std::string> args, std::ostream& out) {
   const ParsedArguments parsed = parseArguments(kCommand, kSpecs, args);
   const devices::Discovery found = devices::discoverDevices(discoveryOptions(parsed));
-  if (parsed.has("--json")) printJson(found, out);
-  else printTable(found, out);
+  if (parsed.has("--json"))
+    printJson(found, out);
+  else
+    printTable(found, out);
   std::size_t failed = 0;
   for (const devices::FoundDevice& d : found.devices) failed += d.error ? 1 : 0;
   if (failed > 0) {

@@ -44,9 +44,7 @@ void addConfigFile(const DiscoveryOptions& options, DeviceList& list) {
   std::optional<DeviceError> error;
   try {
     calibration = loadCalibrationFile(options.calibrationFile, options.drives.maxFileBytes);
-  } catch (const DeviceError& e) {
-    error = e;
-  }
+  } catch (const DeviceError& e) { error = e; }
   list.add(makeFound(CalibrationSource::ConfigFile, options.calibrationFile.string(), std::move(calibration),
                      std::move(error)));
 }
@@ -55,8 +53,7 @@ void addDrives(const DiscoveryOptions& options, DeviceList& list) {
   if (!options.scanDrives) return;
   DriveScan scan = scanDrives(options.drives);
   for (DriveCalibration& d : scan.found) {
-    list.add(makeFound(CalibrationSource::MountedDrive, d.file.string(), std::move(d.calibration),
-                       std::move(d.error)));
+    list.add(makeFound(CalibrationSource::MountedDrive, d.file.string(), std::move(d.calibration), std::move(d.error)));
   }
   for (const UnmountedDrive& d : scan.unmounted) {
     FoundDevice found = makeFound(CalibrationSource::DriveNotMounted, d.label + " (" + d.device.string() + ")",

@@ -33,7 +33,9 @@ class DeviceError : public Error {
  public:
   DeviceError(std::string device, DeviceFault fault, const std::string& detail)
       : Error(device + ": " + std::string(deviceFaultName(fault)) + ": " + detail),
-        device_(std::move(device)), fault_(fault), detail_(detail) {}
+        device_(std::move(device)),
+        fault_(fault),
+        detail_(detail) {}
   const std::string& device() const { return device_; }
   DeviceFault fault() const { return fault_; }
   const std::string& detail() const { return detail_; }

@@ -7,8 +7,8 @@
 namespace ht::devices {
 
 struct DeviceType {
-  std::string_view prefix;   // "LKG-P"
-  std::string_view name;     // "Portrait"
+  std::string_view prefix;  // "LKG-P"
+  std::string_view name;    // "Portrait"
   std::uint32_t screenW = 0, screenH = 0;
 };
 

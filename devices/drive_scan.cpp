@@ -18,7 +18,8 @@ constexpr std::size_t kMaxMountinfoBytes = 16 << 20;
 std::string decodeUdevLabel(const std::string& name) {
   std::string out;
   for (std::size_t i = 0; i < name.size(); ++i) {
-    if (name.compare(i, 2, "\\x") == 0 && i + 3 < name.size() && std::isxdigit(static_cast<unsigned char>(name[i + 2])) &&
+    if (name.compare(i, 2, "\\x") == 0 && i + 3 < name.size() &&
+        std::isxdigit(static_cast<unsigned char>(name[i + 2])) &&
         std::isxdigit(static_cast<unsigned char>(name[i + 3]))) {
       out.push_back(static_cast<char>(std::stoi(name.substr(i + 2, 2), nullptr, 16)));
       i += 3;
@@ -94,9 +95,7 @@ DriveScan scanDrives(const DriveScanOptions& options) {
     DriveCalibration found{file, std::nullopt, std::nullopt};
     try {
       found.calibration = loadCalibrationFile(file, options.maxFileBytes);
-    } catch (const DeviceError& e) {
-      found.error = e;
-    }
+    } catch (const DeviceError& e) { found.error = e; }
     scan.found.push_back(std::move(found));
   }
   scan.unmounted = unmountedDrives(options.byLabelDir, mounts);

@@ -54,8 +54,7 @@ class PageReader {
                               std::to_string(reply.size()) + " bytes (" + cause + ")");
       }
       if (n == 0) {
-        throw DeviceError(transport_.name(), DeviceFault::Timeout,
-                          "page " + std::to_string(page) + ": an empty reply");
+        throw DeviceError(transport_.name(), DeviceFault::Timeout, "page " + std::to_string(page) + ": an empty reply");
       }
       if (n > rest.size()) {
         throw DeviceError(transport_.name(), DeviceFault::Transport,

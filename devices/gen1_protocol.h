@@ -11,7 +11,7 @@
 
 namespace ht::devices::gen1 {
 
-constexpr std::uint16_t kVendorId = 0x04d8;   // Microchip: shared with other products, so the product is checked too
+constexpr std::uint16_t kVendorId = 0x04d8;  // Microchip: shared with other products, so the product is checked too
 constexpr std::uint16_t kProductId = 0xef7e;
 constexpr const char* kProductName = "HoloPlay";
 constexpr std::uint8_t kInterface = 0;
@@ -36,9 +36,7 @@ inline Request readRequest(std::uint16_t page) {
   return r;
 }
 
-inline std::uint16_t replyPage(const Reply& reply) {
-  return static_cast<std::uint16_t>((reply[2] << 8) | reply[3]);
-}
+inline std::uint16_t replyPage(const Reply& reply) { return static_cast<std::uint16_t>((reply[2] << 8) | reply[3]); }
 
 inline bool replyEchoes(const Reply& reply, std::uint16_t page) {
   return reply[1] == kReadCommand && replyPage(reply) == page;

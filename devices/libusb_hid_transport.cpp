@@ -12,8 +12,8 @@
 namespace ht::devices {
 namespace {
 
-constexpr std::uint8_t kClassInterfaceOut = 0x21;  // bmRequestType: host to device, class, interface
-constexpr std::uint8_t kSetReport = 0x09;          // HID SET_REPORT
+constexpr std::uint8_t kClassInterfaceOut = 0x21;    // bmRequestType: host to device, class, interface
+constexpr std::uint8_t kSetReport = 0x09;            // HID SET_REPORT
 constexpr std::uint16_t kFeatureReportId0 = 0x0300;  // wValue: report type 3 (feature) << 8 | report id 0
 
 unsigned int timeoutMs(std::chrono::milliseconds timeout) {
@@ -76,14 +76,14 @@ LibusbHidTransport::~LibusbHidTransport() = default;
 
 void LibusbHidTransport::sendFeatureReport(std::span<const std::uint8_t> payload, std::chrono::milliseconds timeout) {
   std::vector<unsigned char> data(payload.begin(), payload.end());  // libusb wants a mutable buffer
-  const int rc = libusb_control_transfer(handle_->usb, kClassInterfaceOut, kSetReport, kFeatureReportId0,
-                                         gen1::kInterface, data.data(), static_cast<std::uint16_t>(data.size()),
-                                         timeoutMs(timeout));
+  const int rc =
+      libusb_control_transfer(handle_->usb, kClassInterfaceOut, kSetReport, kFeatureReportId0, gen1::kInterface,
+                              data.data(), static_cast<std::uint16_t>(data.size()), timeoutMs(timeout));
   if (rc < 0) throw libusbError(name_, rc, "sending the read request (SET_REPORT)");
   if (static_cast<std::size_t>(rc) != data.size()) {
-    throw DeviceError(name_, DeviceFault::Transport,
-                      "the device took " + std::to_string(rc) + " of " + std::to_string(data.size()) +
-                          " bytes of the read request");
+    throw DeviceError(
+        name_, DeviceFault::Transport,
+        "the device took " + std::to_string(rc) + " of " + std::to_string(data.size()) + " bytes of the read request");
   }
 }
 

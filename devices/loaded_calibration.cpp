@@ -30,8 +30,8 @@ LoadedCalibration checkCalibrationText(std::string json, const std::string& devi
     LookingGlassCalibration calibration = parseLookingGlassCalibration(parsed, device);
     return {std::move(json), std::move(calibration)};
   } catch (const ConfigError& e) {
-    throw DeviceError(device, DeviceFault::InvalidCalibration, "field '" + e.field() + "' = " + e.value() + ": " +
-                                                                   e.expected());
+    throw DeviceError(device, DeviceFault::InvalidCalibration,
+                      "field '" + e.field() + "' = " + e.value() + ": " + e.expected());
   }
 }
 

@@ -9,8 +9,8 @@
 namespace ht::devices {
 
 struct LoadedCalibration {
-  std::string json;                      // the bytes as the device holds them
-  LookingGlassCalibration calibration;   // parsed and validated
+  std::string json;                     // the bytes as the device holds them
+  LookingGlassCalibration calibration;  // parsed and validated
 };
 
 // Throws DeviceError (InvalidJson, InvalidCalibration) naming `device`.

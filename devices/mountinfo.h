@@ -10,8 +10,8 @@ namespace ht::devices {
 
 struct MountEntry {
   std::filesystem::path mountPoint;
-  std::string source;   // e.g. "/dev/sdb1"
-  std::string fsType;   // e.g. "vfat"
+  std::string source;  // e.g. "/dev/sdb1"
+  std::string fsType;  // e.g. "vfat"
 };
 
 // Malformed lines are skipped (the kernel writes the file; a line we cannot read is not a mount we can use).

@@ -20,9 +20,9 @@ class PageAssembler {
 
   std::uint16_t nextPage() const { return pagesRead_; }
   bool complete() const { return pagesRead_ > 0 && bytes_.size() >= kHeader + jsonBytes_; }
-  std::size_t jsonBytes() const { return jsonBytes_; }    // valid after page 0
-  std::size_t pagesNeeded() const;                        // valid after page 0
-  std::string takeJson();                                 // the JSON text, once complete()
+  std::size_t jsonBytes() const { return jsonBytes_; }  // valid after page 0
+  std::size_t pagesNeeded() const;                      // valid after page 0
+  std::string takeJson();                               // the JSON text, once complete()
 
  private:
   static constexpr std::size_t kHeader = gen1::kLengthPrefixBytes;

@@ -58,9 +58,7 @@ UsbHidResult readDevice(libusb_device* device, const std::string& name, const Us
   try {
     LibusbHidTransport transport(device, name, options.detachKernelDriver);
     result.calibration = readGen1Calibration(transport, options.read);
-  } catch (const DeviceError& e) {
-    result.error = e;
-  }
+  } catch (const DeviceError& e) { result.error = e; }
   return result;
 }
 

@@ -19,7 +19,7 @@ struct UsbScanOptions {
 
 // One Gen1 panel seen on USB: either its calibration or the error that kept it from loading.
 struct UsbHidResult {
-  std::string device;                        // "USB 001/002 04d8:ef7e HoloPlay"
+  std::string device;  // "USB 001/002 04d8:ef7e HoloPlay"
   std::optional<LoadedCalibration> calibration;
   std::optional<DeviceError> error;
 };

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <iterator>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -27,8 +27,8 @@ template <typename T>
 void readLimit(const json& limits, const char* key, T& value, const std::string& source) {
   if (!limits.contains(key)) return;
   const json& v = limits[key];
-  if (!v.is_number() || v.get<double>() <= 0) throw ConfigError(source, std::string("limits.") + key, v.dump(),
-                                                                "a positive number");
+  if (!v.is_number() || v.get<double>() <= 0)
+    throw ConfigError(source, std::string("limits.") + key, v.dump(), "a positive number");
   value = v.get<T>();
 }
 
@@ -63,11 +63,12 @@ DeviceDiscoveryConfig parseDevices(const json& doc, const std::filesystem::path&
   const json& j = doc["devices"];
   if (!j.is_object()) throw ConfigError(source, "devices", j.dump(), "an object (docs/DISPLAY.md)");
   for (const auto& [key, value] : j.items()) {
-    static const char* const kKeys[] = {"scan", "calibration_file", "drives", "usb", "detach_kernel_driver",
+    static const char* const kKeys[] = {"scan",      "calibration_file", "drives", "usb", "detach_kernel_driver",
                                         "mountinfo", "by_label_dir"};
     if (std::find(std::begin(kKeys), std::end(kKeys), key) == std::end(kKeys)) {
-      throw ConfigError(source, "devices." + key, value.dump(),
-                        "a known key: scan, calibration_file, drives, usb, detach_kernel_driver, mountinfo, by_label_dir");
+      throw ConfigError(
+          source, "devices." + key, value.dump(),
+          "a known key: scan, calibration_file, drives, usb, detach_kernel_driver, mountinfo, by_label_dir");
     }
   }
   d.scan = readFlag(j, "scan", d.scan, source);
@@ -84,8 +85,8 @@ DeviceDiscoveryConfig parseDevices(const json& doc, const std::filesystem::path&
 
 std::string defaultListenAddress() {
   const char* runtime = std::getenv("XDG_RUNTIME_DIR");
-  const std::filesystem::path dir = runtime && *runtime ? std::filesystem::path(runtime) / "holotrace"
-                                                        : std::filesystem::path("/run/holotrace");
+  const std::filesystem::path dir =
+      runtime && *runtime ? std::filesystem::path(runtime) / "holotrace" : std::filesystem::path("/run/holotrace");
   return "unix:" + (dir / "holotraced.sock").string();
 }
 

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "camera_models/embedded_display_configs.h"
-#include "frame_io/ray_table_exr.h"
 #include "common/error.h"
+#include "frame_io/ray_table_exr.h"
 
 namespace ht::server {
 namespace {
@@ -24,9 +24,7 @@ void addBuiltins(std::map<std::string, std::shared_ptr<const RegisteredDisplay>>
     try {
       map[id] = std::make_shared<const RegisteredDisplay>(
           RegisteredDisplay{id, builtinDisplay(embedded.name), std::string(embedded.json), nullptr});
-    } catch (const Error& e) {
-      log << "holotraced: builtin display skipped: " << e.what() << "\n";
-    }
+    } catch (const Error& e) { log << "holotraced: builtin display skipped: " << e.what() << "\n"; }
   }
 }
 
@@ -44,18 +42,15 @@ void addDevices(const DeviceScan& scan, std::map<std::string, std::shared_ptr<co
     }
     const std::string id = "device:" + device.serial;
     try {
-      RegisteredDisplay display{id, parseDisplayConfig(device.calibration->json, device.location, {}),
-                                device.calibration->json, nullptr,
-                                std::string(devices::calibrationSourceName(device.source)), device.serial};
+      RegisteredDisplay display{
+          id,      parseDisplayConfig(device.calibration->json, device.location, {}), device.calibration->json,
+          nullptr, std::string(devices::calibrationSourceName(device.source)),        device.serial};
       if (display.config.name.empty()) display.config.name = device.serial;
       map[id] = std::make_shared<const RegisteredDisplay>(std::move(display));
       const std::string type = device.deviceType.empty() ? "unknown type" : device.deviceType;
-      log << "holotraced: panel " << device.serial << " (" << type
-          << ") from " << devices::calibrationSourceName(device.source) << " " << device.location << " -> " << id
-          << "\n";
-    } catch (const Error& e) {
-      log << "holotraced: panel skipped: " << e.what() << "\n";
-    }
+      log << "holotraced: panel " << device.serial << " (" << type << ") from "
+          << devices::calibrationSourceName(device.source) << " " << device.location << " -> " << id << "\n";
+    } catch (const Error& e) { log << "holotraced: panel skipped: " << e.what() << "\n"; }
   }
 }
 
@@ -91,9 +86,7 @@ std::size_t DisplayRegistry::reload(std::ostream& log) {
           display.rayTable = std::make_shared<const RayTable>(frame_io::loadDisplayRayTable(display.config));
         }
         (*map)[id] = std::make_shared<const RegisteredDisplay>(std::move(display));
-      } catch (const Error& e) {
-        log << "holotraced: display config skipped: " << e.what() << "\n";
-      }
+      } catch (const Error& e) { log << "holotraced: display config skipped: " << e.what() << "\n"; }
     }
   }
   addDevices(scanDevices_, *map, log);

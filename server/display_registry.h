@@ -23,7 +23,7 @@ namespace ht::server {
 struct RegisteredDisplay {
   std::string id;
   DisplayConfig config;
-  std::string sourceText;  // the config file (or embedded config) verbatim
+  std::string sourceText;                    // the config file (or embedded config) verbatim
   std::shared_ptr<const RayTable> rayTable;  // model "ray-table": its table, read when the display is registered
   // Where the display came from (ListDisplays `source`): "builtin", "displays-dir", or a device calibration source
   // ("config-file", "mounted-drive", "usb-hid"; devices::calibrationSourceName).

@@ -24,8 +24,8 @@ struct DevicesRun {
 
 // Only the explicit file is looked at: USB off, drive roots that do not exist.
 DevicesRun runDevicesOnly(std::vector<std::string> extra) {
-  std::vector<std::string> args = {"devices", "--no-usb", "--mountinfo", "/nonexistent/mountinfo", "--by-label",
-                                   "/nonexistent/by-label"};
+  std::vector<std::string> args = {
+      "devices", "--no-usb", "--mountinfo", "/nonexistent/mountinfo", "--by-label", "/nonexistent/by-label"};
   args.insert(args.end(), extra.begin(), extra.end());
   std::ostringstream out, err;
   const int code = runCli(args, out, err);

@@ -31,11 +31,16 @@ void writeFile(const fs::path& file, const std::string& text) {
 std::string escapeMountPath(const std::string& path) {
   std::string out;
   for (char c : path) {
-    if (c == ' ') out += "\\040";
-    else if (c == '\t') out += "\\011";
-    else if (c == '\n') out += "\\012";
-    else if (c == '\\') out += "\\134";
-    else out += c;
+    if (c == ' ')
+      out += "\\040";
+    else if (c == '\t')
+      out += "\\011";
+    else if (c == '\n')
+      out += "\\012";
+    else if (c == '\\')
+      out += "\\134";
+    else
+      out += c;
   }
   return out;
 }
@@ -125,9 +130,9 @@ TEST_F(DriveScanTest, ReportsLabelledVolumesThatAreNotMounted) {
   fs::create_directories(root() / "by-label");
   fs::create_directories(root() / "dev");
   for (const char* node : {"sdb1", "sdc1", "sdd1"}) writeFile(root() / "dev" / node, "");
-  fs::create_symlink("../dev/sdb1", root() / "by-label" / "LKG-P00671");   // mounted
-  fs::create_symlink("../dev/sdc1", root() / "by-label" / "LKG-J01234");   // not mounted
-  fs::create_symlink("../dev/sdd1", root() / "by-label" / "USBSTICK");     // not ours
+  fs::create_symlink("../dev/sdb1", root() / "by-label" / "LKG-P00671");  // mounted
+  fs::create_symlink("../dev/sdc1", root() / "by-label" / "LKG-J01234");  // not mounted
+  fs::create_symlink("../dev/sdd1", root() / "by-label" / "USBSTICK");    // not ours
   writeFile(root() / "mountinfo", mountLine(1, root() / "mnt", (root() / "dev" / "sdb1").string()));
   const DriveScan scan = scanDrives(options());
   ASSERT_EQ(scan.unmounted.size(), 1u);
@@ -204,8 +209,8 @@ TEST_F(DiscoveryTest, TheMonitorHookNamesTheMonitorOfLoadedPanelsOnly) {
   o.drives = options();
   o.usbScanner = [](const UsbScanOptions&) {
     UsbScan scan;
-    scan.devices.push_back({"USB 001/002", std::nullopt,
-                            DeviceError("USB 001/002", DeviceFault::Stall, "endpoint 0x84")});
+    scan.devices.push_back(
+        {"USB 001/002", std::nullopt, DeviceError("USB 001/002", DeviceFault::Stall, "endpoint 0x84")});
     return scan;
   };
   o.matchMonitor = [](const FoundDevice& d) {

@@ -31,7 +31,7 @@ class FakeHoloPlay : public HidTransport {
   explicit FakeHoloPlay(std::vector<std::uint8_t> eeprom) : eeprom_(std::move(eeprom)) {}
 
   // Faults, keyed by page.
-  std::map<std::uint16_t, int> staleRepliesBefore;  // replies echoing another page before the right one
+  std::map<std::uint16_t, int> staleRepliesBefore;     // replies echoing another page before the right one
   std::map<std::uint16_t, std::size_t> cutReplyAfter;  // the reply stops after this many bytes, then times out
   std::uint16_t stallAtPage = 0xffff;                  // the interrupt endpoint stalls when this page is asked for
   std::size_t chunkBytes = gen1::kReplyBytes;          // replies arrive in parts of at most this many bytes

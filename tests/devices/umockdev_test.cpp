@@ -99,9 +99,7 @@ class UmockdevPanel : public ::testing::Test {
   std::string umockdevRun_;
 };
 
-TEST_F(UmockdevPanel, GoodPanelLoadsThroughLibusb) {
-  expectLoaded({gen1Fixture()});
-}
+TEST_F(UmockdevPanel, GoodPanelLoadsThroughLibusb) { expectLoaded({gen1Fixture()}); }
 
 TEST_F(UmockdevPanel, RepliesSplitInto64Plus4BytesAreReassembled) {
   EmulatedPanel panel{gen1Fixture()};

@@ -57,8 +57,7 @@ void read(ht::devices::HidTransport& device) {
                    loaded.calibration.screenW);
       std::abort();
     }
-  } catch (const DeviceError&) {
-  }
+  } catch (const DeviceError&) {}
 }
 
 }  // namespace

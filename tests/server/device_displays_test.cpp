@@ -26,7 +26,8 @@ std::string visualJson(const std::string& fixture) {
 TEST(DeviceDisplayConfig, ParsesTheDevicesSection) {
   const DaemonConfig c = parseDaemonConfig(
       R"({"scene_root": "s", "output_root": "o", "devices": {"usb": false, "calibration_file": "lkg.json",
-          "detach_kernel_driver": false, "mountinfo": "/m", "by_label_dir": "l"}})", "t.json", "/base");
+          "detach_kernel_driver": false, "mountinfo": "/m", "by_label_dir": "l"}})",
+      "t.json", "/base");
   EXPECT_TRUE(c.devices.scan);
   EXPECT_TRUE(c.devices.drives);
   EXPECT_FALSE(c.devices.usb);
@@ -35,21 +36,20 @@ TEST(DeviceDisplayConfig, ParsesTheDevicesSection) {
   EXPECT_EQ(c.devices.mountinfo, std::filesystem::path("/m"));
   EXPECT_EQ(c.devices.byLabelDir, std::filesystem::path("/base/l"));
   EXPECT_TRUE(parseDaemonConfig(R"({"scene_root": "s", "output_root": "o"})", "t.json", "/").devices.scan);
-  EXPECT_FALSE(deviceScanFor(parseDaemonConfig(R"({"scene_root": "s", "output_root": "o", "devices": {"scan": false}})",
-                                               "t.json", "/").devices));
+  EXPECT_FALSE(deviceScanFor(
+      parseDaemonConfig(R"({"scene_root": "s", "output_root": "o", "devices": {"scan": false}})", "t.json", "/")
+          .devices));
 }
 
 TEST(DeviceDisplayConfig, RejectsUnknownKeysAndWrongTypesNamingTheField) {
-  for (const auto& [text, field] : std::vector<std::pair<std::string, std::string>>{
-           {R"({"devices": {"usbb": true}})", "devices.usbb"},
-           {R"({"devices": {"usb": "yes"}})", "devices.usb"},
-           {R"({"devices": []})", "devices"}}) {
+  for (const auto& [text, field] :
+       std::vector<std::pair<std::string, std::string>>{{R"({"devices": {"usbb": true}})", "devices.usbb"},
+                                                        {R"({"devices": {"usb": "yes"}})", "devices.usb"},
+                                                        {R"({"devices": []})", "devices"}}) {
     try {
       parseDaemonConfig(R"({"scene_root": "s", "output_root": "o", )" + text.substr(1), "t.json", "/");
       ADD_FAILURE() << "accepted " << text;
-    } catch (const ConfigError& e) {
-      EXPECT_EQ(e.field(), field);
-    }
+    } catch (const ConfigError& e) { EXPECT_EQ(e.field(), field); }
   }
 }
 
@@ -136,8 +136,10 @@ TEST(DeviceDisplayDaemon, ListDisplaysShowsPanelsFoundOnMountedDrivesAndReloadRe
     EXPECT_TRUE(stub->ListDisplays(&context, {}, &response).ok());
     std::vector<v1::DisplaySummary> found;
     for (const auto& d : response.displays()) {
-      if (d.id().rfind("device:", 0) == 0) found.push_back(d);
-      else EXPECT_TRUE(d.source() == "builtin" || d.source() == "displays-dir") << d.id() << " " << d.source();
+      if (d.id().rfind("device:", 0) == 0)
+        found.push_back(d);
+      else
+        EXPECT_TRUE(d.source() == "builtin" || d.source() == "displays-dir") << d.id() << " " << d.source();
     }
     return found;
   };
