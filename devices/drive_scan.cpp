@@ -12,6 +12,16 @@ namespace ht::devices {
 namespace {
 
 const std::filesystem::path kCalibrationFile = std::filesystem::path("LKG_calibration") / "visual.json";
+
+// File systems a USB drive carries. Only these mounts are looked into: a stat under a network or automount file
+// system (nfs, cifs, autofs, sshfs) can block for minutes, and pseudo file systems never hold a panel's drive.
+bool isLocalDiskFileSystem(const std::string& fsType) {
+  static const std::set<std::string> kTypes = {"vfat",    "exfat",   "msdos",   "ntfs", "ntfs3",
+                                               "fuseblk", "hfsplus", "ext2",    "ext3", "ext4",
+                                               "xfs",     "btrfs",   "iso9660", "udf",  "fuse.exfat"};
+  return kTypes.count(fsType) != 0;
+}
+
 constexpr std::size_t kMaxMountinfoBytes = 16 << 20;
 
 // udev escapes unsafe label characters as \xNN in by-label names ("LKG\x20P" for "LKG P").
@@ -89,6 +99,7 @@ DriveScan scanDrives(const DriveScanOptions& options) {
   const std::vector<MountEntry> mounts = parseMountinfo(text);
   std::set<std::filesystem::path> seen;  // bind mounts list one volume several times
   for (const MountEntry& mount : mounts) {
+    if (!isLocalDiskFileSystem(mount.fsType)) continue;
     const std::filesystem::path file = mount.mountPoint / kCalibrationFile;
     std::error_code ec;
     if (!std::filesystem::exists(file, ec) || !seen.insert(canonicalOrSelf(file)).second) continue;

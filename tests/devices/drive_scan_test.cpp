@@ -45,9 +45,10 @@ std::string escapeMountPath(const std::string& path) {
   return out;
 }
 
-std::string mountLine(int id, const fs::path& mountPoint, const std::string& source) {
+std::string mountLine(int id, const fs::path& mountPoint, const std::string& source,
+                      const std::string& fsType = "vfat") {
   return std::to_string(id) + " 1 8:" + std::to_string(id) + " / " + escapeMountPath(mountPoint.string()) +
-         " rw,nosuid,nodev,relatime shared:" + std::to_string(id) + " - vfat " + escapeMountPath(source) +
+         " rw,nosuid,nodev,relatime shared:" + std::to_string(id) + " - " + fsType + " " + escapeMountPath(source) +
          " rw,fmask=0022\n";
 }
 
@@ -104,6 +105,16 @@ TEST_F(DriveScanTest, FindsVisualJsonOnMountedVolumesIncludingEscapedPaths) {
   EXPECT_EQ(scan.found[0].file, volume / "LKG_calibration" / "visual.json");
   ASSERT_TRUE(scan.found[0].calibration);
   EXPECT_EQ(scan.found[0].calibration->calibration.serial.substr(0, 5), "LKG-P");
+}
+
+TEST_F(DriveScanTest, NetworkAndPseudoFileSystemsAreNotLookedInto) {
+  const fs::path share = root() / "share", tmp = root() / "tmp";
+  writeFile(share / "LKG_calibration" / "visual.json", fixtureText("go_template_visual.json"));
+  writeFile(tmp / "LKG_calibration" / "visual.json", fixtureText("go_template_visual.json"));
+  writeFile(root() / "mountinfo", mountLine(1, share, "server:/export", "nfs4") + mountLine(2, tmp, "tmpfs", "tmpfs"));
+  EXPECT_TRUE(scanDrives(options()).found.empty());
+  writeFile(root() / "mountinfo", mountLine(1, share, "/dev/sdb1", "exfat"));
+  EXPECT_EQ(scanDrives(options()).found.size(), 1u);
 }
 
 TEST_F(DriveScanTest, ABadVisualJsonIsAnErrorForThatDriveOnly) {
