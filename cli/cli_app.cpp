@@ -11,6 +11,7 @@
 #include "cli/client_command.h"
 #endif
 #include "cli/command.h"
+#include "cli/devices_command.h"
 #include "cli/info_command.h"
 #include "cli/raycast_command.h"
 #include "cli/rays_command.h"
@@ -29,6 +30,8 @@ constexpr std::array kCommands = {
     Command{"info", "list Vulkan devices, the one holotrace picks, builtin displays and scenes", infoHelp, runInfo},
     Command{"raycast", "trace a ray batch file against a scene, write the hits (binary or CSV)", raycastHelp,
             runRaycast},
+    Command{"devices", "list the Looking Glass panels found and where their calibration came from", devicesHelp,
+            runDevices},
     Command{"rays", "write a display's per-(sub)pixel primary rays (+ view phase) as an EXR ray table", raysHelp,
             runRays},
 #ifdef HT_WITH_CLIENT

@@ -68,7 +68,7 @@ int listDisplays(Stub& stub, std::ostream& out) {
   check(stub.ListDisplays(&context, {}, &response), "ListDisplays");
   for (const auto& d : response.displays()) {
     out << d.id() << "  " << d.model() << "  " << d.panel_width() << "x" << d.panel_height() << "  " << d.name()
-        << "\n";
+        << "  [" << (d.source().empty() ? "builtin" : d.source()) << "]\n";
   }
   return 0;
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # libFuzzer run (issue 4): configure + build the HOLOTRACE_FUZZ build (clang, ASan+UBSan, only ht_camera_models,
-# ht_scene and tests/fuzz/), then fuzz each target for a fixed time starting from its seed corpus
+# ht_scene, ht_devices and tests/fuzz/), then fuzz each target for a fixed time starting from its seed corpus
 # (tests/fuzz/corpus/<target>/; new inputs go to a scratch copy, the checked-in seeds are not changed).
 # Exit status 1 on any crash, sanitizer report, leak, timeout or out-of-memory; reproducers are kept in
 # $HOLOTRACE_FUZZ_BUILD_DIR (default build-fuzz)/artifacts/<target>/.
@@ -12,7 +12,7 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 SECONDS_PER_TARGET="${1:-30}"
 BUILD="${HOLOTRACE_FUZZ_BUILD_DIR:-$ROOT/build-fuzz}"
 JOBS="${HOLOTRACE_JOBS:-2}"
-TARGETS=(display_config scene_loader quilt_name)
+TARGETS=(display_config scene_loader quilt_name hid_pages)
 start=$(date +%s)
 
 if ! command -v clang++ >/dev/null 2>&1; then

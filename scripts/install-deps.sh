@@ -30,10 +30,10 @@ PKGS=(
   # the Python client (clients/python) and its tests/examples: Debian's Python 3 with gRPC, protobuf and numpy
   # (frames arrive as numpy arrays); no PyPI. python3 also runs the repository checks (tests/repo)
   python3 python3-grpcio python3-protobuf python3-numpy
+  # devices/ (docs/DISPLAY.md): libusb reads Gen1 panels' calibration over USB HID; umockdev emulates such a panel
+  # for the end-to-end tests (tests/devices, DevicesUmockdevTests)
+  libusb-1.0-0-dev umockdev
 )
-if [[ "${HOLOTRACE_WITH_SERVICE:-0}" == 1 ]]; then
-  PKGS+=(libusb-1.0-0-dev)
-fi
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

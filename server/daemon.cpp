@@ -53,7 +53,7 @@ struct Daemon::Parts {
         context({config.deviceIndex, false}),
         worker(context, config.limits.maxFramesInFlight),
         scenes(std::make_unique<SceneLibrary>(worker, sceneLimits(config.limits))),
-        displays(config.displaysDir),
+        displays(config.displaysDir, deviceScanFor(config.devices)),
         outputSink(config.outputRoot),
         uploadSink(config.workDir),
         uploads(config.limits.maxUploads, config.limits.maxUploadBytesInFlight),

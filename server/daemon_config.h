@@ -33,6 +33,17 @@ struct Limits {
   double streamStallSeconds = 30.0;                     // a Write held back this long (client not reading): cancelled
 };
 
+// Looking Glass panels found on this host become displays "device:SERIAL" (config key "devices"; docs/DISPLAY.md
+// "Calibration from the device"). Scanned at start and on SIGHUP.
+struct DeviceDiscoveryConfig {
+  bool scan = true;                             // "scan": false = no device displays
+  std::filesystem::path calibrationFile;        // "calibration_file": an explicit visual.json, trusted first
+  bool drives = true;                           // "drives": LKG_calibration/visual.json on mounted volumes
+  bool usb = true;                              // "usb": Gen1 panels over USB HID
+  bool detachKernelDriver = true;               // "detach_kernel_driver"
+  std::filesystem::path mountinfo, byLabelDir;  // "mountinfo", "by_label_dir": replace the system roots (tests)
+};
+
 struct DaemonConfig {
   std::filesystem::path displaysDir;  // *.json display configs, ids = file names; empty = builtins only
   std::filesystem::path sceneRoot;    // LoadScene paths resolve beneath it
@@ -41,6 +52,7 @@ struct DaemonConfig {
   std::vector<std::string> listen;    // gRPC addresses: "unix:/path" or "127.0.0.1:PORT"
   int deviceIndex = -1;               // Vulkan device, -1 = automatic
   Limits limits;
+  DeviceDiscoveryConfig devices;
   std::string sourcePath;  // file the config came from (for errors)
 };
 

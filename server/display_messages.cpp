@@ -14,6 +14,8 @@ void fillDisplaySummary(const RegisteredDisplay& display, holotrace::v1::Display
   out.set_panel_width(shape.width);
   out.set_panel_height(shape.height);
   out.set_views(shape.views);
+  out.set_source(display.source);
+  out.set_serial(display.serial);
 }
 
 void fillDisplay(const RegisteredDisplay& display, holotrace::v1::Display& out) {

@@ -28,9 +28,48 @@ void addBuiltins(std::map<std::string, std::shared_ptr<const RegisteredDisplay>>
   }
 }
 
+// Each panel that loaded becomes display "device:SERIAL" (a raw visual.json: lenticular, default placement);
+// panels that did not load are logged with their DeviceError and left out.
+void addDevices(const DeviceScan& scan, std::map<std::string, std::shared_ptr<const RegisteredDisplay>>& map,
+                std::ostream& log) {
+  if (!scan) return;
+  const devices::Discovery found = scan();
+  for (const std::string& note : found.notes) log << "holotraced: devices: " << note << "\n";
+  for (const devices::FoundDevice& device : found.devices) {
+    if (!device.loaded()) {
+      log << "holotraced: panel skipped: " << device.problem() << "\n";
+      continue;
+    }
+    const std::string id = "device:" + device.serial;
+    try {
+      RegisteredDisplay display{
+          id,      parseDisplayConfig(device.calibration->json, device.location, {}), device.calibration->json,
+          nullptr, std::string(devices::calibrationSourceName(device.source)),        device.serial};
+      if (display.config.name.empty()) display.config.name = device.serial;
+      map[id] = std::make_shared<const RegisteredDisplay>(std::move(display));
+      const std::string type = device.deviceType.empty() ? "unknown type" : device.deviceType;
+      log << "holotraced: panel " << device.serial << " (" << type << ") from "
+          << devices::calibrationSourceName(device.source) << " " << device.location << " -> " << id << "\n";
+    } catch (const Error& e) { log << "holotraced: panel skipped: " << e.what() << "\n"; }
+  }
+}
+
 }  // namespace
 
-DisplayRegistry::DisplayRegistry(std::filesystem::path displaysDir) : dir_(std::move(displaysDir)) {}
+DeviceScan deviceScanFor(const DeviceDiscoveryConfig& config) {
+  if (!config.scan) return {};
+  devices::DiscoveryOptions options;
+  options.calibrationFile = config.calibrationFile;
+  options.scanDrives = config.drives;
+  options.scanUsb = config.usb;
+  options.usb.detachKernelDriver = config.detachKernelDriver;
+  if (!config.mountinfo.empty()) options.drives.mountinfo = config.mountinfo;
+  if (!config.byLabelDir.empty()) options.drives.byLabelDir = config.byLabelDir;
+  return [options] { return devices::discoverDevices(options); };
+}
+
+DisplayRegistry::DisplayRegistry(std::filesystem::path displaysDir, DeviceScan scanDevices)
+    : dir_(std::move(displaysDir)), scanDevices_(std::move(scanDevices)) {}
 
 std::size_t DisplayRegistry::reload(std::ostream& log) {
   auto map = std::make_shared<Map>();
@@ -46,7 +85,8 @@ std::size_t DisplayRegistry::reload(std::ostream& log) {
               << ": ids starting with 'builtin:' are reserved for the builtin displays (rename the file)\n";
           continue;
         }
-        RegisteredDisplay display{id, loadDisplayConfig(entry.path()), readText(entry.path()), nullptr};
+        RegisteredDisplay display{id, loadDisplayConfig(entry.path()), readText(entry.path()), nullptr, "displays-dir",
+                                  ""};
         if (display.config.model == DisplayModel::RayTable) {
           display.rayTable = std::make_shared<const RayTable>(frame_io::loadDisplayRayTable(display.config));
         }
@@ -54,6 +94,7 @@ std::size_t DisplayRegistry::reload(std::ostream& log) {
       } catch (const Error& e) { log << "holotraced: display config skipped: " << e.what() << "\n"; }
     }
   }
+  addDevices(scanDevices_, *map, log);
   const std::size_t count = map->size();
   std::lock_guard lock(mutex_);
   displays_ = std::move(map);

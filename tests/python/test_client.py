@@ -38,6 +38,7 @@ class DaemonTest(unittest.TestCase):
         self.assertEqual((tiny.model, tiny.panel_width, tiny.panel_height), ("lenticular", 64, 48))
         self.assertEqual((by_id["rig"].views, by_id["wall"].views), (6, 3))
         self.assertIn("builtin:portrait", by_id)
+        self.assertEqual((tiny.source, tiny.serial, by_id["builtin:portrait"].source), ("displays-dir", "", "builtin"))
         info = self.client.display("tiny")
         self.assertAlmostEqual(info.optics["pitch"], 52.59)
         self.assertEqual(info.optics["dpi"], 324)

@@ -12,6 +12,7 @@ target_link_libraries / ht_add_test LIBS name what it links directly):
  4. Only tests, benchmarks and tools include or link Embree.
  5. Core libraries are layered (CORE_LAYERS): common uses no other module; camera_models, bvh and scene use common
     only (the scene bounds the display models need are common/bounds3.h); gpu uses all four.
+ 6. Only the device library (LIBUSB_MODULES: devices/, calibration from the panel over USB) includes or links libusb.
 KNOWN_VIOLATIONS lists the violations of today's tree that pending work removes; a violation not in it fails.
 Usage: check_module_boundaries.py [--root DIR]. Exit 0 when clean, 1 with one line per violation.
 """
@@ -37,8 +38,10 @@ CORE_LAYERS = {
     "scene": ("common",),
     "gpu": ("common", "bvh", "scene", "camera_models"),
 }
+# devices/ (issue 15): finds display panels and reads their calibration over USB HID; the CLI and the daemon link it.
+LIBUSB_MODULES = ("devices",)
 # Our modules a core library must not depend on.
-ABOVE_CORE = APPS + ("protocol", "frame_io", "tests", "bench", "tools")
+ABOVE_CORE = APPS + ("protocol", "frame_io", "devices", "tests", "bench", "tools")
 
 # Violations tolerated while a refactor is in flight, as printed by this script (issue 13 emptied it when frame_io/
 # took the image code out of cli/ and server/). Never add one to make a new violation pass.
@@ -148,13 +151,16 @@ def external_kind(item, table):
 
 
 def dependency_rule(module, other, kind, verb):
-    """The rule a dependency of `module` on our module `other` or on external `kind` breaks (apps, OIIO, Embree)."""
+    """The rule a dependency of `module` on our module `other` or on external `kind` breaks (apps, OIIO, Embree,
+    libusb)."""
     if module in APPS and other in APPS and other != module:
         return "app %s %s app %s" % (module, verb, other)
     if kind == "OpenImageIO" and module not in OIIO_MODULES:
         return "only %s use OpenImageIO" % ", ".join(OIIO_MODULES)
     if kind == "Embree" and module not in EMBREE_MODULES:
         return "only %s use Embree" % ", ".join(EMBREE_MODULES)
+    if kind == "libusb" and module not in LIBUSB_MODULES:
+        return "only %s use libusb" % ", ".join(LIBUSB_MODULES)
     return None
 
 

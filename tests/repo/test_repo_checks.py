@@ -167,6 +167,23 @@ class ModuleBoundaries(unittest.TestCase):
         self.assertIn("include cli/c.cpp -> OpenImageIO/imageio.h: only frame_io, tests use OpenImageIO", found)
         self.assertIn("include cli/c.cpp -> embree3/rtcore.h: only tests, bench, tools use Embree", found)
 
+    def test_libusb_only_in_devices_and_core_never_reaches_devices(self):
+        files = {
+            "devices/CMakeLists.txt": "add_library(ht_devices STATIC d.cpp)\n"
+                                      "target_link_libraries(ht_devices PRIVATE PkgConfig::LIBUSB)\n",
+            "devices/d.cpp": "#include <libusb.h>\n",
+            "cli/CMakeLists.txt": "add_library(ht_cli STATIC c.cpp)\ntarget_link_libraries(ht_cli PUBLIC ht_devices usb-1.0)\n",
+            "cli/c.cpp": "#include <libusb-1.0/libusb.h>\n#include \"devices/device_discovery.h\"\n",
+            "gpu/CMakeLists.txt": "add_library(ht_gpu STATIC g.cpp)\ntarget_link_libraries(ht_gpu PRIVATE ht_devices)\n",
+        }
+        found = self.violations(files)
+        self.assertNotIn("link ht_devices (devices) -> PkgConfig::LIBUSB: only devices use libusb", found)
+        self.assertFalse([v for v in found if v.startswith("include devices/") or v.startswith("include cli/c.cpp -> devices")])
+        self.assertIn("link ht_cli (cli) -> usb-1.0: only devices use libusb", found)
+        self.assertIn("include cli/c.cpp -> libusb-1.0/libusb.h: only devices use libusb", found)
+        self.assertIn("link ht_gpu (gpu) -> PkgConfig::LIBUSB via ht_devices: core library uses libusb", found)
+        self.assertIn("link ht_gpu (gpu) -> ht_devices (devices) via ht_gpu: core library depends on devices", found)
+
 
 if __name__ == "__main__":
     unittest.main()

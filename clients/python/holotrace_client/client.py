@@ -46,6 +46,9 @@ class Display:
     panel_width: int
     panel_height: int
     views: int
+    # "builtin", "displays-dir", or a panel's calibration source: "config-file", "mounted-drive", "usb-hid"
+    source: str = ""
+    serial: str = ""  # a panel's serial (display id "device:SERIAL"), else ""
 
 
 @dataclass
@@ -106,7 +109,7 @@ def _id(thing, kind):
 
 def _display(summary):
     return Display(summary.id, summary.name, summary.model, summary.panel_width, summary.panel_height,
-                   max(1, summary.views))
+                   max(1, summary.views), source=summary.source, serial=summary.serial)
 
 
 def _scene(handle):
