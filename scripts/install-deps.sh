@@ -28,6 +28,9 @@ PKGS=(
   # the Python client (clients/python) and its tests/examples: Debian's Python 3 with gRPC, protobuf and numpy
   # (frames arrive as numpy arrays); no PyPI. python3 also runs the repository checks (tests/repo)
   python3 python3-grpcio python3-protobuf python3-numpy
+  # the display sink (present/, docs/DISPLAY.md): xcb + RandR headers; its tests run a private Xvfb and set RandR
+  # monitors with xrandr (x11-xserver-utils)
+  libxcb1-dev libxcb-randr0-dev xvfb x11-xserver-utils
 )
 if [[ "${HOLOTRACE_WITH_SERVICE:-0}" == 1 ]]; then
   PKGS+=(libusb-1.0-0-dev)
