@@ -84,6 +84,7 @@ DaemonConfig parseDaemonConfig(const std::string& text, const std::string& sourc
   if (c.listen.empty()) c.listen.push_back(defaultListenAddress());
   if (doc.contains("device")) c.deviceIndex = doc["device"].get<int>();
   c.limits = parseLimits(doc, source);
+  c.present = parsePresentConfig(doc, source);
   return c;
 }
 

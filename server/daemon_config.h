@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "server/present_config.h"
+
 namespace ht::server {
 
 struct Limits {
@@ -28,6 +30,7 @@ struct DaemonConfig {
   std::vector<std::string> listen;    // gRPC addresses: "unix:/path" or "127.0.0.1:PORT"
   int deviceIndex = -1;               // Vulkan device, -1 = automatic
   Limits limits;
+  PresentConfig present;              // "present" / "x_display": panel sinks (server/present_config.h)
   std::string sourcePath;             // file the config came from (for errors)
 };
 

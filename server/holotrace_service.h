@@ -29,6 +29,9 @@ class HolotraceService final : public holotrace::v1::Holotrace::Service {
                        grpc::ServerWriter<holotrace::v1::CaptureProgress>*) override;
   grpc::Status Status(grpc::ServerContext*, const holotrace::v1::StatusRequest*,
                       holotrace::v1::StatusResponse*) override;
+  // present_rpcs.cpp: frames onto a panel through the daemon's display sink.
+  grpc::Status Present(grpc::ServerContext*, const holotrace::v1::PresentRequest*,
+                       grpc::ServerWriter<holotrace::v1::PresentProgress>*) override;
 
  private:
   ServiceState& state_;

@@ -9,6 +9,7 @@
 #include "server/display_messages.h"
 #include "server/holotrace_service.h"
 #include "server/path_rules.h"
+#include "server/present_status.h"
 #include "server/process_stats.h"
 #include "server/status_mapping.h"
 
@@ -237,6 +238,7 @@ grpc::Status HolotraceService::Status(grpc::ServerContext*, const v1::StatusRequ
     response->set_resident_kib(self.residentKiB);
     response->set_cpu_seconds(self.cpuSeconds);
     response->set_threads(self.threads);
+    addPanelStatuses(state_, *response);
     return grpc::Status::OK;
   });
 }

@@ -15,6 +15,8 @@
 
 namespace ht::server {
 
+class PanelSinks;
+
 struct ServiceState {
   const DaemonConfig& config;
   DisplayRegistry& displays;
@@ -22,6 +24,7 @@ struct ServiceState {
   RenderWorker& worker;
   FileSink& outputSink;
   FileSink& uploadSink;  // private work directory for uploaded scene bytes
+  PanelSinks* panels = nullptr;  // display sinks of the config's "present" (server/panel_sinks.h); null = none
 
   std::atomic<std::uint32_t> activeStreams{0};
   std::atomic<std::uint64_t> nextFrameId{1};

@@ -44,7 +44,7 @@ void checkRequest(const XConnection& x, xcb_void_cookie_t cookie, const std::str
 
 }  // namespace
 
-XvfbServer::XvfbServer(std::uint32_t width, std::uint32_t height) {
+XvfbServer::XvfbServer(std::uint32_t width, std::uint32_t height, const std::string& display) {
   int fds[2];
   if (pipe(fds) != 0) throw PresentError("pipe() for Xvfb failed");
   const std::string screen = std::to_string(width) + "x" + std::to_string(height) + "x24";
@@ -57,8 +57,13 @@ XvfbServer::XvfbServer(std::uint32_t width, std::uint32_t height) {
       dup2(null, STDOUT_FILENO);
       dup2(null, STDERR_FILENO);
     }
-    execlp("Xvfb", "Xvfb", "-screen", "0", screen.c_str(), "-noreset", "-nolisten", "tcp", "-displayfd", fd.c_str(),
-           static_cast<char*>(nullptr));
+    if (display.empty()) {
+      execlp("Xvfb", "Xvfb", "-screen", "0", screen.c_str(), "-noreset", "-nolisten", "tcp", "-displayfd", fd.c_str(),
+             static_cast<char*>(nullptr));
+    } else {
+      execlp("Xvfb", "Xvfb", display.c_str(), "-screen", "0", screen.c_str(), "-noreset", "-nolisten", "tcp",
+             "-displayfd", fd.c_str(), static_cast<char*>(nullptr));
+    }
     _exit(127);
   }
   close(fds[1]);

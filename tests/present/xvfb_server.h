@@ -17,7 +17,8 @@ namespace ht::present::test {
 class XvfbServer {
  public:
   // Starts `Xvfb -screen 0 WxHx24 -noreset -nolisten tcp -displayfd N`; throws PresentError if it does not come up.
-  XvfbServer(std::uint32_t width, std::uint32_t height);
+  // `display` "" picks a free number; ":N" restarts a server on a number a previous one had (hot-plug tests).
+  XvfbServer(std::uint32_t width, std::uint32_t height, const std::string& display = "");
   ~XvfbServer();  // SIGTERM to the PID, then waits for it
   XvfbServer(const XvfbServer&) = delete;
   XvfbServer& operator=(const XvfbServer&) = delete;
