@@ -236,12 +236,13 @@ void SwapchainPresenter::Impl::upload(const PanelFrame& frame) {
     std::memcpy(dst, frame.rgba.data(), frame.rgba.size());
     return;
   }
-  const std::uint8_t* src = frame.rgba.data();
-  for (std::size_t i = 0; i < frame.rgba.size(); i += 4) {
-    dst[i] = src[i + 2];
-    dst[i + 1] = src[i + 1];
-    dst[i + 2] = src[i];
-    dst[i + 3] = src[i + 3];
+  // One 32-bit word per pixel with R and B exchanged (a loop the compiler vectorises).
+  const std::size_t pixels = frame.rgba.size() / 4;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    std::uint32_t p;
+    std::memcpy(&p, frame.rgba.data() + 4 * i, 4);
+    p = (p & 0xFF00FF00u) | ((p & 0x000000FFu) << 16) | ((p >> 16) & 0x000000FFu);
+    std::memcpy(dst + 4 * i, &p, 4);
   }
 }
 

@@ -11,7 +11,7 @@
 #include "frame_io/pixel_encoding.h"
 #include "present/edid.h"
 #include "present/screen_capture.h"
-#include "xvfb_server.h"
+#include "present/xvfb_server.h"
 
 namespace ht::present {
 namespace {
@@ -21,8 +21,8 @@ using server::test::DaemonFiles;
 
 const Rect kTinyPanel{160, 0, server::test::kTinyWidth, server::test::kTinyHeight};
 
-std::unique_ptr<test::XvfbServer> startPanelServer(const std::string& display = "") {
-  auto xvfb = std::make_unique<test::XvfbServer>(256, server::test::kTinyHeight, display);
+std::unique_ptr<XvfbServer> startPanelServer(const std::string& display = "") {
+  auto xvfb = std::make_unique<XvfbServer>(256, server::test::kTinyHeight, display);
   xvfb->setEdid("screen", makeEdid("LKG-T0001"));
   xvfb->setMonitor("MAIN", {0, 0, 160, server::test::kTinyHeight}, {});
   xvfb->setMonitor("LKG-T", kTinyPanel, {"screen"});

@@ -14,7 +14,7 @@
 #include "present/panel_sink.h"
 #include "present/randr_reader.h"
 #include "present/screen_capture.h"
-#include "xvfb_server.h"
+#include "present/xvfb_server.h"
 
 namespace ht::present {
 namespace {
@@ -27,7 +27,7 @@ const Rect kPanelRect{160, 0, kPanelW, kPanelH};
 class PanelSinkXvfb : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    xvfb_ = new test::XvfbServer(256, 128);
+    xvfb_ = new XvfbServer(256, 128);
     xvfb_->setEdid("screen", makeEdid("LKG-P0001"));
     addMonitors();
   }
@@ -79,9 +79,9 @@ class PanelSinkXvfb : public ::testing::Test {
     return bad;
   }
 
-  static test::XvfbServer* xvfb_;
+  static XvfbServer* xvfb_;
 };
-test::XvfbServer* PanelSinkXvfb::xvfb_ = nullptr;
+XvfbServer* PanelSinkXvfb::xvfb_ = nullptr;
 
 // A frame of noise (every code of every channel hit): linear RGBA floats.
 std::vector<float> noiseFrame(std::uint32_t seed) {

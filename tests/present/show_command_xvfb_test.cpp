@@ -15,7 +15,7 @@
 #include "frame_io/pixel_encoding.h"
 #include "present/edid.h"
 #include "present/screen_capture.h"
-#include "xvfb_server.h"
+#include "present/xvfb_server.h"
 
 namespace ht::present {
 namespace {
@@ -67,7 +67,7 @@ std::vector<std::uint8_t> pngRgbOf(const std::filesystem::path& png) {
 }
 
 TEST(ShowCommandXvfb, KeepsTheRenderedFrameOnThePanelUntilSigterm) {
-  test::XvfbServer xvfb(256, 128);
+  XvfbServer xvfb(256, 128);
   xvfb.setEdid("screen", makeEdid("LKG-P0001"));
   xvfb.setMonitor("MAIN", {0, 0, 160, 128}, {});
   xvfb.setMonitor("LKG-P", kShowPanel, {"screen"});

@@ -1,5 +1,5 @@
 // xvfb_server.cpp - fork/exec Xvfb, read its display number from the -displayfd pipe, RandR requests, kill by PID.
-#include "xvfb_server.h"
+#include "present/xvfb_server.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -11,7 +11,7 @@
 #include <chrono>
 #include <cstring>
 
-namespace ht::present::test {
+namespace ht::present {
 namespace {
 
 constexpr int kStartTimeoutMs = 10000;
@@ -153,4 +153,4 @@ void XvfbServer::setEdid(const std::string& output, const std::vector<std::uint8
                "set EDID");
 }
 
-}  // namespace ht::present::test
+}  // namespace ht::present

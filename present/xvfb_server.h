@@ -1,4 +1,4 @@
-// xvfb_server.h - a private Xvfb for the display tests and the present benchmark: started on a free display number
+// xvfb_server.h - a private Xvfb for the display-sink tests and the present benchmark (not used by the sink itself): started on a free display number
 // (-displayfd), with -noreset so RandR monitors survive the last client, ended by PID. Monitors and EDIDs are set
 // through RandR requests, as `xrandr --setmonitor` and a synthetic EDID property would (docs/DISPLAY.md).
 #pragma once
@@ -12,7 +12,7 @@
 #include "present/randr_snapshot.h"
 #include "present/x_connection.h"
 
-namespace ht::present::test {
+namespace ht::present {
 
 class XvfbServer {
  public:
@@ -43,4 +43,4 @@ class XvfbServer {
   std::unique_ptr<XConnection> x_;
 };
 
-}  // namespace ht::present::test
+}  // namespace ht::present
