@@ -56,7 +56,20 @@ struct PanelSink::State {
   std::string serve(Attachment& a);
   std::string showFrame(Attachment& a, const PanelFrame& frame, bool fresh);
   std::string checkMonitor(Attachment& a);
+  bool fitsPanel(const Attachment& a, const PanelFrame& frame);
 };
+
+// A frame of another size than the panel is a caller's mistake, not a reason to detach: it is dropped and logged.
+bool PanelSink::State::fitsPanel(const Attachment& a, const PanelFrame& frame) {
+  if (frame.width == a.monitor.rect.width && frame.height == a.monitor.rect.height) return true;
+  const std::string problem = "frame " + std::to_string(frame.sequence) + " is " + std::to_string(frame.width) + "x" +
+                              std::to_string(frame.height) + ", the panel " + describeRect(a.monitor.rect) +
+                              "; not shown";
+  std::lock_guard lock(mutex);
+  if (stats.lastError != problem) log(problem);
+  stats.lastError = problem;
+  return false;
+}
 
 void PanelSink::State::run() {
   try {
@@ -173,6 +186,7 @@ std::string PanelSink::State::serve(Attachment& a) {
       nextCheck = Clock::now() + options.recheckInterval;
     }
     auto frame = mailbox.take(kPollInterval);
+    if (frame && !fitsPanel(a, *frame)) frame.reset();  // refused, logged; the panel keeps the last good frame
     std::string problem;
     if (frame) {
       last = std::move(frame);

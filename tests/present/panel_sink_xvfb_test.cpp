@@ -211,6 +211,23 @@ TEST_F(PanelSinkXvfb, MonitorRemovedAndAddedAgainReattachesAndShowsTheLastFrame)
   EXPECT_EQ(mismatchesOnScreen(pngRgb(rgba)), 0u);
 }
 
+TEST_F(PanelSinkXvfb, AFrameOfAnotherSizeIsRefusedAndTheLastGoodOneStays) {
+  PanelSink sink(options());
+  auto rgba = noiseFrame(4);
+  sink.submit(panelFrameOf(rgba));
+  ASSERT_TRUE(waitFor(sink, [](const PanelSinkStats& st) { return st.presented >= 1; }).attached);
+  PanelFrame wrong;
+  wrong.width = 10;
+  wrong.height = 10;
+  wrong.rgba.assign(400, 255);
+  sink.submit(std::move(wrong));
+  PanelSinkStats s = waitFor(sink, [](const PanelSinkStats& st) { return !st.lastError.empty(); });
+  EXPECT_NE(s.lastError.find("is 10x10, the panel 96x128+160+0; not shown"), std::string::npos) << s.lastError;
+  EXPECT_TRUE(s.attached);
+  EXPECT_EQ(s.attachments, 1u);
+  EXPECT_EQ(mismatchesOnScreen(pngRgb(rgba)), 0u);
+}
+
 TEST_F(PanelSinkXvfb, NoPanelOfTheSizeNamesTheMonitorsFound) {
   PanelSinkOptions o = options();
   o.panel.screenWidth = 1536;
