@@ -80,7 +80,9 @@ std::vector<present::PanelFrame> noiseFrames(const PresentBenchOptions& o, std::
   return frames;
 }
 
-double msBetween(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
+double msBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
 
 std::uint64_t residentKiB() {
   std::ifstream status("/proc/self/status");
@@ -197,8 +199,9 @@ void rssSeries(const PresentBenchOptions& o, present::PanelSink& sink, const std
       std::fflush(stdout);
     }
   }
-  std::printf("\n  first %llu, last %llu, peak %llu KiB, %.1f s, presented %llu\n", static_cast<unsigned long long>(first),
-              static_cast<unsigned long long>(last), static_cast<unsigned long long>(peak), msBetween(t0, Clock::now()) / 1000.0,
+  std::printf("\n  first %llu, last %llu, peak %llu KiB, %.1f s, presented %llu\n",
+              static_cast<unsigned long long>(first), static_cast<unsigned long long>(last),
+              static_cast<unsigned long long>(peak), msBetween(t0, Clock::now()) / 1000.0,
               static_cast<unsigned long long>(sink.stats().presented - start));
 }
 

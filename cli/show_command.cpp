@@ -81,7 +81,8 @@ ShowOptions parseShowOptions(std::span<const std::string> args) {
 present::PanelFrame renderPanelFrame(const ShowOptions& options, const DisplayConfig& display, std::ostream& out) {
   const Scene scene = loadScene(options.sceneSpec);
   std::shared_ptr<const RayTable> rayTable;
-  if (display.model == DisplayModel::RayTable) rayTable = std::make_shared<RayTable>(frame_io::loadDisplayRayTable(display));
+  if (display.model == DisplayModel::RayTable)
+    rayTable = std::make_shared<RayTable>(frame_io::loadDisplayRayTable(display));
   const gpu::DisplayCamera camera = makeDisplayCamera(display, scene.bounds(), gpu::CameraPath::Native, rayTable);
   gpu::VulkanContext context({options.deviceIndex, false});
   gpu::Renderer renderer(context, scene);
@@ -89,8 +90,9 @@ present::PanelFrame renderPanelFrame(const ShowOptions& options, const DisplayCo
   settings.spp = options.spp.value_or(display.spp);
   settings.seed = options.seed;
   const gpu::RenderResult frame = renderer.render(camera.camera, settings);
-  out << "rendered " << frame.width << "x" << frame.height << (frame.views > 1 ? " x " + std::to_string(frame.views) + " views" : "")
-      << " at spp " << settings.spp << " in " << formatMs(frame.totalMs) << "\n";
+  out << "rendered " << frame.width << "x" << frame.height
+      << (frame.views > 1 ? " x " + std::to_string(frame.views) + " views" : "") << " at spp " << settings.spp << " in "
+      << formatMs(frame.totalMs) << "\n";
   return present::panelFrame({frame.width, frame.height, frame.views, frame.rgba}, {display, camera.quilt});
 }
 
@@ -120,7 +122,8 @@ class StopSignals {
 std::string showHelp() {
   return std::string(
              "Usage: holotrace show [options]\n\n"
-             "Renders the display's frame (as `holotrace render -o` would) and shows it 1:1 on the panel's monitor until\n"
+             "Renders the display's frame (as `holotrace render -o` would) and shows it 1:1 on the panel's monitor "
+             "until\n"
              "Ctrl-C or SIGTERM. The monitor is the one named by --monitor / --geometry, else the one whose EDID name\n"
              "starts with LKG and whose size is the frame's, else the only monitor of that size (docs/DISPLAY.md).\n"
              "If the panel or the X server goes away, the frame comes back when they do.\n\nOptions:\n") +
@@ -150,10 +153,12 @@ int runShow(std::span<const std::string> args, std::ostream& out) {
     if (!announced && s.presented > 0 && s.monitor) {
       out << "showing on monitor " << s.monitor->monitor << " " << present::describeRect(s.monitor->rect) << " ("
           << s.monitor->rule << ", " << s.swapchain.presentMode << ", " << s.swapchain.format << ")"
-          << (options.seconds ? "" : "; Ctrl-C to stop") << "\n" << std::flush;
+          << (options.seconds ? "" : "; Ctrl-C to stop") << "\n"
+          << std::flush;
       announced = true;
     }
-    const bool timeUp = options.seconds && std::chrono::steady_clock::now() - start >= std::chrono::seconds(*options.seconds);
+    const bool timeUp =
+        options.seconds && std::chrono::steady_clock::now() - start >= std::chrono::seconds(*options.seconds);
     if (stop || timeUp) {
       out << "stopped: presented " << s.presented << " time(s), " << s.attachments << " attachment(s)\n";
       if (s.presented == 0) throw present::PresentError("the frame was never shown: " + s.lastError);

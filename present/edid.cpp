@@ -35,9 +35,11 @@ EdidInfo parseEdid(std::span<const std::uint8_t> bytes) {
   if (bytes.size() < kBlockSize) {
     throw PresentError("EDID: " + std::to_string(bytes.size()) + " bytes, a base block needs 128");
   }
-  if (!std::equal(kHeader.begin(), kHeader.end(), bytes.begin())) throw PresentError("EDID: header is not 00 FF FF FF FF FF FF 00");
+  if (!std::equal(kHeader.begin(), kHeader.end(), bytes.begin()))
+    throw PresentError("EDID: header is not 00 FF FF FF FF FF FF 00");
   unsigned sum = std::accumulate(bytes.begin(), bytes.begin() + kBlockSize, 0u);
-  if (sum % 256 != 0) throw PresentError("EDID: checksum of the base block is " + std::to_string(sum % 256) + ", not 0");
+  if (sum % 256 != 0)
+    throw PresentError("EDID: checksum of the base block is " + std::to_string(sum % 256) + ", not 0");
   EdidInfo info;
   for (std::size_t offset : kDescriptorOffsets) {
     auto d = bytes.subspan(offset, 18);

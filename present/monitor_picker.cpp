@@ -55,8 +55,8 @@ PickedMonitor accept(const RandrSnapshot& snapshot, const RandrMonitor& monitor,
     const RandrOutput* o = snapshot.output(name);
     if (o && o->rotation != 1) {
       refuse(snapshot, "monitor " + monitor.name + " (" + rule + "): output " + name + " is rotated (RandR rotation " +
-                           std::to_string(o->rotation) + "); the panel must be shown unrotated (xrandr --output " + name +
-                           " --rotate normal)");
+                           std::to_string(o->rotation) + "); the panel must be shown unrotated (xrandr --output " +
+                           name + " --rotate normal)");
     }
     if (o && !o->identityTransform) {
       refuse(snapshot, "monitor " + monitor.name + " (" + rule + "): output " + name +
@@ -65,8 +65,8 @@ PickedMonitor accept(const RandrSnapshot& snapshot, const RandrMonitor& monitor,
     }
   }
   const RandrOutput* out = mainOutput(snapshot, monitor);
-  return PickedMonitor{monitor.name, out ? out->name : "", out ? out->edidMonitorName : "", monitor.rect,
-                       out ? out->refreshHz : 0.0, rule};
+  return PickedMonitor{monitor.name, out ? out->name : "",       out ? out->edidMonitorName : "",
+                       monitor.rect, out ? out->refreshHz : 0.0, rule};
 }
 
 std::vector<const RandrMonitor*> matching(const RandrSnapshot& snapshot, auto&& predicate) {
@@ -96,7 +96,8 @@ PickedMonitor pickByName(const RandrSnapshot& snapshot, const PanelRequest& requ
 PickedMonitor pickByGeometry(const RandrSnapshot& snapshot, const PanelRequest& request) {
   auto found = matching(snapshot, [&](const RandrMonitor& m) { return m.rect == *request.geometry; });
   if (found.empty()) refuse(snapshot, "no monitor at " + describeRect(*request.geometry));
-  if (found.size() > 1) refuse(snapshot, "several monitors at " + describeRect(*request.geometry) + ": " + names(found));
+  if (found.size() > 1)
+    refuse(snapshot, "several monitors at " + describeRect(*request.geometry) + ": " + names(found));
   return accept(snapshot, *found[0], request, "geometry");
 }
 
@@ -107,7 +108,8 @@ PickedMonitor pickMonitor(const RandrSnapshot& snapshot, const PanelRequest& req
   if (request.geometry) return pickByGeometry(snapshot, request);
   auto panels = matching(snapshot, [&](const RandrMonitor& m) { return hasPanelEdid(snapshot, m); });
   auto sized = matching(snapshot, [&](const RandrMonitor& m) { return hasPanelSize(m, request); });
-  auto panelsSized = matching(snapshot, [&](const RandrMonitor& m) { return hasPanelEdid(snapshot, m) && hasPanelSize(m, request); });
+  auto panelsSized =
+      matching(snapshot, [&](const RandrMonitor& m) { return hasPanelEdid(snapshot, m) && hasPanelSize(m, request); });
   if (panelsSized.size() > 1) {
     refuse(snapshot, "several LKG monitors of " + panelSize(request) + ": " + names(panelsSized) +
                          "; name one with an output name or geometry in the config");

@@ -24,12 +24,12 @@ struct PanelRequest {
 };
 
 struct PickedMonitor {
-  std::string monitor;         // RandR monitor name
-  std::string output;          // the output showing it ("" for a monitor without outputs)
-  std::string edidName;        // that output's EDID monitor name, "" if none
-  Rect rect;                   // where the window goes, 1:1
-  double refreshHz = 0.0;      // of the output's mode; 0 unknown
-  std::string rule;            // which rule chose it: "output name", "geometry", "EDID LKG", "size"
+  std::string monitor;     // RandR monitor name
+  std::string output;      // the output showing it ("" for a monitor without outputs)
+  std::string edidName;    // that output's EDID monitor name, "" if none
+  Rect rect;               // where the window goes, 1:1
+  double refreshHz = 0.0;  // of the output's mode; 0 unknown
+  std::string rule;        // which rule chose it: "output name", "geometry", "EDID LKG", "size"
   bool operator==(const PickedMonitor&) const = default;
 };
 

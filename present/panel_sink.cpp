@@ -46,8 +46,10 @@ struct PanelSink::State {
   std::thread thread;
 
   void log(const std::string& line) const {
-    if (options.log) options.log(line);
-    else std::fprintf(stderr, "holotrace panel: %s\n", line.c_str());
+    if (options.log)
+      options.log(line);
+    else
+      std::fprintf(stderr, "holotrace panel: %s\n", line.c_str());
   }
   void run();
   void attach(Attachment& a);
@@ -124,7 +126,8 @@ void PanelSink::State::noteDetached(const std::string& reason) {
   stats.monitor.reset();
   stats.swapchain = {};
   stats.lastError = reason;
-  if (changed) log("not showing frames: " + reason + " (retrying every " + std::to_string(options.retryInterval.count()) + " ms)");
+  if (changed)
+    log("not showing frames: " + reason + " (retrying every " + std::to_string(options.retryInterval.count()) + " ms)");
 }
 
 // Detached: keep taking frames (the newest becomes the one shown on re-attach) until it is time to retry.
@@ -141,9 +144,7 @@ std::string PanelSink::State::checkMonitor(Attachment& a) {
     if (now == a.monitor) return "";
     return "the panel changed from " + a.monitor.monitor + " " + describeRect(a.monitor.rect) + " to " + now.monitor +
            " " + describeRect(now.rect);
-  } catch (const Error& e) {
-    return e.what();
-  }
+  } catch (const Error& e) { return e.what(); }
 }
 
 std::string PanelSink::State::showFrame(Attachment& a, const PanelFrame& frame, bool fresh) {
@@ -151,9 +152,7 @@ std::string PanelSink::State::showFrame(Attachment& a, const PanelFrame& frame, 
   PresentOutcome outcome;
   try {
     outcome = a.presenter->present(frame);
-  } catch (const Error& e) {
-    return e.what();
-  }
+  } catch (const Error& e) { return e.what(); }
   const auto end = Clock::now();
   if (outcome == PresentOutcome::SurfaceLost) return "the panel window's Vulkan surface was lost";
   if (outcome == PresentOutcome::Timeout) return "";  // the frame stays `last` and is shown on the next chance

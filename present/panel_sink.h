@@ -24,28 +24,28 @@
 namespace ht::present {
 
 struct PanelSinkOptions {
-  std::string xDisplay;                       // ":0"; "" = $DISPLAY
-  PanelRequest panel;                         // screen size + optional output name / geometry
+  std::string xDisplay;  // ":0"; "" = $DISPLAY
+  PanelRequest panel;    // screen size + optional output name / geometry
   WindowMode window = WindowMode::OverrideRedirect;
   PresentModeChoice presentMode = PresentModeChoice::Auto;
-  int vulkanDevice = -1;                      // --device; -1 automatic
-  std::chrono::milliseconds retryInterval{1000};   // between attach attempts while detached
-  std::chrono::milliseconds recheckInterval{1000}; // re-run the monitor picker while attached
-  std::function<void(const std::string&)> log;     // one line per state change; default: stderr
+  int vulkanDevice = -1;                            // --device; -1 automatic
+  std::chrono::milliseconds retryInterval{1000};    // between attach attempts while detached
+  std::chrono::milliseconds recheckInterval{1000};  // re-run the monitor picker while attached
+  std::function<void(const std::string&)> log;      // one line per state change; default: stderr
 };
 
 struct PanelSinkStats {
   bool attached = false;
-  std::optional<PickedMonitor> monitor;  // where the frames go (while attached)
-  SwapchainInfo swapchain;               // size, present mode, format (while attached)
-  std::uint64_t submitted = 0;           // frames given to submit()
-  std::uint64_t presented = 0;           // frames queued for display (a re-shown frame counts again)
-  std::uint64_t dropped = 0;             // frames replaced in the mailbox before they were shown
+  std::optional<PickedMonitor> monitor;     // where the frames go (while attached)
+  SwapchainInfo swapchain;                  // size, present mode, format (while attached)
+  std::uint64_t submitted = 0;              // frames given to submit()
+  std::uint64_t presented = 0;              // frames queued for display (a re-shown frame counts again)
+  std::uint64_t dropped = 0;                // frames replaced in the mailbox before they were shown
   std::uint64_t lastPresentedSequence = 0;  // submit order of the frame on the panel (1, 2, ...)
-  double lastPresentLatencyMs = 0.0;     // frame done -> vkQueuePresentKHR returned, for the last frame shown
-  double lastPresentCallMs = 0.0;        // the present call itself (upload + copy + present)
-  std::uint32_t attachments = 0;         // successful attaches (1 + re-attaches)
-  std::string lastError;                 // why the sink is (or last was) detached; "" if never
+  double lastPresentLatencyMs = 0.0;        // frame done -> vkQueuePresentKHR returned, for the last frame shown
+  double lastPresentCallMs = 0.0;           // the present call itself (upload + copy + present)
+  std::uint32_t attachments = 0;            // successful attaches (1 + re-attaches)
+  std::string lastError;                    // why the sink is (or last was) detached; "" if never
 };
 
 class PanelSink {

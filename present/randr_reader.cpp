@@ -12,8 +12,8 @@
 namespace ht::present {
 namespace {
 
-constexpr std::uint32_t kFixedOne = 1u << 16;        // 1.0 in the 16.16 fixed point of xcb_render_transform_t
-constexpr std::uint32_t kEdidMaxLongs = 256;         // 1 KiB: base block + extension blocks
+constexpr std::uint32_t kFixedOne = 1u << 16;  // 1.0 in the 16.16 fixed point of xcb_render_transform_t
+constexpr std::uint32_t kEdidMaxLongs = 256;   // 1 KiB: base block + extension blocks
 
 void checkRandrVersion(const XConnection& x) {
   auto cookie = xcb_randr_query_version(x.get(), 1, 5);
@@ -47,9 +47,7 @@ void readEdid(const XConnection& x, xcb_randr_output_t id, xcb_atom_t edidAtom, 
   const auto* data = xcb_randr_get_output_property_data(r.get());
   try {
     out.edidMonitorName = parseEdid({data, r->num_items}).monitorName;
-  } catch (const PresentError& e) {
-    out.edidProblem = e.what();
-  }
+  } catch (const PresentError& e) { out.edidProblem = e.what(); }
 }
 
 bool identityTransform(const XConnection& x, xcb_randr_crtc_t crtc) {
@@ -84,7 +82,8 @@ std::map<xcb_randr_output_t, std::string> readOutputs(const XConnection& x, Rand
   if (!res) throw PresentError("X display '" + x.name() + "': RandR screen resources unavailable");
   std::map<xcb_randr_mode_t, xcb_randr_mode_info_t> modes;
   const xcb_randr_mode_info_t* modeInfo = xcb_randr_get_screen_resources_current_modes(res.get());
-  for (int i = 0; i < xcb_randr_get_screen_resources_current_modes_length(res.get()); ++i) modes[modeInfo[i].id] = modeInfo[i];
+  for (int i = 0; i < xcb_randr_get_screen_resources_current_modes_length(res.get()); ++i)
+    modes[modeInfo[i].id] = modeInfo[i];
   const xcb_atom_t edidAtom = x.atom("EDID");
   std::map<xcb_randr_output_t, std::string> names;
   const xcb_randr_output_t* ids = xcb_randr_get_screen_resources_current_outputs(res.get());

@@ -20,23 +20,23 @@ struct Rect {
 std::string describeRect(const Rect& rect);
 
 struct RandrOutput {
-  std::string name;                    // "HDMI-1", "screen" (Xvfb)
+  std::string name;  // "HDMI-1", "screen" (Xvfb)
   bool connected = false;
-  std::string edidMonitorName;         // EDID display descriptor 0xFC ("LKG-P00671"), "" if none
-  std::string edidProblem;             // why the EDID could not be read ("" when fine or absent)
-  Rect crtc;                           // the CRTC's rectangle; empty when the output is off
+  std::string edidMonitorName;  // EDID display descriptor 0xFC ("LKG-P00671"), "" if none
+  std::string edidProblem;      // why the EDID could not be read ("" when fine or absent)
+  Rect crtc;                    // the CRTC's rectangle; empty when the output is off
   std::uint32_t modeWidth = 0, modeHeight = 0;
-  double refreshHz = 0.0;              // dotClock / (hTotal x vTotal) of the CRTC's mode; 0 unknown
-  std::uint16_t rotation = 1;          // RandR rotation bits; 1 = normal (Rotate_0), anything else is refused
-  bool identityTransform = true;       // false when the CRTC has a scaling / projective transform
+  double refreshHz = 0.0;         // dotClock / (hTotal x vTotal) of the CRTC's mode; 0 unknown
+  std::uint16_t rotation = 1;     // RandR rotation bits; 1 = normal (Rotate_0), anything else is refused
+  bool identityTransform = true;  // false when the CRTC has a scaling / projective transform
 };
 
 struct RandrMonitor {
-  std::string name;                    // RandR 1.5 monitor name ("LKG-P", "HDMI-1", "MAIN")
-  Rect rect;                           // on the X screen, in pixels
+  std::string name;  // RandR 1.5 monitor name ("LKG-P", "HDMI-1", "MAIN")
+  Rect rect;         // on the X screen, in pixels
   bool primary = false;
-  bool automatic = false;              // made by the server for an output (not by `xrandr --setmonitor`)
-  std::vector<std::string> outputs;    // names of the outputs the monitor shows
+  bool automatic = false;            // made by the server for an output (not by `xrandr --setmonitor`)
+  std::vector<std::string> outputs;  // names of the outputs the monitor shows
 };
 
 struct RandrSnapshot {

@@ -70,8 +70,8 @@ VkSurfaceFormatKHR chooseFormat(VkPhysicalDevice physical, VkSurfaceKHR surface)
   }
   std::string offered;
   for (const VkSurfaceFormatKHR& f : formats) offered += " " + formatName(f.format);
-  throw PresentError("the display surface offers no 8-bit RGBA/BGRA format in the sRGB colour space (offered:" +
-                     offered + ")");
+  throw PresentError(
+      "the display surface offers no 8-bit RGBA/BGRA format in the sRGB colour space (offered:" + offered + ")");
 }
 
 VkPresentModeKHR chooseMode(VkPhysicalDevice physical, VkSurfaceKHR surface, PresentModeChoice choice) {
@@ -85,8 +85,9 @@ VkPresentModeKHR chooseMode(VkPhysicalDevice physical, VkSurfaceKHR surface, Pre
 }
 
 VkCompositeAlphaFlagBitsKHR chooseAlpha(VkCompositeAlphaFlagsKHR supported) {
-  for (VkCompositeAlphaFlagBitsKHR bit : {VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR, VK_COMPOSITE_ALPHA_INHERIT_BIT_KHR,
-                                          VK_COMPOSITE_ALPHA_PRE_MULTIPLIED_BIT_KHR, VK_COMPOSITE_ALPHA_POST_MULTIPLIED_BIT_KHR}) {
+  for (VkCompositeAlphaFlagBitsKHR bit :
+       {VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR, VK_COMPOSITE_ALPHA_INHERIT_BIT_KHR,
+        VK_COMPOSITE_ALPHA_PRE_MULTIPLIED_BIT_KHR, VK_COMPOSITE_ALPHA_POST_MULTIPLIED_BIT_KHR}) {
     if (supported & bit) return bit;
   }
   return VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
@@ -164,7 +165,8 @@ void SwapchainPresenter::Impl::createSwapchain() {
     throw PresentError("the display surface's images allow " + usageNames(caps.supportedUsageFlags) +
                        "; holotrace copies frames into them and needs TRANSFER_DST (docs/DISPLAY.md)");
   }
-  if (caps.currentExtent.width == 0 || caps.currentExtent.height == 0) throw PresentError("the panel window has size 0");
+  if (caps.currentExtent.width == 0 || caps.currentExtent.height == 0)
+    throw PresentError("the panel window has size 0");
   format = chooseFormat(vk.physical, surface);
   VkPresentModeKHR mode = chooseMode(vk.physical, surface, choice);
   std::uint32_t count = std::max(caps.minImageCount, 3u);
@@ -195,7 +197,8 @@ void SwapchainPresenter::Impl::createSwapchain() {
   VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
   copied.assign(n, VK_NULL_HANDLE);
   for (VkSemaphore& s : copied) gpu::checkVulkan(vkCreateSemaphore(vk.device, &si, nullptr, &s), "vkCreateSemaphore");
-  info = SwapchainInfo{caps.currentExtent.width, caps.currentExtent.height, n, modeName(mode), formatName(format.format)};
+  info =
+      SwapchainInfo{caps.currentExtent.width, caps.currentExtent.height, n, modeName(mode), formatName(format.format)};
 }
 
 void SwapchainPresenter::Impl::destroyImageSemaphores() {
@@ -312,9 +315,11 @@ SwapchainPresenter::~SwapchainPresenter() { impl_->destroy(); }
 PresentOutcome SwapchainPresenter::present(const PanelFrame& frame) {
   Impl& v = *impl_;
   for (int attempt = 0; attempt <= kOutOfDateRetries; ++attempt) {
-    if (frame.width != v.info.width || frame.height != v.info.height || frame.rgba.size() != std::size_t(frame.width) * frame.height * 4) {
+    if (frame.width != v.info.width || frame.height != v.info.height ||
+        frame.rgba.size() != std::size_t(frame.width) * frame.height * 4) {
       throw PresentError("frame of " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
-                         " for a panel window of " + std::to_string(v.info.width) + "x" + std::to_string(v.info.height));
+                         " for a panel window of " + std::to_string(v.info.width) + "x" +
+                         std::to_string(v.info.height));
     }
     gpu::checkVulkan(vkWaitForFences(v.vk.device, 1, &v.inFlight, VK_TRUE, UINT64_MAX), "vkWaitForFences");
     std::uint32_t index = 0;

@@ -14,7 +14,8 @@ XConnection::XConnection(const std::string& display) {
   if (xcb_connection_has_error(connection_)) {
     xcb_disconnect(connection_);
     connection_ = nullptr;
-    throw PresentError("cannot connect to X display '" + name_ + "' (is the X server running, and may this user use it?)");
+    throw PresentError("cannot connect to X display '" + name_ +
+                       "' (is the X server running, and may this user use it?)");
   }
   xcb_screen_iterator_t it = xcb_setup_roots_iterator(xcb_get_setup(connection_));
   for (int i = 0; i < screenNumber && it.rem; ++i) xcb_screen_next(&it);

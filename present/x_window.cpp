@@ -51,10 +51,11 @@ XWindow::XWindow(const XConnection& x, const Rect& rect, WindowMode mode) : x_(x
   const std::uint32_t mask = XCB_CW_BACK_PIXEL | XCB_CW_OVERRIDE_REDIRECT | XCB_CW_EVENT_MASK | XCB_CW_CURSOR;
   const std::array<std::uint32_t, 4> values = {x.screen()->black_pixel, mode == WindowMode::OverrideRedirect ? 1u : 0u,
                                                XCB_EVENT_MASK_EXPOSURE | XCB_EVENT_MASK_STRUCTURE_NOTIFY, cursor_};
-  auto cookie = xcb_create_window_checked(x.get(), XCB_COPY_FROM_PARENT, window_, x.root(), static_cast<std::int16_t>(rect.x),
-                                          static_cast<std::int16_t>(rect.y), static_cast<std::uint16_t>(rect.width),
-                                          static_cast<std::uint16_t>(rect.height), 0, XCB_WINDOW_CLASS_INPUT_OUTPUT,
-                                          x.screen()->root_visual, mask, values.data());
+  auto cookie =
+      xcb_create_window_checked(x.get(), XCB_COPY_FROM_PARENT, window_, x.root(), static_cast<std::int16_t>(rect.x),
+                                static_cast<std::int16_t>(rect.y), static_cast<std::uint16_t>(rect.width),
+                                static_cast<std::uint16_t>(rect.height), 0, XCB_WINDOW_CLASS_INPUT_OUTPUT,
+                                x.screen()->root_visual, mask, values.data());
   if (xcb_generic_error_t* error = xcb_request_check(x.get(), cookie)) {
     int code = error->error_code;
     std::free(error);
@@ -91,8 +92,8 @@ void XWindow::place(const Rect& rect) {
 
 Rect XWindow::geometry() const {
   XReply<xcb_get_geometry_reply_t> g(xcb_get_geometry_reply(x_.get(), xcb_get_geometry(x_.get(), window_), nullptr));
-  XReply<xcb_translate_coordinates_reply_t> t(
-      xcb_translate_coordinates_reply(x_.get(), xcb_translate_coordinates(x_.get(), window_, x_.root(), 0, 0), nullptr));
+  XReply<xcb_translate_coordinates_reply_t> t(xcb_translate_coordinates_reply(
+      x_.get(), xcb_translate_coordinates(x_.get(), window_, x_.root(), 0, 0), nullptr));
   if (!g || !t) throw PresentError("X display '" + x_.name() + "': window geometry unavailable");
   return Rect{t->dst_x, t->dst_y, g->width, g->height};
 }

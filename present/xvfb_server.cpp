@@ -21,7 +21,8 @@ std::string readDisplayNumber(int fd) {
   std::string text;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(kStartTimeoutMs);
   while (text.find('\n') == std::string::npos) {
-    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count();
+    auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count();
     if (left <= 0) return "";
     pollfd p{fd, POLLIN, 0};
     if (poll(&p, 1, static_cast<int>(left)) <= 0) return "";
@@ -97,8 +98,8 @@ std::uint32_t XvfbServer::outputId(const std::string& name) const {
   if (!res) throw PresentError("Xvfb: no RandR resources");
   const xcb_randr_output_t* ids = xcb_randr_get_screen_resources_current_outputs(res.get());
   for (int i = 0; i < xcb_randr_get_screen_resources_current_outputs_length(res.get()); ++i) {
-    XReply<xcb_randr_get_output_info_reply_t> info(
-        xcb_randr_get_output_info_reply(x_->get(), xcb_randr_get_output_info(x_->get(), ids[i], res->config_timestamp), nullptr));
+    XReply<xcb_randr_get_output_info_reply_t> info(xcb_randr_get_output_info_reply(
+        x_->get(), xcb_randr_get_output_info(x_->get(), ids[i], res->config_timestamp), nullptr));
     if (!info) continue;
     std::string n(reinterpret_cast<const char*>(xcb_randr_get_output_info_name(info.get())),
                   static_cast<std::size_t>(xcb_randr_get_output_info_name_length(info.get())));
@@ -147,9 +148,9 @@ void XvfbServer::setEdid(const std::string& output, const std::vector<std::uint8
   const xcb_atom_t atom = x_->atom("EDID");
   checkRequest(*x_, xcb_randr_configure_output_property_checked(x_->get(), id, atom, 0, 0, 0, nullptr),
                "configure EDID property");
-  checkRequest(*x_, xcb_randr_change_output_property_checked(x_->get(), id, atom, XCB_ATOM_INTEGER, 8,
-                                                             XCB_PROP_MODE_REPLACE, static_cast<std::uint32_t>(edid.size()),
-                                                             edid.data()),
+  checkRequest(*x_,
+               xcb_randr_change_output_property_checked(x_->get(), id, atom, XCB_ATOM_INTEGER, 8, XCB_PROP_MODE_REPLACE,
+                                                        static_cast<std::uint32_t>(edid.size()), edid.data()),
                "set EDID");
 }
 

@@ -1,4 +1,5 @@
-// xvfb_server.h - a private Xvfb for the display-sink tests and the present benchmark (not used by the sink itself): started on a free display number
+// xvfb_server.h - a private Xvfb for the display-sink tests and the present benchmark (not used by the sink itself):
+// started on a free display number
 // (-displayfd), with -noreset so RandR monitors survive the last client, ended by PID. Monitors and EDIDs are set
 // through RandR requests, as `xrandr --setmonitor` and a synthetic EDID property would (docs/DISPLAY.md).
 #pragma once

@@ -22,8 +22,9 @@ present::PanelRequest panelRequest(const PanelTarget& target, const RegisteredDi
                                    const std::string& source) {
   const gpu::FrameShape shape = displayFrameShape(display);
   if (shape.views != 1) {
-    throw ConfigError(source, "present", target.displayId,
-                      "a display whose frame is one image (this one renders " + std::to_string(shape.views) + " views)");
+    throw ConfigError(
+        source, "present", target.displayId,
+        "a display whose frame is one image (this one renders " + std::to_string(shape.views) + " views)");
   }
   present::PanelRequest request{shape.width, shape.height, target.output, std::nullopt};
   if (target.geometry) request.geometry = present::parseGeometry(*target.geometry);

@@ -22,7 +22,8 @@ PanelTarget parseTarget(const json& entry, std::size_t index, const std::string&
   const std::string field = "present[" + std::to_string(index) + "]";
   if (entry.is_string()) return PanelTarget{entry.get<std::string>(), std::nullopt, std::nullopt};
   if (!entry.is_object() || !entry.contains("display") || !entry["display"].is_string()) {
-    throw ConfigError(source, field, entry.dump(), "a display id, or {\"display\": ID, \"output\" or \"geometry\": ...}");
+    throw ConfigError(source, field, entry.dump(),
+                      "a display id, or {\"display\": ID, \"output\" or \"geometry\": ...}");
   }
   for (const auto& [key, value] : entry.items()) {
     if (key != "display" && key != "output" && key != "geometry") {
@@ -35,9 +36,7 @@ PanelTarget parseTarget(const json& entry, std::size_t index, const std::string&
   if (t.geometry) {
     try {
       present::parseGeometry(*t.geometry);
-    } catch (const present::PresentError& e) {
-      throw ConfigError(source, field + ".geometry", *t.geometry, e.what());
-    }
+    } catch (const present::PresentError& e) { throw ConfigError(source, field + ".geometry", *t.geometry, e.what()); }
   }
   return t;
 }
@@ -47,7 +46,8 @@ PanelTarget parseTarget(const json& entry, std::size_t index, const std::string&
 PresentConfig parsePresentConfig(const json& doc, const std::string& source) {
   PresentConfig c;
   if (doc.contains("x_display")) {
-    if (!doc["x_display"].is_string()) throw ConfigError(source, "x_display", doc["x_display"].dump(), "a string such as \":0\"");
+    if (!doc["x_display"].is_string())
+      throw ConfigError(source, "x_display", doc["x_display"].dump(), "a string such as \":0\"");
     c.xDisplay = doc["x_display"].get<std::string>();
   }
   if (!doc.contains("present")) return c;

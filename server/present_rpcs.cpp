@@ -19,8 +19,8 @@ using Clock = std::chrono::steady_clock;
 present::PanelSink& sinkFor(const ServiceState& state, const std::string& displayId) {
   present::PanelSink* sink = state.panels ? state.panels->find(displayId) : nullptr;
   if (!sink) {
-    throw BadRequest("render.display_id", "display '" + displayId +
-                                              "' has no panel sink; list it in the daemon config's \"present\"");
+    throw BadRequest("render.display_id",
+                     "display '" + displayId + "' has no panel sink; list it in the daemon config's \"present\"");
   }
   return *sink;
 }
@@ -28,8 +28,8 @@ present::PanelSink& sinkFor(const ServiceState& state, const std::string& displa
 std::uint32_t checkedFrameCount(const ServiceState& state, const v1::PresentRequest& request) {
   const std::uint32_t frames = std::max<std::uint32_t>(1, request.frames());
   if (frames > state.config.limits.maxCaptureFrames) {
-    throw LimitExceeded("frames = " + std::to_string(frames) + " (limits.max_capture_frames = " +
-                        std::to_string(state.config.limits.maxCaptureFrames) + ")");
+    throw LimitExceeded("frames = " + std::to_string(frames) +
+                        " (limits.max_capture_frames = " + std::to_string(state.config.limits.maxCaptureFrames) + ")");
   }
   const double fps = request.frames_per_second();
   if (fps < 0.0 || fps > state.config.limits.maxFramesPerSecond || fps != fps) {
@@ -60,8 +60,9 @@ grpc::Status HolotraceService::Present(grpc::ServerContext* context, const v1::P
     for (std::uint32_t i = 0; i < frames; ++i) {
       if (context->IsCancelled()) throw ClientGone("present cancelled after " + std::to_string(i) + " frames");
       if (state_.shuttingDown) throw ShuttingDown("shutting down after " + std::to_string(i) + " frames");
-      if (fps > 0.0 && i > 0 && !state_.sleepUntil(start + std::chrono::duration_cast<Clock::duration>(
-                                                                 std::chrono::duration<double>(i / fps)))) {
+      if (fps > 0.0 && i > 0 &&
+          !state_.sleepUntil(start +
+                             std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(i / fps)))) {
         throw ShuttingDown("shutting down after " + std::to_string(i) + " frames");
       }
       job.session = state_.scenes.find(request->render().scene_id());  // picks up UpdateScene

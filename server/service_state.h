@@ -23,7 +23,7 @@ struct ServiceState {
   SceneLibrary& scenes;
   RenderWorker& worker;
   FileSink& outputSink;
-  FileSink& uploadSink;  // private work directory for uploaded scene bytes
+  FileSink& uploadSink;          // private work directory for uploaded scene bytes
   PanelSinks* panels = nullptr;  // display sinks of the config's "present" (server/panel_sinks.h); null = none
 
   std::atomic<std::uint32_t> activeStreams{0};

@@ -108,8 +108,9 @@ TEST(DaemonPresentXvfb, PresentShowsCapturesBytesStatusReportsAndXServerLossIsSu
   ASSERT_TRUE(presentOne(*stub, render, &progress).ok());
   EXPECT_EQ(progress.frames_done(), 1u);
   std::vector<std::string> captured;
-  ASSERT_TRUE(server::test::captureFrame(*stub, "panel", render, v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_AUTO,
-                                         captured).ok());
+  ASSERT_TRUE(
+      server::test::captureFrame(*stub, "panel", render, v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_AUTO, captured)
+          .ok());
   ASSERT_EQ(captured.size(), 1u);
   EXPECT_EQ(mismatches(xvfb->connection(), rgbOfPng(files.outputRoot() / captured[0])), 0u);
   s = waitForPanel(*stub, [](const v1::PanelStatus& p) { return p.presented() >= 1; });
@@ -152,9 +153,7 @@ PresentConfig presentOf(const std::string& json) { return parseDaemonConfig(json
 std::string configError(const std::string& json) {
   try {
     presentOf(json);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
+  } catch (const ConfigError& e) { return e.what(); }
   return "";
 }
 
@@ -171,7 +170,8 @@ TEST(DaemonPresentConfig, ModesListsAndErrors) {
   EXPECT_EQ(list.panels[1].output, "HDMI-1");
   EXPECT_EQ(list.panels[2].geometry, "1536x2048+1920+0");
   EXPECT_NE(configError("{" + roots + R"(, "present": "yes"})").find("field 'present'"), std::string::npos);
-  EXPECT_NE(configError("{" + roots + R"(, "present": ["a", "a"]})").find("each display at most once"), std::string::npos);
+  EXPECT_NE(configError("{" + roots + R"(, "present": ["a", "a"]})").find("each display at most once"),
+            std::string::npos);
   EXPECT_NE(configError("{" + roots + R"(, "present": [{"display": "a", "geometry": "big"}]})")
                 .find("field 'present[0].geometry' = big"),
             std::string::npos);

@@ -38,9 +38,7 @@ TEST(Edid, FaultsAreNamed) {
   try {
     parseEdid(std::span(edid).first(100));
     FAIL();
-  } catch (const PresentError& e) {
-    EXPECT_NE(std::string(e.what()).find("100 bytes"), std::string::npos) << e.what();
-  }
+  } catch (const PresentError& e) { EXPECT_NE(std::string(e.what()).find("100 bytes"), std::string::npos) << e.what(); }
   auto badHeader = edid;
   badHeader[1] = 0x12;
   EXPECT_THROW(parseEdid(badHeader), PresentError);
@@ -49,9 +47,7 @@ TEST(Edid, FaultsAreNamed) {
   try {
     parseEdid(badSum);
     FAIL();
-  } catch (const PresentError& e) {
-    EXPECT_NE(std::string(e.what()).find("checksum"), std::string::npos) << e.what();
-  }
+  } catch (const PresentError& e) { EXPECT_NE(std::string(e.what()).find("checksum"), std::string::npos) << e.what(); }
 }
 
 TEST(Edid, ExtensionBlocksAfterTheBaseBlockAreIgnored) {

@@ -33,9 +33,7 @@ PanelRequest portrait() { return PanelRequest{1536, 2048, std::nullopt, std::nul
 std::string errorOf(const RandrSnapshot& s, const PanelRequest& r) {
   try {
     pickMonitor(s, r);
-  } catch (const PresentError& e) {
-    return e.what();
-  }
+  } catch (const PresentError& e) { return e.what(); }
   return "";
 }
 

@@ -102,8 +102,8 @@ DisplayConfig panelConfig() {
 std::vector<std::uint8_t> pngRgb(const std::vector<float>& rgba) {
   DisplayConfig config = panelConfig();
   frame_io::FrameImages frame{kPanelW, kPanelH, 1, rgba};
-  frame_io::FramePackage package =
-      frame_io::packageFrame(frame, {config, std::nullopt}, frame_io::ViewLayout::Auto, frame_io::FrameFormat::Png, "panel.png");
+  frame_io::FramePackage package = frame_io::packageFrame(frame, {config, std::nullopt}, frame_io::ViewLayout::Auto,
+                                                          frame_io::FrameFormat::Png, "panel.png");
   EXPECT_EQ(package.files.size(), 1u);
   frame_io::ImageFile png = frame_io::decodeImage(package.files[0].bytes, package.files[0].name);
   std::vector<std::uint8_t> rgb;
@@ -212,7 +212,8 @@ TEST_F(PanelSinkXvfb, MonitorRemovedAndAddedAgainReattachesAndShowsTheLastFrame)
   xvfb_->setMonitor("LKG-P", kPanelRect, {"screen"});  // back, before the expectations (the suite shares the layout)
   EXPECT_FALSE(gone.attached);
   EXPECT_NE(gone.lastError.find("LKG"), std::string::npos) << gone.lastError;  // names the LKG monitor it now sees
-  PanelSinkStats back = waitFor(sink, [](const PanelSinkStats& st) { return st.attachments >= 2 && st.presented >= 2; });
+  PanelSinkStats back =
+      waitFor(sink, [](const PanelSinkStats& st) { return st.attachments >= 2 && st.presented >= 2; });
   EXPECT_TRUE(back.attached) << back.lastError;
   EXPECT_EQ(back.attachments, 2u);
   ASSERT_TRUE(back.monitor);

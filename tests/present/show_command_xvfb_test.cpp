@@ -75,8 +75,8 @@ TEST(ShowCommandXvfb, KeepsTheRenderedFrameOnThePanelUntilSigterm) {
   std::filesystem::create_directories(dir);
   const auto png = dir / "panel.png";
 
-  pid_t show = startHolotrace({"show", "--display", kConfig, "--scene", "builtin:showcase", "--x-display", xvfb.display()},
-                              dir / "show.log");
+  pid_t show = startHolotrace(
+      {"show", "--display", kConfig, "--scene", "builtin:showcase", "--x-display", xvfb.display()}, dir / "show.log");
   pid_t render = startHolotrace({"render", "--display", kConfig, "--scene", "builtin:showcase", "-o", png.string()},
                                 dir / "render.log");
   ASSERT_EQ(waitExit(render), 0) << readText(dir / "render.log");
