@@ -16,6 +16,7 @@
 #include "cli/raycast_command.h"
 #include "cli/rays_command.h"
 #include "cli/render_command.h"
+#include "cli/show_command.h"
 #include "common/error.h"
 
 #ifndef HT_VERSION
@@ -27,6 +28,8 @@ namespace {
 
 constexpr std::array kCommands = {
     Command{"render", "render a display frame (native interleaved panel image) to PNG/EXR", renderHelp, runRender},
+    Command{"show", "render a display frame and keep it on the panel's monitor until Ctrl-C (X11 + Vulkan)", showHelp,
+            runShow},
     Command{"info", "list Vulkan devices, the one holotrace picks, builtin displays and scenes", infoHelp, runInfo},
     Command{"raycast", "trace a ray batch file against a scene, write the hits (binary or CSV)", raycastHelp,
             runRaycast},

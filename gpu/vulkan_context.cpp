@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gpu/pipeline_library.h"
+#include "gpu/vulkan_handles.h"
 #include "gpu/vulkan_impl.h"
 
 #ifdef HT_SANITIZED_BUILD
@@ -33,6 +34,10 @@ const char* vkResultName(VkResult result) {
     case VK_ERROR_INCOMPATIBLE_DRIVER:
       return "VK_ERROR_INCOMPATIBLE_DRIVER (no Vulkan driver found: install mesa-vulkan-drivers)";
     case VK_ERROR_TOO_MANY_OBJECTS: return "VK_ERROR_TOO_MANY_OBJECTS";
+    case VK_SUBOPTIMAL_KHR: return "VK_SUBOPTIMAL_KHR";
+    case VK_ERROR_OUT_OF_DATE_KHR: return "VK_ERROR_OUT_OF_DATE_KHR";
+    case VK_ERROR_SURFACE_LOST_KHR: return "VK_ERROR_SURFACE_LOST_KHR";
+    case VK_ERROR_NATIVE_WINDOW_IN_USE_KHR: return "VK_ERROR_NATIVE_WINDOW_IN_USE_KHR";
     default: return "VkResult error";
   }
 }
@@ -69,7 +74,42 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFl
   return VK_FALSE;
 }
 
-VkInstance createInstance(bool validation, VulkanContext::Impl* impl, VkDebugUtilsMessengerEXT* messenger) {
+bool hasInstanceExtension(const char* name) {
+  uint32_t count = 0;
+  vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateInstanceExtensionProperties(nullptr, &count, extensions.data());
+  return std::any_of(extensions.begin(), extensions.end(),
+                     [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+bool hasDeviceExtension(VkPhysicalDevice physical, const char* name) {
+  uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> extensions(count);
+  vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data());
+  return std::any_of(extensions.begin(), extensions.end(),
+                     [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; });
+}
+
+// The window-system extensions of a presenting instance, by name (no X headers here; present/ creates the surface).
+constexpr const char* kSurfaceExtensions[] = {"VK_KHR_surface", "VK_KHR_xcb_surface"};
+constexpr const char* kSwapchainExtension = "VK_KHR_swapchain";
+
+std::vector<const char*> presentationExtensions() {
+  std::vector<const char*> names;
+  for (const char* name : kSurfaceExtensions) {
+    if (!hasInstanceExtension(name)) {
+      throw GpuError(std::string("presenting to a display needs the Vulkan instance extension ") + name +
+                     ", which this Vulkan loader/driver does not offer");
+    }
+    names.push_back(name);
+  }
+  return names;
+}
+
+VkInstance createInstance(bool validation, VulkanContext::Impl* impl, VkDebugUtilsMessengerEXT* messenger,
+                          bool presentation = false) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "holotrace";
   app.apiVersion = VK_API_VERSION_1_2;
@@ -81,6 +121,9 @@ VkInstance createInstance(bool validation, VulkanContext::Impl* impl, VkDebugUti
     }
     layers.push_back(kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  }
+  if (presentation) {
+    for (const char* name : presentationExtensions()) extensions.push_back(name);
   }
   VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   ci.pApplicationInfo = &app;
@@ -242,7 +285,7 @@ std::vector<DeviceInfo> VulkanContext::listDevices() {
 
 VulkanContext::VulkanContext(const Options& options) : impl_(std::make_unique<Impl>()) {
   Impl& v = *impl_;
-  v.instance = createInstance(options.validation, &v, &v.messenger);
+  v.instance = createInstance(options.validation, &v, &v.messenger, options.presentation);
   auto devices = physicalDevices(v.instance);
   if (devices.empty())
     throw GpuError("no Vulkan device found (install mesa-vulkan-drivers for the lavapipe CPU driver)");
@@ -281,8 +324,17 @@ VulkanContext::VulkanContext(const Options& options) : impl_(std::make_unique<Im
   features.pNext = &f12;
   features.features.shaderInt64 = VK_TRUE;
   features.features.shaderFloat64 = VK_TRUE;
+  std::vector<const char*> deviceExtensions;
+  if (options.presentation) {
+    if (!hasDeviceExtension(v.physical, kSwapchainExtension)) {
+      throw GpuError("presenting to a display needs VK_KHR_swapchain, which " + v.info.name + " does not offer");
+    }
+    deviceExtensions.push_back(kSwapchainExtension);
+  }
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   dci.pNext = &features;
+  dci.enabledExtensionCount = static_cast<uint32_t>(deviceExtensions.size());
+  dci.ppEnabledExtensionNames = deviceExtensions.data();
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
   HT_VK(vkCreateDevice(v.physical, &dci, nullptr, &v.device));
@@ -311,6 +363,13 @@ VulkanContext::~VulkanContext() {
 }
 
 const DeviceInfo& VulkanContext::device() const { return impl_->info; }
+
+void checkVulkan(VkResult result, const char* call) { checkVk(result, call); }
+
+VulkanHandles vulkanHandles(VulkanContext& context) {
+  VulkanContext::Impl& v = context.impl();
+  return VulkanHandles{v.instance, v.physical, v.device, v.queue, v.queueFamily, v.commandPool};
+}
 uint32_t VulkanContext::validationMessageCount() const { return impl_->validationMessages.load(); }
 
 }  // namespace ht::gpu

@@ -32,6 +32,9 @@ class VulkanContext {
   struct Options {
     int deviceIndex = -1;     // -1 = automatic choice
     bool validation = false;  // enable VK_LAYER_KHRONOS_validation; validation messages are counted
+    // Also enable presentation: the instance extensions VK_KHR_surface + VK_KHR_xcb_surface and the device extension
+    // VK_KHR_swapchain (the display sink, present/). Names only: gpu/ links no window system. GpuError if missing.
+    bool presentation = false;
   };
   explicit VulkanContext(const Options& options);
   ~VulkanContext();

@@ -33,6 +33,9 @@ PKGS=(
   # devices/ (docs/DISPLAY.md): libusb reads Gen1 panels' calibration over USB HID; umockdev emulates such a panel
   # for the end-to-end tests (tests/devices, DevicesUmockdevTests)
   libusb-1.0-0-dev umockdev
+  # the display sink (present/, docs/DISPLAY.md): xcb + RandR headers; its tests run a private Xvfb and set RandR
+  # monitors with xrandr (x11-xserver-utils)
+  libxcb1-dev libxcb-randr0-dev xvfb x11-xserver-utils
 )
 missing=()
 for p in "${PKGS[@]}"; do

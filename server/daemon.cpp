@@ -15,6 +15,7 @@
 #include "gpu/vulkan_context.h"
 #include "server/holotrace_service.h"
 #include "server/listen_address.h"
+#include "server/panel_sinks.h"
 
 namespace ht::server {
 
@@ -41,6 +42,7 @@ struct Daemon::Parts {
   CallWatchdog watchdog;
   ServiceState state;
   HolotraceService service;
+  std::unique_ptr<PanelSinks> panels;  // display sinks ("present"); their threads end before the state they read
   std::unique_ptr<grpc::Server> server;
   std::thread janitor;  // ends idle scene sessions (SceneLibrary::sweep), cancels stalled calls (CallWatchdog)
   bool stopped = false;
@@ -98,6 +100,10 @@ Daemon::Daemon(DaemonConfig config, std::ostream& log) {
   parts_ = std::make_unique<Parts>(std::move(config), log, std::move(claims), owns);
   log << "holotraced: device " << parts_->context.device().name << ", " << parts_->displays.reload(log)
       << " displays\n";
+  const DaemonConfig& c = parts_->config;
+  parts_->panels = std::make_unique<PanelSinks>(c.present, parts_->displays, c.deviceIndex, c.sourcePath, log);
+  parts_->state.panels = parts_->panels.get();
+  if (parts_->panels->size() > 0) log << "holotraced: " << parts_->panels->size() << " panel sink(s)\n";
 }
 
 Daemon::~Daemon() {

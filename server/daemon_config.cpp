@@ -159,6 +159,7 @@ DaemonConfig parseDaemonConfig(const std::string& text, const std::string& sourc
   c.deviceIndex = parseDevice(doc, source);
   c.limits = parseLimits(doc, source);
   c.devices = parseDevices(doc, baseDir, source);
+  c.present = parsePresentConfig(doc, source);
   return c;
 }
 

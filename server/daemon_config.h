@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "server/present_config.h"
+
 namespace ht::server {
 
 // StreamFrames' lowest frame rate (one frame per 1000 s): below it 1/fps is refused, not computed (docs/SERVICE.md §2).
@@ -53,6 +55,7 @@ struct DaemonConfig {
   int deviceIndex = -1;               // Vulkan device, -1 = automatic
   Limits limits;
   DeviceDiscoveryConfig devices;
+  PresentConfig present;   // "present" / "x_display": panel sinks (server/present_config.h)
   std::string sourcePath;  // file the config came from (for errors)
 };
 

@@ -31,6 +31,9 @@ class HolotraceService final : public holotrace::v1::Holotrace::Service {
                       holotrace::v1::StatusResponse*) override;
   grpc::Status UnloadScene(grpc::ServerContext*, const holotrace::v1::UnloadSceneRequest*,
                            holotrace::v1::UnloadSceneResponse*) override;
+  // present_rpcs.cpp: frames onto a panel through the daemon's display sink.
+  grpc::Status Present(grpc::ServerContext*, const holotrace::v1::PresentRequest*,
+                       grpc::ServerWriter<holotrace::v1::PresentProgress>*) override;
 
  private:
   ServiceState& state_;

@@ -8,6 +8,7 @@
 #include "server/display_messages.h"
 #include "server/holotrace_service.h"
 #include "server/path_rules.h"
+#include "server/present_status.h"
 #include "server/process_stats.h"
 #include "server/status_mapping.h"
 
@@ -221,6 +222,7 @@ grpc::Status HolotraceService::Status(grpc::ServerContext*, const v1::StatusRequ
     response->set_resident_kib(self.residentKiB);
     response->set_cpu_seconds(self.cpuSeconds);
     response->set_threads(self.threads);
+    addPanelStatuses(state_, *response);
     const SceneLibraryStats scenes = state_.scenes.stats();
     response->set_scene_sessions(scenes.sessions);
     response->set_scene_memory_bytes(scenes.memoryBytes);

@@ -17,6 +17,8 @@
 
 namespace ht::server {
 
+class PanelSinks;
+
 struct ServiceState {
   const DaemonConfig& config;
   DisplayRegistry& displays;
@@ -25,7 +27,8 @@ struct ServiceState {
   FileSink& outputSink;
   FileSink& uploadSink;  // private work directory for uploaded scene bytes
   UploadBudget& uploads;
-  CallWatchdog& watchdog;  // cancels stalled uploads and streams
+  CallWatchdog& watchdog;        // cancels stalled uploads and streams
+  PanelSinks* panels = nullptr;  // display sinks of the config's "present" (server/panel_sinks.h); null = none
 
   std::atomic<std::uint32_t> activeStreams{0};
   std::atomic<std::uint64_t> nextFrameId{1};

@@ -13,6 +13,8 @@ target_link_libraries / ht_add_test LIBS name what it links directly):
  5. Core libraries are layered (CORE_LAYERS): common uses no other module; camera_models, bvh and scene use common
     only (the scene bounds the display models need are common/bounds3.h); gpu uses all four.
  6. Only the device library (LIBUSB_MODULES: devices/, calibration from the panel over USB) includes or links libusb.
+ 7. Only the display sink (present/), its tests and benchmarks include or link X11 (xcb, xcb-randr, Xlib); the core
+    libraries never do (gpu/ may enable the Vulkan surface extensions by name, without X headers).
 KNOWN_VIOLATIONS lists the violations of today's tree that pending work removes; a violation not in it fails.
 Usage: check_module_boundaries.py [--root DIR]. Exit 0 when clean, 1 with one line per violation.
 """
@@ -41,7 +43,8 @@ CORE_LAYERS = {
 # devices/ (issue 15): finds display panels and reads their calibration over USB HID; the CLI and the daemon link it.
 LIBUSB_MODULES = ("devices",)
 # Our modules a core library must not depend on.
-ABOVE_CORE = APPS + ("protocol", "frame_io", "devices", "tests", "bench", "tools")
+ABOVE_CORE = APPS + ("protocol", "frame_io", "devices", "present", "tests", "bench", "tools")
+X11_MODULES = ("present", "tests", "bench")
 
 # Violations tolerated while a refactor is in flight, as printed by this script (issue 13 emptied it when frame_io/
 # took the image code out of cli/ and server/). Never add one to make a new violation pass.
@@ -57,6 +60,7 @@ EXTERNAL = [
     ("libusb", r"^libusb(-1\.0)?[/.]", r"^(PkgConfig::LIBUSB|usb-1\.0)$"),
     ("MPI", r"^mpi\.h$|^mpi/", r"^MPI::"),
     ("Embree", r"^embree\d/", r"^embree$"),
+    ("X11", r"^xcb/|^X11/|^vulkan/vulkan_(xcb|xlib)\.h$", r"^(PkgConfig::XCB|xcb|xcb-randr|X11|X11::)"),
 ]
 EXTERNAL_INCLUDES = [(kind, re.compile(include)) for kind, include, _ in EXTERNAL]
 EXTERNAL_LINKS = [(kind, re.compile(link)) for kind, _, link in EXTERNAL]
@@ -161,6 +165,8 @@ def dependency_rule(module, other, kind, verb):
         return "only %s use Embree" % ", ".join(EMBREE_MODULES)
     if kind == "libusb" and module not in LIBUSB_MODULES:
         return "only %s use libusb" % ", ".join(LIBUSB_MODULES)
+    if kind == "X11" and module not in X11_MODULES:
+        return "only %s use X11" % ", ".join(X11_MODULES)
     return None
 
 

@@ -183,6 +183,23 @@ class ModuleBoundaries(unittest.TestCase):
         self.assertIn("include cli/c.cpp -> libusb-1.0/libusb.h: only devices use libusb", found)
         self.assertIn("link ht_gpu (gpu) -> PkgConfig::LIBUSB via ht_devices: core library uses libusb", found)
         self.assertIn("link ht_gpu (gpu) -> ht_devices (devices) via ht_gpu: core library depends on devices", found)
+    def test_x11_outside_the_display_sink_fails(self):
+        files = {
+            "present/CMakeLists.txt": "add_library(ht_present STATIC p.cpp)\n"
+                                      "target_link_libraries(ht_present PUBLIC PkgConfig::XCB)\n",
+            "present/p.cpp": "#include <xcb/randr.h>\n#include <vulkan/vulkan_xcb.h>\n",
+            "gpu/CMakeLists.txt": "add_library(ht_gpu STATIC g.cpp)\ntarget_link_libraries(ht_gpu PUBLIC ht_present)\n",
+            "gpu/g.cpp": "#include <vulkan/vulkan_xcb.h>\n",
+            "server/CMakeLists.txt": "add_library(ht_server STATIC s.cpp)\n"
+                                     "target_link_libraries(ht_server PUBLIC ht_present PkgConfig::XCB)\n",
+            "server/s.cpp": '#include "present/edid.h"\n',
+        }
+        found = self.violations(files)
+        self.assertFalse([v for v in found if v.startswith(("include present/", "link ht_present"))], found)
+        self.assertIn("include gpu/g.cpp -> vulkan/vulkan_xcb.h: core library gpu uses X11", found)
+        self.assertIn("link ht_gpu (gpu) -> ht_present (present) via ht_gpu: core library depends on present", found)
+        self.assertIn("link ht_gpu (gpu) -> PkgConfig::XCB via ht_present: core library uses X11", found)
+        self.assertIn("link ht_server (server) -> PkgConfig::XCB: only present, tests, bench use X11", found)
 
 
 if __name__ == "__main__":
