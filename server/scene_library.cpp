@@ -34,6 +34,7 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
   content->contentKey = key;
   const auto start = std::chrono::steady_clock::now();
   content->scene = loadScene(spec);
+  content->loadBounds = content->scene.bounds();
   content->loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (content->scene.triangleCount() > maxTriangles_) {
     throw LimitExceeded("scene has " + std::to_string(content->scene.triangleCount()) +

@@ -24,6 +24,8 @@ namespace ht::server {
 struct SceneContent {
   std::string contentKey;
   Scene scene;
+  Bounds3 loadBounds;  // the scene's bounds when it was loaded: automatic camera placement stays there after edits
+                       // (a moved node must not re-centre the whole view, docs/REUSE.md §6 item 9)
   std::shared_ptr<gpu::Renderer> renderer;  // used on the render worker thread only
   double loadMs = 0.0;
   std::string editedBy;  // "" = loaded content, shared by every session of the same bytes; else the one session

@@ -10,9 +10,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bvh/build_primitives.h"
+#include "bvh/bvh_layout_choice.h"
 #include "bvh/cpu_traversal.h"
 #include "bvh/two_level_bvh.h"
 #include "bvh_test_util.h"
+#include "instanced_soup.h"
 #include "common/error.h"
 
 namespace ht::bvh {
@@ -21,78 +23,16 @@ namespace {
 using gpu_shared::HtHit;
 using gpu_shared::HtRay;
 using gpu_shared::HtTraceResult;
+using test::InstancedSoup;
 using test::Mesh;
+using test::randomPlacement;
+using test::randomRays;
+using test::randomScene;
 
 uint32_t bits(float f) {
   uint32_t b;
   std::memcpy(&b, &f, 4);
   return b;
-}
-
-// A soup of instances: object-space meshes placed by double matrices (as the glTF loader places nodes).
-struct InstancedSoup {
-  std::vector<Mesh> meshes;
-  std::vector<glm::vec3> positions;
-  std::vector<glm::uvec3> triangles;
-  std::vector<InstanceRange> ranges;
-  std::vector<uint32_t> firstVertex;
-
-  void place(uint32_t instance, const glm::dmat4& world) {
-    const Mesh& mesh = meshes[static_cast<size_t>(ranges[instance].mesh)];
-    const bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
-    for (size_t v = 0; v < mesh.positions.size(); ++v)
-      positions[firstVertex[instance] + v] = glm::vec3(world * glm::dvec4(glm::dvec3(mesh.positions[v]), 1.0));
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-      glm::uvec3 tri = mesh.triangles[t] + glm::uvec3(firstVertex[instance]);
-      if (mirrored) std::swap(tri.y, tri.z);
-      triangles[ranges[instance].firstTriangle + t] = tri;
-    }
-  }
-  uint32_t add(uint32_t mesh, const glm::dmat4& world) {
-    const Mesh& m = meshes[mesh];
-    ranges.push_back({static_cast<uint32_t>(triangles.size()), static_cast<uint32_t>(m.triangles.size()),
-                      static_cast<int32_t>(mesh)});
-    firstVertex.push_back(static_cast<uint32_t>(positions.size()));
-    positions.resize(positions.size() + m.positions.size());
-    triangles.resize(triangles.size() + m.triangles.size());
-    place(static_cast<uint32_t>(ranges.size() - 1), world);
-    return static_cast<uint32_t>(ranges.size() - 1);
-  }
-};
-
-glm::dmat4 randomPlacement(std::mt19937& rng, bool allowMirror) {
-  std::uniform_real_distribution<double> pos(-3.0, 3.0), angle(0.0, 6.283185307179586), scale(0.5, 1.5);
-  std::uniform_int_distribution<int> coin(0, 3);
-  glm::dvec3 axis = glm::dvec3(test::randomUnitVector(rng));
-  glm::dmat4 m = glm::translate(glm::dmat4(1.0), glm::dvec3(pos(rng), pos(rng), pos(rng)));
-  m = glm::rotate(m, angle(rng), axis);
-  glm::dvec3 s(scale(rng));
-  if (allowMirror && coin(rng) == 0) s.x = -s.x;
-  return glm::scale(m, s);
-}
-
-InstancedSoup randomScene(std::mt19937& rng, uint32_t instances) {
-  InstancedSoup soup;
-  soup.meshes.push_back(test::closedSphere(glm::vec3(0.0f), 0.6f, 10, 14));  // shared vertices: ties at edges
-  soup.meshes.push_back(test::randomSoup(150, 0.3f, rng()));
-  soup.meshes.push_back(test::closedSphere(glm::vec3(0.2f, 0.0f, 0.1f), 0.4f, 6, 9));
-  std::uniform_int_distribution<uint32_t> pick(0, 2);
-  for (uint32_t i = 0; i < instances; ++i) soup.add(pick(rng), randomPlacement(rng, true));
-  return soup;
-}
-
-std::vector<HtRay> randomRays(std::mt19937& rng, const InstancedSoup& soup, uint32_t count) {
-  std::uniform_real_distribution<float> box(-5.0f, 5.0f), inner(-3.5f, 3.5f);
-  std::uniform_int_distribution<size_t> vertex(0, soup.positions.size() - 1);
-  std::vector<HtRay> rays;
-  for (uint32_t i = 0; i < count; ++i) {
-    glm::vec3 origin(box(rng), box(rng), box(rng));
-    // A third of the rays aim exactly at a vertex: several triangles meet there (ties and edge cases).
-    glm::vec3 target = i % 3 == 0 ? soup.positions[vertex(rng)] : glm::vec3(inner(rng), inner(rng), inner(rng));
-    if (target == origin) continue;
-    rays.push_back(test::makeRay(origin, target - origin, 0.0f, i % 5 == 0 ? 0.7f : INFINITY));
-  }
-  return rays;
 }
 
 // Least (t, id) over every usable triangle, each tested with the ray's own tmax.
@@ -242,6 +182,37 @@ TEST(BvhTwoLevelTest, EmptyAndUncoveredScenesMiss) {
   TwoLevelBvh full(soup.positions, soup.triangles, soup.ranges);
   EXPECT_NE(traceClosestTwoLevel(full, test::makeRay(glm::vec3(0, 0, 5), glm::vec3(0, 0, -1))).hit.triId,
             gpu_shared::HT_MISS);
+}
+
+}  // namespace
+}  // namespace ht::bvh
+
+namespace ht::bvh {
+namespace {
+
+TEST(BvhLayoutChoiceTest, MovedScenesUseTwoLevelStaticScenesTheCheaperLayout) {
+  EXPECT_EQ(chooseBvhLayout(true, LayoutCosts{10.0, 50.0}), BvhLayout::TwoLevel);
+  EXPECT_EQ(chooseBvhLayout(false, LayoutCosts{10.0, 50.0}), BvhLayout::Flattened);
+  EXPECT_EQ(chooseBvhLayout(false, LayoutCosts{50.0, 10.0}), BvhLayout::TwoLevel);
+  EXPECT_EQ(chooseBvhLayout(false, LayoutCosts{10.0, 10.0}), BvhLayout::Flattened);
+}
+
+TEST(BvhLayoutChoiceTest, OverlappingInstancesMeasureCostlierThanTheFlattenedBvh) {
+  // Eight copies of a sphere shifted by a fraction of its radius: the instance boxes overlap heavily, which is
+  // where a second level loses (every overlapping instance is entered).
+  InstancedSoup soup;
+  soup.meshes.push_back(test::closedSphere(glm::vec3(0.0f), 1.0f, 16, 24));
+  for (int i = 0; i < 8; ++i) soup.add(0, glm::translate(glm::dmat4(1.0), glm::dvec3(0.05 * i, 0.03 * i, 0.0)));
+  const TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
+  const GpuBvh flat = buildGpuBvh(soup.positions, soup.triangles, BuildOptions{});
+  Aabb bounds;
+  for (const glm::vec3& p : soup.positions) bounds.grow(p);
+  const std::vector<HtRay> probes = layoutProbeRays(bounds, 1024);
+  ASSERT_EQ(probes.size(), 1024u);
+  EXPECT_EQ(std::memcmp(probes.data(), layoutProbeRays(bounds, 1024).data(), probes.size() * sizeof(HtRay)), 0);
+  const LayoutCosts costs = measureLayoutCosts(flat, twoLevel, probes);
+  EXPECT_GT(costs.twoLevelStepsPerRay, costs.flattenedStepsPerRay);
+  EXPECT_EQ(chooseBvhLayout(false, costs), BvhLayout::Flattened);
 }
 
 }  // namespace
