@@ -47,6 +47,33 @@ std::vector<bool> usableTriangles(std::span<const glm::vec3> positions, std::spa
   return usable;
 }
 
+// Boxes of every triangle with finite corners, degenerate ones included: a rotation can make a triangle exactly
+// degenerate in one placement and not in another, so a shape holds all of them and each placement masks the ones
+// unusable there (packInstance). Only a triangle that is non-finite here and finite elsewhere needs another shape.
+BuildPrimitives finiteTriangleBoxes(std::span<const glm::vec3> positions, std::span<const glm::uvec3> local) {
+  BuildPrimitives prims;
+  prims.boxes.resize(local.size());
+  prims.centroids.resize(local.size());
+  for (uint32_t id = 0; id < local.size(); ++id) {
+    Aabb box;
+    bool finite = true;
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t v = local[id][c];
+      finite = finite && v < positions.size() && std::isfinite(positions[v].x) && std::isfinite(positions[v].y) &&
+               std::isfinite(positions[v].z);
+      if (finite) box.grow(positions[v]);
+    }
+    if (!finite) {
+      ++prims.dropped;
+      continue;
+    }
+    prims.boxes[id] = box;
+    prims.centroids[id] = box.lo * 0.5f + box.hi * 0.5f;
+    prims.kept.push_back(id);
+  }
+  return prims;
+}
+
 bool covers(const std::vector<bool>& inTree, const std::vector<bool>& usable) {
   if (inTree.size() != usable.size()) return false;
   for (size_t i = 0; i < usable.size(); ++i)
@@ -105,7 +132,7 @@ uint32_t TwoLevelBvh::shapeFor(const InstanceRange& range, std::span<const glm::
     }
   }
   Shape shape;
-  shape.tree = buildBinnedSah(positions, local, options_);
+  shape.tree = buildBinnedSahOverBoxes(finiteTriangleBoxes(positions, local), local.size(), options_);
   shape.inTree.assign(local.size(), false);
   for (uint32_t id : shape.tree.primIndex) shape.inTree[id] = true;
   shapes_.push_back(std::move(shape));

@@ -143,16 +143,32 @@ TEST(BvhTwoLevelTest, PlacementsThatBreakOrRestoreTrianglesStayExact) {
   expectSameHits(soup, twoLevel, rays, true);
 }
 
-// The shape built on instance 0 lacks the triangle; once usable it is traced through a shape that holds it (another
-// instance's, or a new one).
-TEST(BvhTwoLevelTest, TriangleDegenerateAtBuildIsTracedOnceUsable) {
+// A triangle degenerate in the build placement stays in the shape (a rotation can make a triangle exactly degenerate
+// in one placement only): usable again after a move, it is traced without building another shape.
+TEST(BvhTwoLevelTest, TriangleDegenerateAtBuildIsTracedOnceUsableWithoutANewShape) {
   std::mt19937 rng(5);
   InstancedSoup soup = randomScene(rng, 4);
   const glm::uvec3 tri = soup.triangles[soup.ranges[0].firstTriangle];
   soup.positions[tri.y] = soup.positions[tri.x];  // degenerate at build time
   TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
   const size_t shapesBefore = twoLevel.shapeCount();
-  soup.place(0, randomPlacement(rng, false));  // usable now: not in the shared shape
+  soup.place(0, randomPlacement(rng, false));
+  const std::vector<uint32_t> moved{0};
+  twoLevel.updateInstances(soup.positions, soup.triangles, moved);
+  EXPECT_EQ(twoLevel.shapeCount(), shapesBefore);
+  const std::vector<HtRay> rays = randomRays(rng, soup, 900);
+  expectSameHits(soup, twoLevel, rays, true);
+}
+
+// A triangle with a NaN corner at build time has no box in the shape; once finite it is traced through a shape that
+// holds it (another instance's of the same mesh, or a new one).
+TEST(BvhTwoLevelTest, TriangleNonFiniteAtBuildIsTracedOnceFinite) {
+  std::mt19937 rng(6);
+  InstancedSoup soup = randomScene(rng, 4);
+  soup.positions[soup.triangles[soup.ranges[0].firstTriangle].z] = glm::vec3(INFINITY, 0.0f, 0.0f);
+  TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
+  const size_t shapesBefore = twoLevel.shapeCount();
+  soup.place(0, randomPlacement(rng, false));
   const std::vector<uint32_t> moved{0};
   twoLevel.updateInstances(soup.positions, soup.triangles, moved);
   EXPECT_LE(twoLevel.shapeCount(), shapesBefore + 1);
