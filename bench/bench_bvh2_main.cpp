@@ -8,14 +8,14 @@
 //     instance + top level); medians.
 // Usage: holotrace-bench-bvh2 [--runs N (5)] [--size N (512)] [--meshes LIST] [--instances N (1000)] (--help)
 #include <chrono>
-#include <cstring>
-#include <memory>
-#include <optional>
-#include <random>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <functional>
 #include <iostream>
+#include <memory>
+#include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -51,9 +51,7 @@ uint32_t parseCount(const std::string& name, const std::string& value, uint32_t 
   unsigned long n = 0;
   try {
     n = std::stoul(value, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
+  } catch (const std::exception&) { used = 0; }
   if (used != value.size() || n < lo || n > hi) {
     throw UsageError("holotrace-bench-bvh2: " + name + " = '" + value + "': expected an integer in [" +
                      std::to_string(lo) + ", " + std::to_string(hi) + "]");
@@ -88,11 +86,16 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
     }
     if (i + 1 >= args.size()) throw UsageError("holotrace-bench-bvh2: option '" + a + "' needs a value (see --help)");
     const std::string& v = args[++i];
-    if (a == "--runs") o.runs = parseCount(a, v, 1, 1000);
-    else if (a == "--size") o.size = parseCount(a, v, 16, 4096);
-    else if (a == "--instances") o.instances = parseCount(a, v, 1, 100000);
-    else if (a == "--meshes") o.meshes = splitList(v);
-    else throw UsageError("holotrace-bench-bvh2: unknown option '" + a + "' (see --help)");
+    if (a == "--runs")
+      o.runs = parseCount(a, v, 1, 1000);
+    else if (a == "--size")
+      o.size = parseCount(a, v, 16, 4096);
+    else if (a == "--instances")
+      o.instances = parseCount(a, v, 1, 100000);
+    else if (a == "--meshes")
+      o.meshes = splitList(v);
+    else
+      throw UsageError("holotrace-bench-bvh2: unknown option '" + a + "' (see --help)");
   }
   return o;
 }
@@ -155,7 +158,8 @@ Scene instancedGrid(const Scene& mesh, uint32_t copies, const std::string& name)
     node.firstTriangle = static_cast<uint32_t>(out.triangles.size());
     node.vertexCount = static_cast<uint32_t>(mesh.positions.size());
     node.triangleCount = static_cast<uint32_t>(mesh.triangles.size());
-    for (const glm::vec3& p : mesh.positions) out.positions.push_back(glm::vec3(world * glm::dvec4(glm::dvec3(p), 1.0)));
+    for (const glm::vec3& p : mesh.positions)
+      out.positions.push_back(glm::vec3(world * glm::dvec4(glm::dvec3(p), 1.0)));
     for (const glm::uvec3& t : mesh.triangles) {
       out.triangles.push_back(t + glm::uvec3(node.firstVertex));
       out.triangleMaterial.push_back(0);
@@ -240,15 +244,16 @@ void updateTime(Scene scene, const Options& o) {
     move.ms.push_back(timeMs([&] { twoLevel->updateInstances(scene.positions, scene.triangles, moved); }));
     refit.push_back(twoLevel->timings().refitMs);
   }
-  std::printf("%-34s %9zu %5zu %11.1f %11.1f %10.4f %10.3f %10.3f %9.0fx\n", scene.name.c_str(),
-              scene.triangles.size(), twoLevel->instanceCount(), rebuild.medianMs(), buildTwoLevelMs,
-              top.medianMs(), median(refit), move.medianMs(), rebuild.medianMs() / move.medianMs());
+  std::printf("%-34s %9zu %5zu %11.1f %11.1f %10.4f %10.3f %10.3f %9.0fx\n", scene.name.c_str(), scene.triangles.size(),
+              twoLevel->instanceCount(), rebuild.medianMs(), buildTwoLevelMs, top.medianMs(), median(refit),
+              move.medianMs(), rebuild.medianMs() / move.medianMs());
 }
 
 int run(const Options& o) {
   std::printf("holotrace-bench-bvh2: %u runs (medians), %ux%u pinhole rays, all cores\n\n", o.runs, o.size, o.size);
-  std::printf("Trace cost, static scenes (ms per ray batch; ordered = order-free closest hit; ratio = two-level / "
-              "ordered flattened, median of per-run ratios)\n");
+  std::printf(
+      "Trace cost, static scenes (ms per ray batch; ordered = order-free closest hit; ratio = two-level / "
+      "ordered flattened, median of per-run ratios)\n");
   std::printf("%-34s %9s %5s %9s %9s %9s %7s %8s %8s %6s  %s\n", "scene", "tris", "inst", "legacy", "ordered",
               "2-level", "ratio", "steps-f", "steps-2", "diff", "choice");
   Scene bigMesh;
@@ -265,10 +270,11 @@ int run(const Options& o) {
     traceCost(grid, o);
     if (scene.triangles.size() > bigMesh.triangles.size()) bigMesh = std::move(scene);
   }
-  std::printf("\nUpdate after moving one node (ms; rebuild = flattened buildGpuBvh; top = top-level rebuild alone; "
-              "refit = the moved instance's refit; move = refit + top)\n");
-  std::printf("%-34s %9s %5s %11s %11s %10s %10s %10s %10s\n", "scene", "tris", "inst", "rebuild", "2-lvl build",
-              "top", "refit", "move", "speedup");
+  std::printf(
+      "\nUpdate after moving one node (ms; rebuild = flattened buildGpuBvh; top = top-level rebuild alone; "
+      "refit = the moved instance's refit; move = refit + top)\n");
+  std::printf("%-34s %9s %5s %11s %11s %10s %10s %10s %10s\n", "scene", "tris", "inst", "rebuild", "2-lvl build", "top",
+              "refit", "move", "speedup");
   const uint32_t perInstance = std::max<uint32_t>(1, 2000000 / o.instances);
   updateTime(instancedGrid(triangleClump(perInstance), o.instances,
                            "clump(" + std::to_string(perInstance) + ") x" + std::to_string(o.instances)),

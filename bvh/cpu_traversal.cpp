@@ -71,8 +71,8 @@ HtTraceResult traceClosestTwoLevel(const TwoLevelBvh& bvh, const HtRay& ray, uin
   return gpu_shared::ht_trace_two_level_ordered(view, view.blas, ray, stepLimit);
 }
 
-std::vector<HtTraceResult> traceClosestOrderedBatch(const GpuBvh& bvh, std::span<const HtRay> rays,
-                                                    uint32_t stepLimit, uint32_t threads) {
+std::vector<HtTraceResult> traceClosestOrderedBatch(const GpuBvh& bvh, std::span<const HtRay> rays, uint32_t stepLimit,
+                                                    uint32_t threads) {
   return traceBatch(rays, threads, [&](const HtRay& r) { return traceClosestOrdered(bvh, r, stepLimit); });
 }
 

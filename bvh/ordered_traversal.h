@@ -103,7 +103,10 @@ HT_INLINE void ht_ordered_leaf(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint slot0, u
   uint slotEnd = slot + count * HT_TRI_STRIDE;
   for (; slot < slotEnd; slot += HT_TRI_STRIDE) {
     steps++;
-    if (steps > stepLimit) { overflow = true; break; }
+    if (steps > stepLimit) {
+      overflow = true;
+      break;
+    }
     vec3 v0 = vec3(HT_LOAD_TRI(slot).x, HT_LOAD_TRI(slot).y, HT_LOAD_TRI(slot).z);
     vec3 v1 = vec3(HT_LOAD_TRI(slot + 1u).x, HT_LOAD_TRI(slot + 1u).y, HT_LOAD_TRI(slot + 1u).z);
     vec3 v2 = vec3(HT_LOAD_TRI(slot + 2u).x, HT_LOAD_TRI(slot + 2u).y, HT_LOAD_TRI(slot + 2u).z);
@@ -133,12 +136,18 @@ HT_INLINE bool ht_ordered_bvh(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint nodeBase,
   bool finished = false;
   while (!overflow) {
     steps++;
-    if (steps > stepLimit) { overflow = true; break; }
+    if (steps > stepLimit) {
+      overflow = true;
+      break;
+    }
     if ((cur >> HT_REF_COUNT_SHIFT) != 0u) {
       ht_ordered_leaf(HT_BVH_ARG r, slotBase + (cur & HT_REF_INDEX_MASK), cur >> HT_REF_COUNT_SHIFT, best, steps,
                       stepLimit, overflow);
       if (overflow) break;
-      if (sp == 0u) { finished = true; break; }
+      if (sp == 0u) {
+        finished = true;
+        break;
+      }
       sp--;
       cur = stack[sp];
       continue;
@@ -155,11 +164,17 @@ HT_INLINE bool ht_ordered_bvh(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint nodeBase,
     uint push;
     uint next = ht_order_children(hit0, hit1, tEnter0, tEnter1, link, push);
     if (push != HT_REF_NONE) {
-      if (sp >= HT_BVH_MAX_DEPTH) { overflow = true; break; }
+      if (sp >= HT_BVH_MAX_DEPTH) {
+        overflow = true;
+        break;
+      }
       stack[sp] = push;
       sp++;
     }
-    if (next == HT_REF_NONE && sp == 0u) { finished = true; break; }
+    if (next == HT_REF_NONE && sp == 0u) {
+      finished = true;
+      break;
+    }
     if (next == HT_REF_NONE) {
       sp--;
       next = stack[sp];
@@ -182,8 +197,7 @@ HT_INLINE HtTraceResult ht_trace_closest_ordered(HT_BVH_PARAM HT_IN(HtRay) ray, 
 }
 
 // Least (t, id) hit of a two-level BVH: the top level over instance boxes, each instance's own BVH below.
-HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray,
-                                                   uint stepLimit) {
+HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
   HtTraceResult res = ht_trace_miss(ray);
   if (!ht_ray_is_valid(ray)) return res;
   HtOrderedRay r = ht_make_ordered_ray(ray);
@@ -195,7 +209,10 @@ HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
   bool finished = false;
   while (!overflow) {
     steps++;
-    if (steps > stepLimit) { overflow = true; break; }
+    if (steps > stepLimit) {
+      overflow = true;
+      break;
+    }
     if ((cur >> HT_REF_COUNT_SHIFT) != 0u) {
       uint first = cur & HT_REF_INDEX_MASK;
       uint end = first + (cur >> HT_REF_COUNT_SHIFT);
@@ -204,7 +221,10 @@ HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
         overflow = !ht_ordered_bvh(HT_BVH_ARG r, inst.x, inst.y, res.hit, steps, stepLimit);
       }
       if (overflow) break;
-      if (sp == 0u) { finished = true; break; }
+      if (sp == 0u) {
+        finished = true;
+        break;
+      }
       sp--;
       cur = stack[sp];
       continue;
@@ -218,11 +238,17 @@ HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
     uint push;
     uint next = ht_order_children(hit0, hit1, tEnter0, tEnter1, HT_LOAD_TOP_NODE(cur).link, push);
     if (push != HT_REF_NONE) {
-      if (sp >= HT_BVH_MAX_DEPTH) { overflow = true; break; }
+      if (sp >= HT_BVH_MAX_DEPTH) {
+        overflow = true;
+        break;
+      }
       stack[sp] = push;
       sp++;
     }
-    if (next == HT_REF_NONE && sp == 0u) { finished = true; break; }
+    if (next == HT_REF_NONE && sp == 0u) {
+      finished = true;
+      break;
+    }
     if (next == HT_REF_NONE) {
       sp--;
       next = stack[sp];

@@ -69,14 +69,15 @@ class ProbePipeline {
 // Records the probe's dispatch over `count` invocations with its push constants, waits, and makes the shader
 // writes visible to the host.
 template <class Constants>
-void dispatchProbe(VulkanContext::Impl& vk, const std::uint32_t* code, std::size_t codeBytes, const Constants& constants,
-                   std::size_t count) {
+void dispatchProbe(VulkanContext::Impl& vk, const std::uint32_t* code, std::size_t codeBytes,
+                   const Constants& constants, std::size_t count) {
   ProbePipeline probe(vk, code, codeBytes, sizeof(Constants));
   OneShotCommands commands(vk);
   vkCmdBindPipeline(commands.cmd(), VK_PIPELINE_BIND_POINT_COMPUTE, probe.pipeline());
   vkCmdPushConstants(commands.cmd(), probe.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
   vkCmdDispatch(commands.cmd(), static_cast<std::uint32_t>((count + kProbeGroupSize - 1) / kProbeGroupSize), 1, 1);
-  VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+  VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                         VK_ACCESS_HOST_READ_BIT};
   vkCmdPipelineBarrier(commands.cmd(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost,
                        0, nullptr, 0, nullptr);
   commands.submitAndWait();
@@ -131,9 +132,14 @@ std::vector<gpu_shared::HtTraceResult> runTwoLevelProbe(VulkanContext& context, 
   const DeviceBuffer rayBuffer = uploadBuffer(vk, std::vector<gpu_shared::HtRay>(rays.begin(), rays.end()));
   const VkDeviceSize outputBytes = 2 * rays.size() * sizeof(glm::uvec4);
   DeviceBuffer output(vk, outputBytes, MemoryPlace::HostReadback);
-  const TwoLevelProbeConstants constants{topNodes.address(), instances.address(), blasNodes.address(),
-                                         triangles.address(),  rayBuffer.address(), output.address(),
-                                         static_cast<std::uint32_t>(rays.size()), stepLimit};
+  const TwoLevelProbeConstants constants{topNodes.address(),
+                                         instances.address(),
+                                         blasNodes.address(),
+                                         triangles.address(),
+                                         rayBuffer.address(),
+                                         output.address(),
+                                         static_cast<std::uint32_t>(rays.size()),
+                                         stepLimit};
   dispatchProbe(vk, ht_spv_two_level_probe, sizeof(ht_spv_two_level_probe), constants, rays.size());
 
   std::vector<glm::uvec4> words(2 * rays.size());
@@ -141,8 +147,8 @@ std::vector<gpu_shared::HtTraceResult> runTwoLevelProbe(VulkanContext& context, 
   std::vector<gpu_shared::HtTraceResult> results(rays.size());
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const glm::uvec4 hit = words[2 * i], info = words[2 * i + 1];
-    results[i].hit = gpu_shared::HtHit{glm::uintBitsToFloat(hit.x), hit.y, glm::uintBitsToFloat(hit.z),
-                                       glm::uintBitsToFloat(hit.w)};
+    results[i].hit =
+        gpu_shared::HtHit{glm::uintBitsToFloat(hit.x), hit.y, glm::uintBitsToFloat(hit.z), glm::uintBitsToFloat(hit.w)};
     results[i].steps = info.x;
     results[i].overflow = info.y != 0;
   }

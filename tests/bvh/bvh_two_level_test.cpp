@@ -14,8 +14,8 @@
 #include "bvh/cpu_traversal.h"
 #include "bvh/two_level_bvh.h"
 #include "bvh_test_util.h"
-#include "instanced_soup.h"
 #include "common/error.h"
+#include "instanced_soup.h"
 
 namespace ht::bvh {
 namespace {
@@ -73,9 +73,7 @@ uint32_t expectSameHits(const InstancedSoup& soup, const TwoLevelBvh& twoLevel, 
     const HtTraceResult b = traceClosestOrdered(flat, rays[i]);
     EXPECT_FALSE(a.overflow || b.overflow) << "ray " << i;
     EXPECT_TRUE(sameHit(a.hit, b.hit)) << "ray " << i << ": two-level vs flattened";
-    if (withBruteForce) {
-      EXPECT_TRUE(sameHit(b.hit, bruteForce(soup, rays[i]))) << "ray " << i << ": vs brute force";
-    }
+    if (withBruteForce) { EXPECT_TRUE(sameHit(b.hit, bruteForce(soup, rays[i]))) << "ray " << i << ": vs brute force"; }
     hits += a.hit.triId != gpu_shared::HT_MISS;
   }
   return hits;

@@ -47,12 +47,14 @@ TEST(FrameJobTest, AutoCameraStaysAtTheLoadBoundsAfterANodeMoves) {
   };
   const gpu::FrameCamera before = cameraOf(loaded), after = cameraOf(edited);
   ASSERT_EQ(before.index(), after.index());
-  std::visit([&](const auto& a) {
-    using Params = std::decay_t<decltype(a)>;
-    if constexpr (std::is_trivially_copyable_v<Params>) {
-      EXPECT_EQ(std::memcmp(&a, &std::get<Params>(after), sizeof(Params)), 0) << "the camera moved with the node";
-    }
-  }, before);
+  std::visit(
+      [&](const auto& a) {
+        using Params = std::decay_t<decltype(a)>;
+        if constexpr (std::is_trivially_copyable_v<Params>) {
+          EXPECT_EQ(std::memcmp(&a, &std::get<Params>(after), sizeof(Params)), 0) << "the camera moved with the node";
+        }
+      },
+      before);
 }
 
 TEST(PathRulesTest, FileNameComponents) {
@@ -148,9 +150,7 @@ TEST(DaemonConfigTest, RejectsBadValuesNamingTheField) {
   try {
     parseDaemonConfig(R"({"scene_root": "s", "output_root": "o", "limits": {"max_clients": -1}})", "t.json", "/");
     FAIL() << "accepted a negative limit";
-  } catch (const ConfigError& e) {
-    EXPECT_EQ(e.field(), "limits.max_clients");
-  }
+  } catch (const ConfigError& e) { EXPECT_EQ(e.field(), "limits.max_clients"); }
   EXPECT_THROW(parseDaemonConfig(R"({"output_root": "o"})", "t.json", "/"), ConfigError);
   EXPECT_THROW(parseDaemonConfig("{not json", "t.json", "/"), ConfigError);
 }
