@@ -189,10 +189,16 @@ Bvh2 buildBinnedSah(std::span<const glm::vec3> positions, std::span<const glm::u
                     const BuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   validateOptions(options);
-  BuildPrimitives prims = prepareBuildPrimitives(positions, triangles);
+  Bvh2 bvh = buildBinnedSahOverBoxes(prepareBuildPrimitives(positions, triangles), triangles.size(), options);
+  bvh.report.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return bvh;
+}
 
+Bvh2 buildBinnedSahOverBoxes(BuildPrimitives prims, uint64_t itemsIn, const BuildOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  validateOptions(options);
   Bvh2 bvh;
-  bvh.report.trianglesIn = triangles.size();
+  bvh.report.trianglesIn = itemsIn;
   bvh.report.trianglesDropped = prims.dropped;
   const uint64_t kept = prims.kept.size();
   if (kept > leafCapacity(options.maxLeafSize, options.maxDepth)) {

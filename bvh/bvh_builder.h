@@ -55,6 +55,12 @@ struct Bvh2 {
 Bvh2 buildBinnedSah(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
                     const BuildOptions& options);
 
+struct BuildPrimitives;
+
+// The same build over prepared boxes (prims.kept lists the ids to place; boxes and centroids are indexed by
+// id): the top level of a two-level BVH builds over instance boxes this way. itemsIn is reported as trianglesIn.
+Bvh2 buildBinnedSahOverBoxes(BuildPrimitives prims, uint64_t itemsIn, const BuildOptions& options);
+
 // SAH cost of a built tree with tinybvh's formula (C_trav = C_int = 1, half-area SA):
 // (1/SA(root)) * [sum over inner nodes SA(n) + sum over leaves SA(l) * count(l)].
 double sahCost(const Bvh2& bvh);

@@ -21,9 +21,8 @@ HtTraceResult traceOne(const GpuBvh& bvh, const HtRay& ray, uint32_t stepLimit) 
 // (cache friendly) and cheap and expensive regions of an image are spread over all threads.
 constexpr size_t kBlock = 1024;
 
-template <bool kAnyHit>
-std::vector<HtTraceResult> traceBatch(const GpuBvh& bvh, std::span<const HtRay> rays, uint32_t stepLimit,
-                                      uint32_t threads) {
+template <class TraceOne>
+std::vector<HtTraceResult> traceBatch(std::span<const HtRay> rays, uint32_t threads, TraceOne traceOneRay) {
   std::vector<HtTraceResult> results(rays.size());
   const size_t blocks = (rays.size() + kBlock - 1) / kBlock;
   uint32_t workers = threads != 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
@@ -32,7 +31,7 @@ std::vector<HtTraceResult> traceBatch(const GpuBvh& bvh, std::span<const HtRay> 
   auto work = [&] {
     for (size_t b = nextBlock++; b < blocks; b = nextBlock++) {
       const size_t end = std::min(rays.size(), (b + 1) * kBlock);
-      for (size_t i = b * kBlock; i < end; ++i) results[i] = traceOne<kAnyHit>(bvh, rays[i], stepLimit);
+      for (size_t i = b * kBlock; i < end; ++i) results[i] = traceOneRay(rays[i]);
     }
   };
   std::vector<std::thread> pool;
@@ -54,12 +53,32 @@ HtTraceResult traceAny(const GpuBvh& bvh, const HtRay& ray, uint32_t stepLimit) 
 
 std::vector<HtTraceResult> traceClosestBatch(const GpuBvh& bvh, std::span<const HtRay> rays, uint32_t stepLimit,
                                              uint32_t threads) {
-  return traceBatch<false>(bvh, rays, stepLimit, threads);
+  return traceBatch(rays, threads, [&](const HtRay& r) { return traceOne<false>(bvh, r, stepLimit); });
 }
 
 std::vector<HtTraceResult> traceAnyBatch(const GpuBvh& bvh, std::span<const HtRay> rays, uint32_t stepLimit,
                                          uint32_t threads) {
-  return traceBatch<true>(bvh, rays, stepLimit, threads);
+  return traceBatch(rays, threads, [&](const HtRay& r) { return traceOne<true>(bvh, r, stepLimit); });
+}
+
+HtTraceResult traceClosestOrdered(const GpuBvh& bvh, const HtRay& ray, uint32_t stepLimit) {
+  if (bvh.nodes.empty()) return gpu_shared::ht_trace_miss(ray);
+  return gpu_shared::ht_trace_closest_ordered(viewOf(bvh), ray, stepLimit);
+}
+
+HtTraceResult traceClosestTwoLevel(const TwoLevelBvh& bvh, const HtRay& ray, uint32_t stepLimit) {
+  const gpu_shared::TwoLevelView view = bvh.view();
+  return gpu_shared::ht_trace_two_level_ordered(view, view.blas, ray, stepLimit);
+}
+
+std::vector<HtTraceResult> traceClosestOrderedBatch(const GpuBvh& bvh, std::span<const HtRay> rays, uint32_t stepLimit,
+                                                    uint32_t threads) {
+  return traceBatch(rays, threads, [&](const HtRay& r) { return traceClosestOrdered(bvh, r, stepLimit); });
+}
+
+std::vector<HtTraceResult> traceClosestTwoLevelBatch(const TwoLevelBvh& bvh, std::span<const HtRay> rays,
+                                                     uint32_t stepLimit, uint32_t threads) {
+  return traceBatch(rays, threads, [&](const HtRay& r) { return traceClosestTwoLevel(bvh, r, stepLimit); });
 }
 
 }  // namespace ht::bvh

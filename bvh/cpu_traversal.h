@@ -7,6 +7,7 @@
 
 #include "bvh/bvh_traversal.h"
 #include "bvh/gpu_layout.h"
+#include "bvh/two_level_bvh.h"
 
 namespace ht::bvh {
 
@@ -27,5 +28,19 @@ std::vector<HtTraceResult> traceClosestBatch(const GpuBvh& bvh, std::span<const 
 std::vector<HtTraceResult> traceAnyBatch(const GpuBvh& bvh, std::span<const HtRay> rays,
                                          uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT,
                                          uint32_t threads = 0);
+
+// Order-free closest hit (ordered_traversal.h): the least (t, triangle id), identical for every tree over the
+// same triangles. traceClosestTwoLevel over a TwoLevelBvh equals traceClosestOrdered over the flattened BVH of
+// the same soup bit for bit.
+HtTraceResult traceClosestOrdered(const GpuBvh& bvh, const HtRay& ray,
+                                  uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
+HtTraceResult traceClosestTwoLevel(const TwoLevelBvh& bvh, const HtRay& ray,
+                                   uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
+std::vector<HtTraceResult> traceClosestOrderedBatch(const GpuBvh& bvh, std::span<const HtRay> rays,
+                                                    uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT,
+                                                    uint32_t threads = 0);
+std::vector<HtTraceResult> traceClosestTwoLevelBatch(const TwoLevelBvh& bvh, std::span<const HtRay> rays,
+                                                     uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT,
+                                                     uint32_t threads = 0);
 
 }  // namespace ht::bvh

@@ -96,18 +96,18 @@ std::vector<GpuBvhNode> packInnerNodes(const Bvh2& bvh) {
 
 }  // namespace
 
-GpuBvh toGpuLayout(const Bvh2& bvh, std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles) {
+std::vector<GpuBvhNode> toGpuNodes(const Bvh2& bvh) {
   if (bvh.primIndex.size() > gpu_shared::HT_REF_INDEX_MASK) throwLayout("more than 2^27 triangle slots");
+  if (bvh.nodes.empty()) return {packNode(ChildSlot{}, ChildSlot{})};
+  if (bvh.nodes[0].isLeaf()) return {packNode(leafSlot(bvh, bvh.nodes[0]), ChildSlot{})};
+  return packInnerNodes(bvh);
+}
+
+GpuBvh toGpuLayout(const Bvh2& bvh, std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles) {
   GpuBvh gpu;
   gpu.report = bvh.report;
+  gpu.nodes = toGpuNodes(bvh);
   gpu.triangles = packTriangles(bvh, positions, triangles);
-  if (bvh.nodes.empty()) {
-    gpu.nodes.push_back(packNode(ChildSlot{}, ChildSlot{}));
-  } else if (bvh.nodes[0].isLeaf()) {
-    gpu.nodes.push_back(packNode(leafSlot(bvh, bvh.nodes[0]), ChildSlot{}));
-  } else {
-    gpu.nodes = packInnerNodes(bvh);
-  }
   return gpu;
 }
 

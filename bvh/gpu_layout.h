@@ -23,6 +23,9 @@ struct GpuBvh {
 // them), or the tree exceeds the packed-reference limits of bvh_traversal.h (2^27 nodes or slots).
 GpuBvh toGpuLayout(const Bvh2& bvh, std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles);
 
+// The node part of toGpuLayout alone (leaf references index bvh.primIndex): the top level of a two-level BVH.
+std::vector<gpu_shared::GpuBvhNode> toGpuNodes(const Bvh2& bvh);
+
 // buildBinnedSah + toGpuLayout.
 GpuBvh buildGpuBvh(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
                    const BuildOptions& options);

@@ -1,11 +1,13 @@
 // kernel_probe.h - runs small shared C++/GLSL functions on the GPU on their own (no scene, no renderer), so tests
 // can compare the GPU build of a shared header with its C++ build bit for bit.
 #pragma once
+#include <cstdint>
 #include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "bvh/two_level_bvh.h"
 #include "gpu/vulkan_context.h"
 
 namespace ht::gpu {
@@ -18,5 +20,12 @@ struct OffsetRayProbeInput {
 // ht_offset_ray(p, n) (bvh/offset_ray.h) evaluated by gpu/shaders/offset_ray_probe.comp, one result per input, in
 // order. Throws GpuError on a Vulkan failure.
 std::vector<glm::vec3> runOffsetRayProbe(VulkanContext& context, std::span<const OffsetRayProbeInput> inputs);
+
+// ht_trace_two_level_ordered (bvh/ordered_traversal.h) over `bvh`'s buffers, evaluated by
+// gpu/shaders/two_level_probe.comp: one result per ray, in order (hit, steps, overflow). Throws GpuError on a Vulkan
+// failure.
+std::vector<gpu_shared::HtTraceResult> runTwoLevelProbe(VulkanContext& context, const bvh::TwoLevelBvh& bvh,
+                                                        std::span<const gpu_shared::HtRay> rays,
+                                                        std::uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
 
 }  // namespace ht::gpu

@@ -285,6 +285,7 @@ void readNodeMeshes(LoadContext& ctx, const NodeInstance& inst, std::vector<Prim
     ctx.nodeNames.insert(movable.name);
   }
   movable.world = inst.world;
+  movable.mesh = node.mesh;
   ctx.scene.nodes.push_back(std::move(movable));
   for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
     const tinygltf::Primitive& prim = mesh.primitives[p];

@@ -1,6 +1,7 @@
 // scene.cpp - Scene queries: bounds and the feature flags renderers use to pick code paths.
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ht {
@@ -19,6 +20,29 @@ Bounds3 Scene::bounds() const {
       if (v < positions.size() && isFinite(positions[v])) b.extend(positions[v]);
     }
   return b;
+}
+
+// Node ranges in triangle order, with the gaps between them (and before/after them) as node-less instances.
+std::vector<SceneInstance> Scene::instances() const {
+  std::vector<SceneInstance> ranges;
+  for (std::size_t n = 0; n < nodes.size(); ++n) {
+    if (nodes[n].triangleCount == 0) continue;
+    ranges.push_back({nodes[n].firstTriangle, nodes[n].triangleCount, nodes[n].mesh, static_cast<std::int32_t>(n)});
+  }
+  std::sort(ranges.begin(), ranges.end(),
+            [](const SceneInstance& a, const SceneInstance& b) { return a.firstTriangle < b.firstTriangle; });
+  std::vector<SceneInstance> out;
+  std::uint32_t next = 0;
+  auto addGap = [&](std::uint32_t end) {
+    if (end > next) out.push_back({next, end - next, -1, -1});
+  };
+  for (const SceneInstance& r : ranges) {
+    addGap(r.firstTriangle);
+    out.push_back(r);
+    next = std::max(next, r.firstTriangle + r.triangleCount);
+  }
+  addGap(static_cast<std::uint32_t>(triangles.size()));
+  return out;
 }
 
 // Features of the materials that triangles actually use (a glTF file may define unused materials), plus

@@ -55,8 +55,19 @@ struct SceneNode {
   std::string name;  // glTF node name ("node<i>" if unnamed), built-in object name
   std::uint32_t firstVertex = 0, vertexCount = 0;
   std::uint32_t firstTriangle = 0, triangleCount = 0;
-  glm::dmat4 world{1.0};  // the world matrix the vertices are currently transformed by (identity for
-                          // built-in objects, whose vertices are generated in world space)
+  glm::dmat4 world{1.0};   // the world matrix the vertices are currently transformed by (identity for
+                           // built-in objects, whose vertices are generated in world space)
+  std::int32_t mesh = -1;  // the glTF mesh this node instances (nodes with the same mesh have the same
+                           // triangles in the same order under different matrices); -1 = its own
+};
+
+// A contiguous range of Scene::triangles placed by one node (or, with node = -1, triangles that belong to no
+// node), for two-level acceleration structures (docs/REUSE.md §3). sceneInstances covers every triangle once,
+// in triangle order.
+struct SceneInstance {
+  std::uint32_t firstTriangle = 0, triangleCount = 0;
+  std::int32_t mesh = -1;  // SceneNode::mesh, -1 for the rest
+  std::int32_t node = -1;  // index into Scene::nodes, -1 for triangles outside every node
 };
 
 struct SceneFeatures {
@@ -78,6 +89,7 @@ struct Scene {
   glm::vec3 ambient{0.15f};                   // constant ambient irradiance term applied to diffuse surfaces
 
   Bounds3 bounds() const;
+  std::vector<SceneInstance> instances() const;
   SceneFeatures features() const;
   std::size_t triangleCount() const { return triangles.size(); }
 };

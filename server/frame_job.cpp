@@ -20,7 +20,7 @@ DisplayConfig displayForSession(const DisplayConfig& display, const SceneSession
 
 gpu::DisplayCamera jobCamera(const FrameJob& job) {
   const DisplayConfig config = displayForSession(job.display->config, *job.session);
-  return gpu::makeDisplayCamera(config, job.session->content->scene.bounds(), job.path, job.display->rayTable);
+  return gpu::makeDisplayCamera(config, job.session->content->loadBounds, job.path, job.display->rayTable);
 }
 
 gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job) {

@@ -58,6 +58,7 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
   limits.maxTriangles = limits_.maxTriangles;
   limits.maxVertices = 3 * limits_.maxTriangles;
   content->scene = source.name.rfind("builtin:", 0) == 0 ? loadScene(source.name) : loadScene(source, limits);
+  content->loadBounds = content->scene.bounds();
   content->loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (content->scene.triangleCount() > limits_.maxTriangles) {
     throw LimitExceeded("scene has " + std::to_string(content->scene.triangleCount()) +

@@ -33,6 +33,8 @@ namespace ht::server {
 struct SceneContent {
   std::string contentKey;
   Scene scene;
+  Bounds3 loadBounds;  // the scene's bounds when it was loaded: automatic camera placement stays there after edits
+                       // (a moved node must not re-centre the whole view, docs/REUSE.md §6 item 9)
   std::shared_ptr<gpu::Renderer> renderer;  // used on the render worker thread only, and destroyed there
   double loadMs = 0.0;
   std::uint64_t memoryBytes = 0;  // estimate: sceneMemoryBytes(scene)

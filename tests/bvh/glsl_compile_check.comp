@@ -17,6 +17,7 @@ layout(buffer_reference, scalar, buffer_reference_align = 16) readonly buffer Tr
 layout(buffer_reference, scalar, buffer_reference_align = 16) readonly buffer RayBuffer { HtRay rays[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 16) writeonly buffer HitBuffer { HtHit hits[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 16) writeonly buffer Vec4Buffer { vec4 v[]; };
+layout(buffer_reference, scalar, buffer_reference_align = 16) readonly buffer InstanceBuffer { uvec4 v[]; };
 
 layout(push_constant, scalar) uniform Push {
   NodeBuffer nodes;
@@ -24,6 +25,8 @@ layout(push_constant, scalar) uniform Push {
   RayBuffer rays;
   HitBuffer hits;
   Vec4Buffer extra;
+  NodeBuffer topNodes;
+  InstanceBuffer instances;
   uint rayCount;
   uint stepLimit;
 } pc;
@@ -32,6 +35,9 @@ layout(push_constant, scalar) uniform Push {
 #define HT_LOAD_TRI(i) pc.triangles.v[i]
 #include "bvh/bvh_traversal.h"
 #include "bvh/offset_ray.h"
+#define HT_LOAD_TOP_NODE(i) pc.topNodes.nodes[i]
+#define HT_LOAD_INSTANCE(i) pc.instances.v[i]
+#include "bvh/ordered_traversal.h"
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -40,6 +46,8 @@ void main() {
 
   HtTraceResult closest = ht_trace_closest(ray, pc.stepLimit);
   HtTraceResult any = ht_trace_any(ray, pc.stepLimit);
+  HtTraceResult ordered = ht_trace_closest_ordered(ray, pc.stepLimit);
+  HtTraceResult twoLevel = ht_trace_two_level_ordered(ray, pc.stepLimit);
   pc.hits.hits[2u * i] = closest.hit;
   pc.hits.hits[2u * i + 1u] = any.hit;
 
@@ -59,6 +67,7 @@ void main() {
   vec3 offset = ht_offset_ray(ray.origin, ray.dir);
   float flags = float(hit0) + 2.0f * float(hit1) + 4.0f * float(triHit) + 8.0f * float(closest.overflow) +
                 16.0f * float(ht_ray_is_valid(ray)) + ht_safe_rcp(ray.dir.x) + ht_min_nan(t0, t1) +
-                ht_max_nan(u, v) + float(closest.steps + any.steps);
+                ht_max_nan(u, v) + float(closest.steps + any.steps) +
+                ordered.hit.t + twoLevel.hit.t;
   pc.extra.v[i] = vec4(offset, flags + t);
 }

@@ -65,6 +65,50 @@ TEST(SceneEdits, GltfNodesAreRecordedWithTheirRanges) {
 
 // Moving "right" from translation (3, 0, 0) to a rotated, scaled, translated matrix equals loading the file written
 // with that matrix; "left" does not move.
+TEST(SceneEdits, NodesRecordTheMeshTheyInstanceAndInstancesCoverEveryTriangle) {
+  TempDir dir;
+  GltfBuilder b;
+  const int pos = b.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  const int shared = b.addMesh({{"attributes", {{"POSITION", pos}}}});
+  const int other = b.addMesh({{"attributes", {{"POSITION", pos}}}});
+  b.setScene({b.addNode({{"mesh", shared}, {"name", "a"}}), b.addNode({{"name", "empty"}}),
+              b.addNode({{"mesh", other}, {"name", "b"}, {"translation", {0, 0, 2}}}),
+              b.addNode({{"mesh", shared}, {"name", "c"}, {"translation", {0, 0, 5}}})});
+  const Scene s = loadGltf(b.writeGltf(dir, "inst.gltf"));
+  ASSERT_EQ(s.nodes.size(), 3u);  // the node without a mesh places nothing
+  EXPECT_EQ(s.nodes[0].mesh, shared);
+  EXPECT_EQ(s.nodes[1].mesh, other);
+  EXPECT_EQ(s.nodes[2].mesh, shared);
+  const std::vector<SceneInstance> inst = s.instances();
+  ASSERT_EQ(inst.size(), 3u);
+  for (std::size_t i = 0; i < inst.size(); ++i) {
+    EXPECT_EQ(inst[i].node, static_cast<int>(i));
+    EXPECT_EQ(inst[i].mesh, s.nodes[i].mesh);
+    EXPECT_EQ(inst[i].firstTriangle, i);
+    EXPECT_EQ(inst[i].triangleCount, 1u);
+  }
+}
+
+TEST(SceneEdits, InstancesFillTheGapsBetweenNodesWithNodelessRanges) {
+  Scene s;
+  s.triangles.resize(10, glm::uvec3(0));
+  SceneNode n;
+  n.firstTriangle = 3;
+  n.triangleCount = 4;
+  n.mesh = 7;
+  s.nodes.push_back(n);
+  const std::vector<SceneInstance> inst = s.instances();
+  ASSERT_EQ(inst.size(), 3u);
+  EXPECT_EQ(inst[0].firstTriangle, 0u);
+  EXPECT_EQ(inst[0].triangleCount, 3u);
+  EXPECT_EQ(inst[0].node, -1);
+  EXPECT_EQ(inst[1].node, 0);
+  EXPECT_EQ(inst[1].mesh, 7);
+  EXPECT_EQ(inst[2].firstTriangle, 7u);
+  EXPECT_EQ(inst[2].triangleCount, 3u);
+  EXPECT_EQ(inst[2].mesh, -1);
+}
+
 TEST(SceneEdits, MovedNodeEqualsLoadingWithTheNewMatrix) {
   TempDir dir;
   const std::vector<double> m = {0, 2, 0, 0, -2, 0, 0, 0, 0, 0, 2, 0, 10, 20, 30, 1};  // R_z(90) * 2, then T

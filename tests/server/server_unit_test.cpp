@@ -2,11 +2,19 @@
 // config parsing and listen-address rules.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
+#include <variant>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "camera_models/display_config.h"
+#include "scene/scene_edits.h"
 
 #include "common/error.h"
 #include "server/daemon_config.h"
 #include "server/file_sink.h"
+#include "server/frame_job.h"
 #include "server/listen_address.h"
 #include "server/path_rules.h"
 #include "server/status_mapping.h"
@@ -14,6 +22,40 @@
 
 namespace ht::server::test {
 namespace {
+
+// UpdateScene copies the content and moves a node (SceneLibrary::editScene); the automatic camera placement must
+// stay where the scene was loaded instead of following the edited bounds every frame.
+TEST(FrameJobTest, AutoCameraStaysAtTheLoadBoundsAfterANodeMoves) {
+  auto loaded = std::make_shared<SceneContent>();
+  loaded->scene = ht::loadScene("builtin:showcase");
+  loaded->loadBounds = loaded->scene.bounds();
+  auto edited = std::make_shared<SceneContent>(*loaded);
+  ASSERT_FALSE(edited->scene.nodes.empty());
+  const SceneNode& node = edited->scene.nodes.front();
+  setNodeWorldMatrix(edited->scene, node.name, glm::translate(node.world, glm::dvec3(5.0, 2.0, 0.0)));
+  ASSERT_NE(edited->scene.bounds().hi.x, loaded->scene.bounds().hi.x);  // the move changed the bounds
+
+  auto display = std::make_shared<RegisteredDisplay>();
+  display->config = loadDisplayConfig(std::string(HT_SOURCE_DIR) + "/configs/portrait.json");
+  auto cameraOf = [&](std::shared_ptr<SceneContent> content) {
+    auto session = std::make_shared<SceneSession>();
+    session->content = std::move(content);
+    FrameJob job;
+    job.session = session;
+    job.display = display;
+    return jobCamera(job).camera;
+  };
+  const gpu::FrameCamera before = cameraOf(loaded), after = cameraOf(edited);
+  ASSERT_EQ(before.index(), after.index());
+  std::visit(
+      [&](const auto& a) {
+        using Params = std::decay_t<decltype(a)>;
+        if constexpr (std::is_trivially_copyable_v<Params>) {
+          EXPECT_EQ(std::memcmp(&a, &std::get<Params>(after), sizeof(Params)), 0) << "the camera moved with the node";
+        }
+      },
+      before);
+}
 
 TEST(PathRulesTest, FileNameComponents) {
   EXPECT_NO_THROW(checkFileNameComponent("name", "take_1.v2-a"));

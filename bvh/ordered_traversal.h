@@ -1,0 +1,264 @@
+// ordered_traversal.h - closest-hit traversal whose result does not depend on the tree: one source for the CPU
+// (C++) and the GPU (GLSL), for a single BVH and for a two-level BVH (docs/BVH.md §9, docs/REUSE.md §3).
+//
+// The closest hit is defined as the least (t, triangle id) over all triangles the ray meets in [tmin, tmax],
+// with t the value ht_intersect_triangle computes for the ray's own tmax. Every tree over the same world-space
+// triangles therefore returns the same (t, id, u, v) bit for bit: a flattened BVH, a two-level BVH, a BVH
+// rebuilt after an edit, whatever the visiting order. ht_trace_closest (bvh_traversal.h) is not order-free:
+// its triangle test compares T against tmax*det with tmax = the current closest t, which can reject a
+// triangle whose rounded t equals (or is an ulp below) the current one, and equal t keeps whichever triangle
+// came last; its results differ between trees at the last ulp and on ties.
+//
+// Culling with the current best hit stays exact because it is loosened: boxes and the triangle pre-test use
+// tCull = min(bestT * (1 + 2^-12), ray.tmax) instead of bestT. A triangle whose rounded t is <= bestT has
+// T/det <= bestT (1 + 2 ulp), so the pre-test `T > tCull*det` never rejects it; its box is entered because the
+// exact hit point lies in the box and the conservative slab test (slab_test.h) enters boxes up to tCull, as
+// long as the rounded t is within 2^-12 (relative) of the exact one -- only a hit on a nearly degenerate
+// projection could be off by more, which is why the tests also compare against a brute-force loop over all
+// triangles. Among the triangles that pass, the least (t, id) wins. Cost: triangles up to 2^-12 beyond the
+// best hit are still tested (negligible).
+//
+// Buffer access: as in bvh_traversal.h (HT_LOAD_NODE, HT_LOAD_TRI, HT_LOAD_NODE_LINK, HT_LOAD_TRI_ID) for the
+// bottom-level nodes and triangle slots of all instances, concatenated; a BVH's node and slot indices are local
+// and offset by its nodeBase and slotBase. The two-level trace also reads top-level nodes HT_LOAD_TOP_NODE(i)
+// (a GpuBvhNode whose leaves list instance-table entries) and HT_LOAD_INSTANCE(i) (uvec4: nodeBase, slotBase,
+// instance index, 0). C++ passes `const TwoLevelView& tl_` for them.
+#ifndef HT_ORDERED_TRAVERSAL_H
+#define HT_ORDERED_TRAVERSAL_H
+#include "bvh/bvh_traversal.h"
+
+#ifdef HT_GLSL
+#define HT_TWO_LEVEL_PARAM
+#define HT_TWO_LEVEL_ARG
+#else
+#define HT_TWO_LEVEL_PARAM const TwoLevelView &tl_,
+#define HT_TWO_LEVEL_ARG tl_,
+#ifndef HT_LOAD_TOP_NODE
+#define HT_LOAD_TOP_NODE(i) tl_.topNodes[i]
+#endif
+#ifndef HT_LOAD_INSTANCE
+#define HT_LOAD_INSTANCE(i) tl_.instances[i]
+#endif
+#endif
+
+HT_SHARED_BEGIN
+
+#ifndef HT_GLSL
+// Host view of a two-level BVH: the top level and the bottom levels of all instances (blas).
+struct TwoLevelView {
+  const GpuBvhNode* topNodes;
+  const uvec4* instances;  // per top-level leaf entry: (nodeBase, slotBase, instance index, 0)
+  BvhView blas;
+};
+#endif
+
+// 1 + 2^-12: the loosening of the current best t used for culling (see the header comment).
+HT_CONST float HT_ORDERED_CULL_SCALE = 1.000244140625f;
+
+// Culling distance for the current best hit (a miss culls at the ray's own tmax).
+HT_INLINE float ht_ordered_cull_t(HT_IN(HtHit) best, float rayTmax) {
+  if (best.triId == HT_MISS) return rayTmax;
+  return min(best.t * HT_ORDERED_CULL_SCALE, rayTmax);
+}
+
+// True when (t, id) comes before the best hit so far: smaller t, or equal t and smaller triangle id.
+HT_INLINE bool ht_hit_precedes(float t, uint id, HT_IN(HtHit) best) {
+  return t < best.t || (t == best.t && id < best.triId);
+}
+
+// Ordered traversal state of one ray, carried across the BVHs of a two-level trace.
+struct HtOrderedRay {
+  HtSlabRay slab;
+  HtWatertightRay tri;
+  float tmax;  // the ray's own tmax
+};
+
+HT_INLINE HtOrderedRay ht_make_ordered_ray(HT_IN(HtRay) ray) {
+  HtOrderedRay r;
+  r.slab = ht_make_slab_ray(ray.origin, ray.dir, ray.tmin);
+  r.tri = ht_make_watertight_ray(ray.origin, ray.dir, ray.tmin);
+  r.tmax = ray.tmax;
+  return r;
+}
+
+// After both child boxes of a node were tested: the child to visit next (HT_REF_NONE: neither, pop the stack)
+// and in `push` the farther child when both were hit (else HT_REF_NONE). Nearer child first.
+HT_INLINE uint ht_order_children(bool hit0, bool hit1, float tEnter0, float tEnter1, uvec4 link, HT_OUT(uint) push) {
+  uint ref0 = ht_child_ref(link.x, link.z);
+  uint ref1 = ht_child_ref(link.y, link.w);
+  push = HT_REF_NONE;
+  if (hit0 && hit1) {
+    bool swapOrder = tEnter1 < tEnter0;
+    push = swapOrder ? ref0 : ref1;
+    return swapOrder ? ref1 : ref0;
+  }
+  if (hit0 || hit1) return hit0 ? ref0 : ref1;
+  return HT_REF_NONE;
+}
+
+// Tests the `count` triangle slots of a leaf starting at global slot `slot0` and keeps the least (t, id).
+HT_INLINE void ht_ordered_leaf(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint slot0, uint count, HT_INOUT(HtHit) best,
+                               HT_INOUT(uint) steps, uint stepLimit, HT_INOUT(bool) overflow) {
+  uint slot = slot0 * HT_TRI_STRIDE;
+  uint slotEnd = slot + count * HT_TRI_STRIDE;
+  for (; slot < slotEnd; slot += HT_TRI_STRIDE) {
+    steps++;
+    if (steps > stepLimit) {
+      overflow = true;
+      break;
+    }
+    vec3 v0 = vec3(HT_LOAD_TRI(slot).x, HT_LOAD_TRI(slot).y, HT_LOAD_TRI(slot).z);
+    vec3 v1 = vec3(HT_LOAD_TRI(slot + 1u).x, HT_LOAD_TRI(slot + 1u).y, HT_LOAD_TRI(slot + 1u).z);
+    vec3 v2 = vec3(HT_LOAD_TRI(slot + 2u).x, HT_LOAD_TRI(slot + 2u).y, HT_LOAD_TRI(slot + 2u).z);
+    float t;
+    float u;
+    float v;
+    if (ht_intersect_triangle(r.tri, v0, v1, v2, ht_ordered_cull_t(best, r.tmax), t, u, v)) {
+      uint id = HT_LOAD_TRI_ID(slot);
+      if (ht_hit_precedes(t, id, best)) {
+        best.t = t;
+        best.triId = id;
+        best.u = u;
+        best.v = v;
+      }
+    }
+  }
+}
+
+// Walks one BVH (root = local node 0 at nodeBase; leaves' slots offset by slotBase), updating best.
+// Returns false when the walk did not finish (step limit, stack, or a driver that ended the loop).
+HT_INLINE bool ht_ordered_bvh(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint nodeBase, uint slotBase, HT_INOUT(HtHit) best,
+                              HT_INOUT(uint) steps, uint stepLimit) {
+  uint stack[HT_BVH_MAX_DEPTH];
+  uint sp = 0u;
+  uint cur = 0u;
+  bool overflow = false;
+  bool finished = false;
+  while (!overflow) {
+    steps++;
+    if (steps > stepLimit) {
+      overflow = true;
+      break;
+    }
+    if ((cur >> HT_REF_COUNT_SHIFT) != 0u) {
+      ht_ordered_leaf(HT_BVH_ARG r, slotBase + (cur & HT_REF_INDEX_MASK), cur >> HT_REF_COUNT_SHIFT, best, steps,
+                      stepLimit, overflow);
+      if (overflow) break;
+      if (sp == 0u) {
+        finished = true;
+        break;
+      }
+      sp--;
+      cur = stack[sp];
+      continue;
+    }
+    uint node = nodeBase + cur;
+    bool hit0;
+    bool hit1;
+    float tEnter0;
+    float tEnter1;
+    ht_slab_boxes(r.slab, HT_LOAD_NODE(node).c0xy, HT_LOAD_NODE(node).c1xy, HT_LOAD_NODE(node).c01z,
+                  ht_ordered_cull_t(best, r.tmax), hit0, hit1, tEnter0, tEnter1);
+    uvec4 link = uvec4(0u);
+    if (hit0 || hit1) link = HT_LOAD_NODE_LINK(node);
+    uint push;
+    uint next = ht_order_children(hit0, hit1, tEnter0, tEnter1, link, push);
+    if (push != HT_REF_NONE) {
+      if (sp >= HT_BVH_MAX_DEPTH) {
+        overflow = true;
+        break;
+      }
+      stack[sp] = push;
+      sp++;
+    }
+    if (next == HT_REF_NONE && sp == 0u) {
+      finished = true;
+      break;
+    }
+    if (next == HT_REF_NONE) {
+      sp--;
+      next = stack[sp];
+    }
+    cur = next;
+  }
+  return finished;
+}
+
+// Least (t, id) hit of a single BVH (nodes and slots from index 0).
+HT_INLINE HtTraceResult ht_trace_closest_ordered(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
+  HtTraceResult res = ht_trace_miss(ray);
+  if (!ht_ray_is_valid(ray)) return res;
+  HtOrderedRay r = ht_make_ordered_ray(ray);
+  uint steps = 0u;
+  bool finished = ht_ordered_bvh(HT_BVH_ARG r, 0u, 0u, res.hit, steps, stepLimit);
+  res.steps = steps;
+  res.overflow = !finished;
+  return res;
+}
+
+// Least (t, id) hit of a two-level BVH: the top level over instance boxes, each instance's own BVH below.
+HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
+  HtTraceResult res = ht_trace_miss(ray);
+  if (!ht_ray_is_valid(ray)) return res;
+  HtOrderedRay r = ht_make_ordered_ray(ray);
+  uint stack[HT_BVH_MAX_DEPTH];
+  uint sp = 0u;
+  uint cur = 0u;
+  uint steps = 0u;
+  bool overflow = false;
+  bool finished = false;
+  while (!overflow) {
+    steps++;
+    if (steps > stepLimit) {
+      overflow = true;
+      break;
+    }
+    if ((cur >> HT_REF_COUNT_SHIFT) != 0u) {
+      uint first = cur & HT_REF_INDEX_MASK;
+      uint end = first + (cur >> HT_REF_COUNT_SHIFT);
+      for (uint e = first; e < end && !overflow; e++) {
+        uvec4 inst = HT_LOAD_INSTANCE(e);
+        overflow = !ht_ordered_bvh(HT_BVH_ARG r, inst.x, inst.y, res.hit, steps, stepLimit);
+      }
+      if (overflow) break;
+      if (sp == 0u) {
+        finished = true;
+        break;
+      }
+      sp--;
+      cur = stack[sp];
+      continue;
+    }
+    bool hit0;
+    bool hit1;
+    float tEnter0;
+    float tEnter1;
+    ht_slab_boxes(r.slab, HT_LOAD_TOP_NODE(cur).c0xy, HT_LOAD_TOP_NODE(cur).c1xy, HT_LOAD_TOP_NODE(cur).c01z,
+                  ht_ordered_cull_t(res.hit, r.tmax), hit0, hit1, tEnter0, tEnter1);
+    uint push;
+    uint next = ht_order_children(hit0, hit1, tEnter0, tEnter1, HT_LOAD_TOP_NODE(cur).link, push);
+    if (push != HT_REF_NONE) {
+      if (sp >= HT_BVH_MAX_DEPTH) {
+        overflow = true;
+        break;
+      }
+      stack[sp] = push;
+      sp++;
+    }
+    if (next == HT_REF_NONE && sp == 0u) {
+      finished = true;
+      break;
+    }
+    if (next == HT_REF_NONE) {
+      sp--;
+      next = stack[sp];
+    }
+    cur = next;
+  }
+  res.steps = steps;
+  res.overflow = !finished;
+  return res;
+}
+
+HT_SHARED_END
+#endif

@@ -1,0 +1,233 @@
+// bvh_two_level_test.cpp - the two-level BVH returns the flattened BVH's closest hits bit for bit: random scenes of
+// instanced meshes, random node moves (rigid, scaled, mirrored), ties, placements that make triangles degenerate or
+// non-finite. Both are also checked against a brute-force loop over every triangle (least (t, id)).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "bvh/build_primitives.h"
+#include "bvh/bvh_layout_choice.h"
+#include "bvh/cpu_traversal.h"
+#include "bvh/two_level_bvh.h"
+#include "bvh_test_util.h"
+#include "common/error.h"
+#include "instanced_soup.h"
+
+namespace ht::bvh {
+namespace {
+
+using gpu_shared::HtHit;
+using gpu_shared::HtRay;
+using gpu_shared::HtTraceResult;
+using test::InstancedSoup;
+using test::Mesh;
+using test::randomPlacement;
+using test::randomRays;
+using test::randomScene;
+
+uint32_t bits(float f) {
+  uint32_t b;
+  std::memcpy(&b, &f, 4);
+  return b;
+}
+
+// Least (t, id) over every usable triangle, each tested with the ray's own tmax.
+HtHit bruteForce(const InstancedSoup& soup, const HtRay& ray) {
+  HtHit best = gpu_shared::ht_trace_miss(ray).hit;
+  if (!gpu_shared::ht_ray_is_valid(ray)) return best;
+  const gpu_shared::HtWatertightRay r = gpu_shared::ht_make_watertight_ray(ray.origin, ray.dir, ray.tmin);
+  for (const InstanceRange& range : soup.ranges) {
+    for (uint32_t id = range.firstTriangle; id < range.firstTriangle + range.triangleCount; ++id) {
+      const glm::uvec3& tri = soup.triangles[id];
+      if (!isUsableTriangle(soup.positions, tri)) continue;
+      float t, u, v;
+      if (gpu_shared::ht_intersect_triangle(r, soup.positions[tri.x], soup.positions[tri.y], soup.positions[tri.z],
+                                            ray.tmax, t, u, v) &&
+          gpu_shared::ht_hit_precedes(t, id, best)) {
+        best = HtHit{t, id, u, v};
+      }
+    }
+  }
+  return best;
+}
+
+::testing::AssertionResult sameHit(const HtHit& a, const HtHit& b) {
+  if (a.triId == b.triId && bits(a.t) == bits(b.t) && bits(a.u) == bits(b.u) && bits(a.v) == bits(b.v))
+    return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "(t " << a.t << ", id " << a.triId << ", u " << a.u << ", v " << a.v
+                                       << ") vs (t " << b.t << ", id " << b.triId << ", u " << b.u << ", v " << b.v
+                                       << ")";
+}
+
+// Two-level == flattened (rebuilt from scratch) == brute force, for every ray; returns the number of hits.
+uint32_t expectSameHits(const InstancedSoup& soup, const TwoLevelBvh& twoLevel, const std::vector<HtRay>& rays,
+                        bool withBruteForce) {
+  const GpuBvh flat = buildGpuBvh(soup.positions, soup.triangles, BuildOptions{});
+  uint32_t hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const HtTraceResult a = traceClosestTwoLevel(twoLevel, rays[i]);
+    const HtTraceResult b = traceClosestOrdered(flat, rays[i]);
+    EXPECT_FALSE(a.overflow || b.overflow) << "ray " << i;
+    EXPECT_TRUE(sameHit(a.hit, b.hit)) << "ray " << i << ": two-level vs flattened";
+    if (withBruteForce) { EXPECT_TRUE(sameHit(b.hit, bruteForce(soup, rays[i]))) << "ray " << i << ": vs brute force"; }
+    hits += a.hit.triId != gpu_shared::HT_MISS;
+  }
+  return hits;
+}
+
+TEST(BvhTwoLevelTest, RandomScenesAndMovesMatchTheFlattenedBvhBitForBit) {
+  for (uint32_t seed = 1; seed <= 4; ++seed) {
+    std::mt19937 rng(seed);
+    InstancedSoup soup = randomScene(rng, 6 + 3 * seed);
+    TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
+    EXPECT_LE(twoLevel.shapeCount(), 3u);  // one tree shape per mesh, shared by its instances
+    std::vector<HtRay> rays = randomRays(rng, soup, test::scaled(1500, 300));
+    EXPECT_GT(expectSameHits(soup, twoLevel, rays, true), rays.size() / 10);
+
+    std::uniform_int_distribution<uint32_t> pick(0, static_cast<uint32_t>(soup.ranges.size() - 1));
+    for (int move = 0; move < 4; ++move) {
+      std::vector<uint32_t> moved{pick(rng)};
+      if (move % 2 == 1) moved.push_back(pick(rng));
+      std::sort(moved.begin(), moved.end());
+      moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+      for (uint32_t m : moved) soup.place(m, randomPlacement(rng, true));
+      twoLevel.updateInstances(soup.positions, soup.triangles, moved);
+      EXPECT_GT(expectSameHits(soup, twoLevel, rays, move == 3), 0u) << "seed " << seed << " move " << move;
+    }
+  }
+}
+
+TEST(BvhTwoLevelTest, CoincidentInstancesTieAndTheLeastTriangleIdWins) {
+  InstancedSoup soup;
+  soup.meshes.push_back(test::closedSphere(glm::vec3(0.0f), 1.0f, 8, 12));
+  const glm::dmat4 place = glm::translate(glm::dmat4(1.0), glm::dvec3(0.5, -0.25, 0.125));
+  soup.add(0, place);
+  soup.add(0, place);  // the same triangles again: every hit is a tie in t
+  TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
+  std::mt19937 rng(7);
+  const std::vector<HtRay> rays = randomRays(rng, soup, 600);
+  uint32_t hits = 0;
+  for (const HtRay& ray : rays) {
+    const HtTraceResult r = traceClosestTwoLevel(twoLevel, ray);
+    if (r.hit.triId == gpu_shared::HT_MISS) continue;
+    ++hits;
+    EXPECT_LT(r.hit.triId, soup.ranges[1].firstTriangle) << "a tie must go to the first instance's triangle";
+  }
+  EXPECT_GT(hits, 50u);
+  expectSameHits(soup, twoLevel, rays, true);
+}
+
+TEST(BvhTwoLevelTest, PlacementsThatBreakOrRestoreTrianglesStayExact) {
+  std::mt19937 rng(11);
+  InstancedSoup soup = randomScene(rng, 5);
+  TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
+  const std::vector<HtRay> rays = randomRays(rng, soup, 900);
+  // A vertex of instance 1 becomes NaN and two of instance 2's triangles collapse onto a line.
+  soup.positions[soup.firstVertex[1]] = glm::vec3(NAN);
+  const glm::uvec3 tri = soup.triangles[soup.ranges[2].firstTriangle];
+  soup.positions[tri.z] = soup.positions[tri.x] * 0.5f + soup.positions[tri.y] * 0.5f;
+  soup.positions[tri.z] = soup.positions[tri.x];
+  const std::vector<uint32_t> moved{1, 2};
+  twoLevel.updateInstances(soup.positions, soup.triangles, moved);
+  expectSameHits(soup, twoLevel, rays, true);
+  // Restored placements bring the triangles back (instance 2's shape no longer covers them: a new shape).
+  soup.place(1, randomPlacement(rng, false));
+  soup.place(2, randomPlacement(rng, false));
+  twoLevel.updateInstances(soup.positions, soup.triangles, moved);
+  expectSameHits(soup, twoLevel, rays, true);
+}
+
+// A triangle degenerate in the build placement stays in the shape (a rotation can make a triangle exactly degenerate
+// in one placement only): usable again after a move, it is traced without building another shape.
+TEST(BvhTwoLevelTest, TriangleDegenerateAtBuildIsTracedOnceUsableWithoutANewShape) {
+  std::mt19937 rng(5);
+  InstancedSoup soup = randomScene(rng, 4);
+  const glm::uvec3 tri = soup.triangles[soup.ranges[0].firstTriangle];
+  soup.positions[tri.y] = soup.positions[tri.x];  // degenerate at build time
+  TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
+  const size_t shapesBefore = twoLevel.shapeCount();
+  soup.place(0, randomPlacement(rng, false));
+  const std::vector<uint32_t> moved{0};
+  twoLevel.updateInstances(soup.positions, soup.triangles, moved);
+  EXPECT_EQ(twoLevel.shapeCount(), shapesBefore);
+  const std::vector<HtRay> rays = randomRays(rng, soup, 900);
+  expectSameHits(soup, twoLevel, rays, true);
+}
+
+// A triangle with a NaN corner at build time has no box in the shape; once finite it is traced through a shape that
+// holds it (another instance's of the same mesh, or a new one).
+TEST(BvhTwoLevelTest, TriangleNonFiniteAtBuildIsTracedOnceFinite) {
+  std::mt19937 rng(6);
+  InstancedSoup soup = randomScene(rng, 4);
+  soup.positions[soup.triangles[soup.ranges[0].firstTriangle].z] = glm::vec3(INFINITY, 0.0f, 0.0f);
+  TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
+  const size_t shapesBefore = twoLevel.shapeCount();
+  soup.place(0, randomPlacement(rng, false));
+  const std::vector<uint32_t> moved{0};
+  twoLevel.updateInstances(soup.positions, soup.triangles, moved);
+  EXPECT_LE(twoLevel.shapeCount(), shapesBefore + 1);
+  const std::vector<HtRay> rays = randomRays(rng, soup, 900);
+  expectSameHits(soup, twoLevel, rays, true);
+}
+
+TEST(BvhTwoLevelTest, OverlappingRangesAreRefused) {
+  std::mt19937 rng(3);
+  InstancedSoup soup = randomScene(rng, 2);
+  std::vector<InstanceRange> ranges = soup.ranges;
+  ranges[1].firstTriangle -= 1;
+  EXPECT_THROW(TwoLevelBvh(soup.positions, soup.triangles, ranges), ht::SceneError);
+  ranges = soup.ranges;
+  ranges[1].triangleCount += 1;
+  EXPECT_THROW(TwoLevelBvh(soup.positions, soup.triangles, ranges), ht::SceneError);
+}
+
+TEST(BvhTwoLevelTest, EmptyAndUncoveredScenesMiss) {
+  InstancedSoup soup;
+  soup.meshes.push_back(test::closedSphere(glm::vec3(0.0f), 1.0f, 6, 8));
+  soup.add(0, glm::dmat4(1.0));
+  const std::vector<InstanceRange> none;
+  TwoLevelBvh empty(soup.positions, soup.triangles, none);
+  EXPECT_EQ(traceClosestTwoLevel(empty, test::makeRay(glm::vec3(0, 0, 5), glm::vec3(0, 0, -1))).hit.triId,
+            gpu_shared::HT_MISS);
+  TwoLevelBvh full(soup.positions, soup.triangles, soup.ranges);
+  EXPECT_NE(traceClosestTwoLevel(full, test::makeRay(glm::vec3(0, 0, 5), glm::vec3(0, 0, -1))).hit.triId,
+            gpu_shared::HT_MISS);
+}
+
+}  // namespace
+}  // namespace ht::bvh
+
+namespace ht::bvh {
+namespace {
+
+TEST(BvhLayoutChoiceTest, MovedScenesUseTwoLevelStaticScenesTheCheaperLayout) {
+  EXPECT_EQ(chooseBvhLayout(true, LayoutCosts{10.0, 50.0}), BvhLayout::TwoLevel);
+  EXPECT_EQ(chooseBvhLayout(false, LayoutCosts{10.0, 50.0}), BvhLayout::Flattened);
+  EXPECT_EQ(chooseBvhLayout(false, LayoutCosts{50.0, 10.0}), BvhLayout::TwoLevel);
+  EXPECT_EQ(chooseBvhLayout(false, LayoutCosts{10.0, 10.0}), BvhLayout::Flattened);
+}
+
+TEST(BvhLayoutChoiceTest, OverlappingInstancesMeasureCostlierThanTheFlattenedBvh) {
+  // Eight copies of a sphere shifted by a fraction of its radius: the instance boxes overlap heavily, which is
+  // where a second level loses (every overlapping instance is entered).
+  InstancedSoup soup;
+  soup.meshes.push_back(test::closedSphere(glm::vec3(0.0f), 1.0f, 16, 24));
+  for (int i = 0; i < 8; ++i) soup.add(0, glm::translate(glm::dmat4(1.0), glm::dvec3(0.05 * i, 0.03 * i, 0.0)));
+  const TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
+  const GpuBvh flat = buildGpuBvh(soup.positions, soup.triangles, BuildOptions{});
+  Aabb bounds;
+  for (const glm::vec3& p : soup.positions) bounds.grow(p);
+  const std::vector<HtRay> probes = layoutProbeRays(bounds, 1024);
+  ASSERT_EQ(probes.size(), 1024u);
+  EXPECT_EQ(std::memcmp(probes.data(), layoutProbeRays(bounds, 1024).data(), probes.size() * sizeof(HtRay)), 0);
+  const LayoutCosts costs = measureLayoutCosts(flat, twoLevel, probes);
+  EXPECT_GT(costs.twoLevelStepsPerRay, costs.flattenedStepsPerRay);
+  EXPECT_EQ(chooseBvhLayout(false, costs), BvhLayout::Flattened);
+}
+
+}  // namespace
+}  // namespace ht::bvh
