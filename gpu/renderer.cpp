@@ -49,6 +49,13 @@ constexpr std::uint32_t kMaxImageSide = 32768;
 
 using StageTimes = std::array<double, static_cast<size_t>(Stage::Count)>;
 
+// The rows a chunk renders of each of its views: `first` counted from the bottom (as targets count them), of views
+// `viewRows` rows high; the chunk's FrameShape::height is the band's row count.
+struct RowBand {
+  std::uint32_t first = 0;
+  std::uint32_t viewRows = 0;
+};
+
 // `spec` (a kernel's own constants, ids 0..) with constant `id` set to `value`, the ids between left 0: the
 // constants common to several kernels sit at fixed high ids (trace_*: 10, shade / gather_direct: 20).
 std::vector<std::uint32_t> withConstant(std::vector<std::uint32_t> spec, std::uint32_t id, std::uint32_t value) {
@@ -306,10 +313,12 @@ struct Renderer::Impl {
     }
   }
 
-  // Writes the camera block and the frame-wide values of a frame of `shape` covering views [viewFirst, +viewCount).
-  void fillFrame(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount, const RenderSettings& settings);
+  // Writes the camera block and the frame-wide values of a chunk of `shape` (height: the band's rows) covering views
+  // [viewFirst, +viewCount) and rows `band` of each.
+  void fillFrame(const FrameShape& shape, const RowBand& band, std::uint32_t viewFirst, std::uint32_t viewCount,
+                 const RenderSettings& settings);
   RenderResult render(const RenderSettings& settings);
-  void renderChunk(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
+  void renderChunk(const FrameShape& shape, const RowBand& band, std::uint32_t viewFirst, std::uint32_t viewCount,
                    const RenderSettings& settings, StageTimes& stageMs, RenderResult& result);
   // Traces paths [0, totalPaths) of `spp` samples per target in batches of perBatch (a multiple of spp) and resolves
   // them into the subpixel buffer. refining: the listed targets of FrameBlock.refine (refineInfo.w = the base spp),
@@ -350,6 +359,30 @@ void checkShape(const FrameShape& shape, std::uint32_t spp) {
                    " exceeds 2^32 rays per frame: lower --spp to at most " +
                    std::to_string(((1ull << 32) - 1) / shape.targets()));
   }
+}
+
+// The region of a frame of `shape` that `settings` asks for, counts resolved; throws GpuError when it lies outside
+// the frame, or is a band of rows while adaptive refinement (which compares neighbour rows) is on.
+RenderRegion resolveRegion(const RenderSettings& settings, const FrameShape& shape) {
+  RenderRegion r = settings.region;
+  if (r.viewFirst >= shape.views || r.rowFirst >= shape.height) {
+    throw GpuError("render region from view " + std::to_string(r.viewFirst) + ", row " + std::to_string(r.rowFirst) +
+                   " lies outside the frame of " + std::to_string(shape.views) + " views of " +
+                   std::to_string(shape.height) + " rows");
+  }
+  if (r.viewCount == 0) r.viewCount = shape.views - r.viewFirst;
+  if (r.rowCount == 0) r.rowCount = shape.height - r.rowFirst;
+  if (r.viewCount > shape.views - r.viewFirst || r.rowCount > shape.height - r.rowFirst) {
+    throw GpuError("render region of " + std::to_string(r.viewCount) + " views x " + std::to_string(r.rowCount) +
+                   " rows from view " + std::to_string(r.viewFirst) + ", row " + std::to_string(r.rowFirst) +
+                   " exceeds the frame of " + std::to_string(shape.views) + " views of " +
+                   std::to_string(shape.height) + " rows");
+  }
+  if (r.rowCount < shape.height && settings.refineSpp > 0) {
+    throw GpuError("adaptive refinement compares neighbour rows, so it renders whole views, not a band of rows " +
+                   std::to_string(r.rowFirst) + "-" + std::to_string(r.rowFirst + r.rowCount - 1));
+  }
+  return r;
 }
 
 }  // namespace
@@ -425,16 +458,16 @@ FrameShape frameShape(const FrameCamera& camera) {
   return shape;
 }
 
-void Renderer::Impl::fillFrame(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
-                               const RenderSettings& settings) {
+void Renderer::Impl::fillFrame(const FrameShape& shape, const RowBand& band, std::uint32_t viewFirst,
+                               std::uint32_t viewCount, const RenderSettings& settings) {
   FrameBlock& f = frameBlock();
   std::memset(&f, 0, sizeof(f));
   fillFrameBasics(f);
   const std::uint64_t chunkTargets = static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
   f.dims = glm::uvec4(shape.width, shape.height, settings.spp, static_cast<std::uint32_t>(chunkTargets));
-  f.views = glm::uvec4(viewCount, viewFirst, static_cast<std::uint32_t>(settings.filter), 0u);
+  f.views = glm::uvec4(viewCount, viewFirst, static_cast<std::uint32_t>(settings.filter), band.first);
   f.scene = glm::uvec4(scene.lightCount(), scene.textureCount(), gpu_shared::HT_TRAVERSAL_STEP_LIMIT, settings.maxDepth);
-  f.frame = glm::uvec4(settings.seed, 0u, 0u, 0u);
+  f.frame = glm::uvec4(settings.seed, band.viewRows, shape.targetsPerPixel, 0u);
   f.background = glm::vec4(scene.background(), 0.0f);
   f.ambient = glm::vec4(scene.ambient(), 0.0f);
   std::visit([&f](const auto& p) {
@@ -454,8 +487,13 @@ void Renderer::Impl::fillFrame(const FrameShape& shape, std::uint32_t viewFirst,
 RenderResult Renderer::Impl::render(const RenderSettings& settings) {
   auto t0 = std::chrono::steady_clock::now();
   checkSettings(settings);
-  const FrameShape shape = frameShape(camera);
-  checkShape(shape, std::max(settings.spp, settings.refineSpp));
+  const FrameShape frame = frameShape(camera);
+  checkShape(frame, std::max(settings.spp, settings.refineSpp));
+  const RenderRegion region = resolveRegion(settings, frame);
+  FrameShape shape = frame;  // of the band
+  shape.height = region.rowCount;
+  shape.views = region.viewCount;
+  const RowBand band{frame.height - region.rowFirst - region.rowCount, frame.height};
   RenderResult result;
   result.width = shape.width;
   result.height = shape.height;
@@ -473,7 +511,7 @@ RenderResult Renderer::Impl::render(const RenderSettings& settings) {
         settings.progress((first + done * count) / views);
       };
     }
-    renderChunk(shape, first, count, chunkSettings, stageMs, result);
+    renderChunk(shape, band, region.viewFirst + first, count, chunkSettings, stageMs, result);
     auto tRead = std::chrono::steady_clock::now();
     outputs.image.download(result.rgba.data() + viewPixels * first * 4, viewPixels * count * 16);
     readbackMs += msSince(tRead);
@@ -490,8 +528,9 @@ RenderResult Renderer::Impl::render(const RenderSettings& settings) {
   return result;
 }
 
-void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
-                                 const RenderSettings& settings, StageTimes& stageMs, RenderResult& result) {
+void Renderer::Impl::renderChunk(const FrameShape& shape, const RowBand& band, std::uint32_t viewFirst,
+                                 std::uint32_t viewCount, const RenderSettings& settings, StageTimes& stageMs,
+                                 RenderResult& result) {
   const std::uint64_t targets = static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
   // Batch size: whole targets, bounded by the path-state memory budget.
   const std::uint32_t maxSpp = std::max(settings.spp, settings.refineSpp);
@@ -501,7 +540,7 @@ void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirs
   work.ensure(vk, static_cast<std::uint32_t>(perBatch), scene.lightCount());
   outputs.ensure(vk, shape.width, shape.height * viewCount);
   bindState();
-  fillFrame(shape, viewFirst, viewCount, settings);
+  fillFrame(shape, band, viewFirst, viewCount, settings);
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));
 
   const double share = settings.refineSpp > 0 ? 0.8 : 1.0;  // progress: the refinement takes the rest
@@ -654,7 +693,7 @@ std::vector<gpu_shared::HtRay> Renderer::Impl::generateRays(const RenderSettings
   work.ensure(vk, static_cast<std::uint32_t>(std::min(perBatch, std::max<std::uint64_t>(totalPaths, 1))), 1);
   if (outputs.generation == 0) outputs.ensure(vk, 1, 1);  // raygen writes no outputs; the views need a buffer
   bindState();
-  fillFrame(shape, 0, shape.views, settings);
+  fillFrame(shape, RowBand{0, shape.height}, 0, shape.views, settings);
   const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(shape));
   std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};
   for (std::uint64_t begin = 0; begin < totalPaths; begin += perBatch) {
