@@ -10,6 +10,7 @@ target_link_libraries / ht_add_test LIBS name what it links directly):
     targets) no gRPC/protobuf, OpenImageIO, libusb, MPI or Embree, and no app, protocol or frame_io code.
  3. Only the frame-output library (OIIO_MODULES) includes or links OpenImageIO; tests may read images back with it.
  4. Only tests, benchmarks and tools include or link Embree.
+ 5. Only cluster/ includes or links MPI.
 KNOWN_VIOLATIONS lists the violations of today's tree that pending work removes; a violation not in it fails.
 Usage: check_module_boundaries.py [--root DIR]. Exit 0 when clean, 1 with one line per violation.
 """
@@ -27,8 +28,10 @@ CORE = ("camera_models", "bvh", "gpu", "scene", "common")
 # here if it lands under another one) and the tests, which read written images back independently.
 OIIO_MODULES = ("frame_io", "tests")
 EMBREE_MODULES = ("tests", "bench", "tools")
+# The only module that includes or links MPI: cluster/ (issue 17, docs/CLUSTER.md); apps reach MPI through it.
+MPI_MODULES = ("cluster",)
 # Our modules a core library must not depend on.
-ABOVE_CORE = APPS + ("protocol", "frame_io", "tests", "bench", "tools")
+ABOVE_CORE = APPS + ("protocol", "frame_io", "cluster", "tests", "bench", "tools")
 
 # Violations of today's tree, as printed by this script, that issue 13 part 1 (the frame_io library) removes: the
 # server reuses the CLI's image code and OpenImageIO is linked by cli/ and server/. Remove entries as they go (the
@@ -160,6 +163,8 @@ def dependency_rule(module, other, kind, verb):
         return "only %s use OpenImageIO" % ", ".join(OIIO_MODULES)
     if kind == "Embree" and module not in EMBREE_MODULES:
         return "only %s use Embree" % ", ".join(EMBREE_MODULES)
+    if kind == "MPI" and module not in MPI_MODULES:
+        return "only %s uses MPI" % ", ".join(MPI_MODULES)
     return None
 
 
