@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "frame_io/frame_file_names.h"
 #include "frame_io/frame_package.h"
 #include "server/frame_encoding.h"
 #include "server/frame_job.h"
@@ -58,12 +59,6 @@ void waitForTick(ServiceState& state, grpc::ServerContext& context, Clock::time_
   while (Clock::now() < due && !context.IsCancelled()) {
     if (!state.sleepUntil(std::min(due, Clock::now() + std::chrono::milliseconds(20)))) return;
   }
-}
-
-std::string captureStem(const std::string& name, std::uint32_t index) {
-  char suffix[32];
-  std::snprintf(suffix, sizeof suffix, "_f%04u", index);
-  return name + suffix;
 }
 
 frame_io::FrameFormat captureFormat(v1::CaptureFormat format) {
@@ -166,7 +161,7 @@ grpc::Status HolotraceService::Capture(grpc::ServerContext* context, const v1::C
       job.seed = request->render().seed() + i;
       const gpu::RenderResult frame = renderFrameJob(state_.worker, client, job);
       const std::vector<frame_io::FrameFile> files =
-          captureFiles(frame, job, captureStem(request->name(), i), format, layout);
+          captureFiles(frame, job, frame_io::captureFrameStem(request->name(), i), format, layout);
       state_.outputSink.writeFiles(files);  // the frame's files whole or not at all
       for (const frame_io::FrameFile& file : files) {
         v1::CaptureProgress progress;

@@ -124,6 +124,29 @@ TEST_F(ClusterMpirun, AQuiltOfCaptureViewsIsByteIdenticalAtTwoRanks) {
                               {"frame_qs3x2a1.3333333333333333.png", "frame_qs3x2a1.3333333333333333.json"}, {2});
 }
 
+TEST_F(ClusterMpirun, ASixFrameCaptureIsByteIdenticalSpreadOverRanksAndWrittenByThem) {
+  const std::vector<std::string> args = {"capture", "--display", writeConfig("tinylent", kTinyLenticular).string(),
+                                         "--scene", "builtin:sphere", "--frames", "6", "--name", "spin"};
+  const auto run = [&](int ranks, const std::string& dir, bool rankWrites) {
+    std::vector<std::string> all = args;
+    all.insert(all.end(), {"--out-dir", (dir_.path() / dir).string()});
+    if (rankWrites) all.push_back("--rank-writes");
+    const ProcessResult r = ranks == 0 ? single(all) : mpirun(ranks, all);
+    EXPECT_EQ(r.exitCode, 0) << dir << ": " << r.err << r.out;
+  };
+  run(0, "single", false);
+  run(3, "np3", false);
+  run(2, "np2-rank-writes", true);
+  for (std::uint32_t f = 0; f < 6; ++f) {
+    const std::string name = "spin_f000" + std::to_string(f) + ".png";
+    const std::string expected = bytes(dir_.path() / "single" / name);
+    ASSERT_FALSE(expected.empty()) << name;
+    EXPECT_TRUE(bytes(dir_.path() / "np3" / name) == expected) << name;
+    EXPECT_TRUE(bytes(dir_.path() / "np2-rank-writes" / name) == expected) << name;
+  }
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_.path() / "np3"), fs::directory_iterator()), 6);
+}
+
 TEST_F(ClusterMpirun, AKilledRankEndsTheJobOnEveryRankWithoutAnOutputFile) {
   const fs::path out = dir_.path() / "out";
   const auto start = std::chrono::steady_clock::now();
