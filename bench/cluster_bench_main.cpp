@@ -4,7 +4,8 @@
 //   with rank 0's dynamic hand-out and with static blocks: wall time, every rank's busy and idle time, the load
 //   imbalance (slowest rank's busy / mean busy), the pixel bytes gathered to rank 0 and the time receiving them;
 //   the render time of each view (rank 0's units; all of them at -np 1); rank 0's PNG packaging time per frame;
-//   MPI_Barrier and a 256-byte frame-state broadcast (medians of 200); the scene broadcast at start.
+//   MPI_Barrier and a 256-byte frame-state broadcast (medians of 200); 16 MiB from rank 1 to rank 0 with both idle
+//   (the gather bandwidth without render contention, median of 5); the scene broadcast at start.
 // Medians over --frames frames after one warm-up frame (which compiles the kernels). Only rank 0 prints.
 //
 // Usage: mpirun -np N holotrace-bench-cluster [--display SPEC] [--scene SPEC] [--image-scale X] [--spp N]
@@ -200,6 +201,17 @@ int run(const Options& o) {
   const double barrierUs = medianMicros(200, [&] { comm->barrier(); });
   std::vector<std::uint8_t> state(256, 0);
   const double stateUs = medianMicros(200, [&] { comm->broadcast(state, 0); });
+  // Rank 0's receive bandwidth with every rank idle (the gather's beta without render contention): rank 1 sends
+  // 16 MiB after a barrier, median of 5.
+  std::vector<std::uint8_t> block(16u << 20, 1);
+  std::vector<double> transferMs;
+  for (int i = 0; i < 5 && comm->size() > 1; ++i) {
+    comm->barrier();
+    const auto start = Clock::now();
+    if (root) comm->receive(1, 7, block);
+    else if (comm->rank() == 1) comm->send(0, 7, block);
+    transferMs.push_back(msSince(start));
+  }
   if (!root) return 0;
 
   const gpu::FrameShape& shape = camera.shape;
@@ -209,6 +221,10 @@ int run(const Options& o) {
               o.scene.c_str(), o.spp, o.depth, o.frames);
   std::printf("scene broadcast %.2f MiB in %.2f ms; MPI_Barrier %.2f us; 256-byte broadcast %.2f us (medians of 200)\n",
               sceneBytes.size() / 1048576.0, bcastMs, barrierUs, stateUs);
+  if (!transferMs.empty()) {
+    const double ms = median(transferMs);
+    std::printf("16 MiB rank 1 -> rank 0, both idle: %.2f ms (%.2f GiB/s, median of 5)\n", ms, 16.0 / 1024.0 / (ms / 1e3));
+  }
   std::vector<double> sorted = viewMs;
   std::sort(sorted.begin(), sorted.end());
   if (!sorted.empty()) {
