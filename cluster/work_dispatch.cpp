@@ -47,6 +47,7 @@ class UnitSource {
       : units_(units), ranks_(ranks), assignment_(assignment) {}
   std::optional<std::size_t> next(int rank) {
     std::lock_guard lock(mutex_);
+    if (cancelled_) return std::nullopt;
     if (assignment_ == Assignment::Dynamic) {
       if (next_ >= units_) return std::nullopt;
       return next_++;
@@ -54,6 +55,11 @@ class UnitSource {
     std::size_t& at = cursor(rank);
     if (at >= units_ || staticOwner(at, units_, ranks_) != rank) return std::nullopt;
     return at++;
+  }
+  // No more units for anyone (rank 0 failed: its render thread stops after its current unit).
+  void cancel() {
+    std::lock_guard lock(mutex_);
+    cancelled_ = true;
   }
 
  private:
@@ -68,6 +74,7 @@ class UnitSource {
   int ranks_;
   Assignment assignment_;
   std::size_t next_ = 0;
+  bool cancelled_ = false;
   std::vector<std::size_t> cursors_;
   std::mutex mutex_;
 };
@@ -76,8 +83,10 @@ class UnitSource {
 class LocalRenderer {
  public:
   LocalRenderer(std::span<const WorkUnit> units, const UnitRenderer& render, UnitSource& source)
-      : thread_([this, units, &render, &source] { run(units, render, source); }) {}
+      : source_(source), thread_([this, units, &render, &source] { run(units, render, source); }) {}
+  // Normally every unit has been handed out by now; after a failure this stops the thread at its current unit.
   ~LocalRenderer() {
+    source_.cancel();
     if (thread_.joinable()) thread_.join();
   }
   // Finished units since the last call; rethrows the thread's exception.
@@ -115,6 +124,7 @@ class LocalRenderer {
   RankWork work_;
   std::exception_ptr error_;
   bool finished_ = false;
+  UnitSource& source_;
   std::thread thread_;
 };
 

@@ -2,7 +2,10 @@
 // a failing unit's exception comes out of dispatchWork.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <stdexcept>
+#include <thread>
 
 #include "cluster/communicator.h"
 #include "cluster/work_dispatch.h"
@@ -53,6 +56,26 @@ TEST(WorkDispatch, ARenderFailureLeavesDispatchWork) {
                    },
                    [](std::size_t, std::vector<float>&&) {}),
                std::runtime_error);
+}
+
+TEST(WorkDispatch, AFailingSinkStopsRankZerosRenderingEarly) {
+  const auto comm = Communicator::solo();
+  gpu::FrameShape shape;
+  shape.width = 1;
+  shape.height = 1;
+  shape.views = 100;
+  const std::vector<WorkUnit> units = planWork(shape, 1, 1, WorkGrain::Auto);
+  std::atomic<int> rendered{0};
+  EXPECT_THROW(dispatchWork(
+                   *comm, units,
+                   [&](const WorkUnit&) {
+                     ++rendered;
+                     std::this_thread::sleep_for(std::chrono::milliseconds(5));
+                     return std::vector<float>(4, 0.0f);
+                   },
+                   [](std::size_t, std::vector<float>&&) { throw std::runtime_error("disk full"); }),
+               std::runtime_error);
+  EXPECT_LT(rendered.load(), 100);  // not the whole job after the failure
 }
 
 }  // namespace
