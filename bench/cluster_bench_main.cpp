@@ -75,7 +75,9 @@ Options parseOptions(int argc, char** argv) {
   return o;
 }
 
-double msSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
 
 DisplayConfig scaledDisplay(const Options& o) {
   DisplayConfig display = resolveDisplay(o.display);
@@ -119,9 +121,10 @@ void printAssignment(const char* name, const std::vector<FrameSample>& samples, 
       idle[r].push_back(std::max(0.0, s.wallMs - s.busyMs[r]));
     }
   }
-  std::printf("%-8s frame wall %9.1f ms  imbalance (max/mean busy) %.3f  gather %.2f MiB in %.2f ms  "
-              "rank-0 PNG packaging %.1f ms\n",
-              name, median(wall), median(ratio), median(gatherMiB), median(gather), median(encode));
+  std::printf(
+      "%-8s frame wall %9.1f ms  imbalance (max/mean busy) %.3f  gather %.2f MiB in %.2f ms  "
+      "rank-0 PNG packaging %.1f ms\n",
+      name, median(wall), median(ratio), median(gatherMiB), median(gather), median(encode));
   for (int r = 0; r < ranks; ++r) {
     std::printf("         rank %d busy %9.1f ms  idle %8.1f ms\n", r, median(busy[static_cast<std::size_t>(r)]),
                 median(idle[static_cast<std::size_t>(r)]));
@@ -159,7 +162,8 @@ int run(const Options& o) {
   gpu::RenderSettings settings;
   settings.spp = o.spp;
   settings.maxDepth = o.depth;
-  const std::vector<cluster::WorkUnit> units = cluster::planWork(camera.shape, 1, comm->size(), cluster::WorkGrain::Auto);
+  const std::vector<cluster::WorkUnit> units =
+      cluster::planWork(camera.shape, 1, comm->size(), cluster::WorkGrain::Auto);
 
   std::vector<double> viewMs;  // rank 0's units
   const auto render = [&](const cluster::WorkUnit& unit) {
@@ -208,22 +212,26 @@ int run(const Options& o) {
   for (int i = 0; i < 5 && comm->size() > 1; ++i) {
     comm->barrier();
     const auto start = Clock::now();
-    if (root) comm->receive(1, 7, block);
-    else if (comm->rank() == 1) comm->send(0, 7, block);
+    if (root)
+      comm->receive(1, 7, block);
+    else if (comm->rank() == 1)
+      comm->send(0, 7, block);
     transferMs.push_back(msSince(start));
   }
   if (!root) return 0;
 
   const gpu::FrameShape& shape = camera.shape;
-  std::printf("%s: %d rank(s), %s: %u views of %ux%u (image scale %.3f), scene %s, spp %u, depth %u, %u frames "
-              "after 1 warm-up\n",
-              kProgram, comm->size(), display.name.c_str(), shape.views, shape.width, shape.height, o.imageScale,
-              o.scene.c_str(), o.spp, o.depth, o.frames);
+  std::printf(
+      "%s: %d rank(s), %s: %u views of %ux%u (image scale %.3f), scene %s, spp %u, depth %u, %u frames "
+      "after 1 warm-up\n",
+      kProgram, comm->size(), display.name.c_str(), shape.views, shape.width, shape.height, o.imageScale,
+      o.scene.c_str(), o.spp, o.depth, o.frames);
   std::printf("scene broadcast %.2f MiB in %.2f ms; MPI_Barrier %.2f us; 256-byte broadcast %.2f us (medians of 200)\n",
               sceneBytes.size() / 1048576.0, bcastMs, barrierUs, stateUs);
   if (!transferMs.empty()) {
     const double ms = median(transferMs);
-    std::printf("16 MiB rank 1 -> rank 0, both idle: %.2f ms (%.2f GiB/s, median of 5)\n", ms, 16.0 / 1024.0 / (ms / 1e3));
+    std::printf("16 MiB rank 1 -> rank 0, both idle: %.2f ms (%.2f GiB/s, median of 5)\n", ms,
+                16.0 / 1024.0 / (ms / 1e3));
   }
   std::vector<double> sorted = viewMs;
   std::sort(sorted.begin(), sorted.end());

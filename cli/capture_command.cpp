@@ -38,9 +38,8 @@ struct CaptureOptions {
 };
 
 bool isCaptureOption(const std::string& arg) {
-  return std::any_of(kCaptureSpecs.begin(), kCaptureSpecs.end(), [&](const OptionSpec& spec) {
-    return arg == spec.name || arg.starts_with(spec.name + "=");
-  });
+  return std::any_of(kCaptureSpecs.begin(), kCaptureSpecs.end(),
+                     [&](const OptionSpec& spec) { return arg == spec.name || arg.starts_with(spec.name + "="); });
 }
 
 CaptureOptions parseCaptureOptions(std::span<const std::string> args) {
@@ -55,8 +54,9 @@ CaptureOptions parseCaptureOptions(std::span<const std::string> args) {
   for (const std::string& arg : render) {
     for (const char* refused : {"-o", "--output", "--exr", "--debug"}) {
       if (arg == refused || arg.starts_with(std::string(refused) + "=")) {
-        throw UsageError(usageMessage(kCommand, "option '" + std::string(refused) +
-                                                    "' is not for captures: files are NAME_fNNNN.png/.exr under --out-dir"));
+        throw UsageError(
+            usageMessage(kCommand, "option '" + std::string(refused) +
+                                       "' is not for captures: files are NAME_fNNNN.png/.exr under --out-dir"));
       }
     }
   }
@@ -65,8 +65,10 @@ CaptureOptions parseCaptureOptions(std::span<const std::string> args) {
   options.render = parseRenderOptions(render, kCommand);
   options.frames = parsed.unsignedValue("--frames", 1, kMaxFrames).value_or(1);
   options.name = parsed.textOr("--name", options.name);
-  if (options.name.empty() || options.name.find('/') != std::string::npos || options.name == "." || options.name == "..") {
-    throw UsageError(usageMessage(kCommand, "option '--name' = '" + options.name + "': expected a file stem without '/'"));
+  if (options.name.empty() || options.name.find('/') != std::string::npos || options.name == "." ||
+      options.name == "..") {
+    throw UsageError(
+        usageMessage(kCommand, "option '--name' = '" + options.name + "': expected a file stem without '/'"));
   }
   const std::string format = parsed.textOr("--format", "png");
   if (format != "png" && format != "exr") {

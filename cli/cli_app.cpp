@@ -30,8 +30,10 @@ constexpr std::array kCommands = {
     Command{"capture", "render a sequence of frames to NAME_fNNNN files (spread over MPI ranks under mpirun)",
             captureHelp, runCapture},
     Command{"info", "list Vulkan devices, the one holotrace picks, builtin displays and scenes", infoHelp, runInfo},
-    Command{"raycast", "trace a ray batch file against a scene, write the hits (binary or CSV)", raycastHelp, runRaycast},
-    Command{"rays", "write a display's per-(sub)pixel primary rays (+ view phase) as an EXR ray table", raysHelp, runRays},
+    Command{"raycast", "trace a ray batch file against a scene, write the hits (binary or CSV)", raycastHelp,
+            runRaycast},
+    Command{"rays", "write a display's per-(sub)pixel primary rays (+ view phase) as an EXR ray table", raysHelp,
+            runRays},
 #ifdef HT_WITH_CLIENT
     Command{"client", "talk to a running holotraced: displays|load|render|stream|capture", clientHelp, runClient},
 #endif
@@ -47,9 +49,9 @@ std::string padRight(const std::string& text, std::size_t width) {
 }
 
 std::string mainHelp() {
-  std::string text =
-      "holotrace " HT_VERSION " - light-field display renderer (Vulkan compute ray tracing)\n\n"
-      "Usage: holotrace <command> [options]\n\nCommands:\n";
+  std::string text = "holotrace " HT_VERSION
+                     " - light-field display renderer (Vulkan compute ray tracing)\n\n"
+                     "Usage: holotrace <command> [options]\n\nCommands:\n";
   for (const Command& c : kCommands) text += "  " + padRight(c.name, 8) + c.summary + "\n";
   text +=
       "  help    show this text, or `holotrace help <command>`\n\n"

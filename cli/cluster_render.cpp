@@ -116,8 +116,10 @@ int renderSequenceOnRank(cluster::Communicator& comm, const RenderOptions& optio
     if (!sequence.ranksWrite) return std::move(result.rgba);
     std::ostringstream lines;  // a worker's own report, printed whole
     sequence.write(lines, unit.frame, result, frameDisplay);
-    if (!root) std::cout << lines.str() << std::flush;
-    else log << lines.str();
+    if (!root)
+      std::cout << lines.str() << std::flush;
+    else
+      log << lines.str();
     return {};
   };
   cluster::FrameAssembly assembly(shape, units);

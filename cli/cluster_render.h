@@ -16,8 +16,8 @@
 namespace ht::cli {
 
 struct FrameSequence {
-  std::uint32_t frames = 1;   // frame f is rendered with seed options.seed + f
-  bool ranksWrite = false;    // each rank writes the frames it renders (a shared output root); else rank 0 writes all
+  std::uint32_t frames = 1;  // frame f is rendered with seed options.seed + f
+  bool ranksWrite = false;   // each rank writes the frames it renders (a shared output root); else rank 0 writes all
   // Before any rendering, on the ranks that write: create and check the outputs (throws to stop the job).
   std::function<void(const DisplayConfig& display, const gpu::DisplayCamera& camera)> prepare;
   // Writes frame `frame` whole (through frame_io's packageFrame, atomically); `out` is the rank's report stream.

@@ -14,7 +14,9 @@ class SoloCommunicator final : public Communicator {
   int rank() const override { return 0; }
   int size() const override { return 1; }
   void broadcast(std::vector<std::uint8_t>&, int) override {}
-  std::vector<std::uint8_t> allGather(std::span<const std::uint8_t> mine) override { return {mine.begin(), mine.end()}; }
+  std::vector<std::uint8_t> allGather(std::span<const std::uint8_t> mine) override {
+    return {mine.begin(), mine.end()};
+  }
   void barrier() override {}
   void send(int destination, int, std::span<const std::uint8_t>) override { noPeer(destination); }
   void receive(int source, int, std::span<std::uint8_t>) override { noPeer(source); }

@@ -52,21 +52,23 @@ std::string buildId() { return "holotrace " HT_BUILD_ID; }
 std::string displayDigest(const std::string& displayName, const gpu::DisplayCamera& camera) {
   ContentHash hash;
   hash.add(displayName).addValue(camera.camera.index());
-  std::visit([&hash](const auto& params) {
-    using T = std::decay_t<decltype(params)>;
-    if constexpr (std::is_same_v<T, gpu::RayTableCamera>) {
-      hash.addValue(params.params);
-      if (params.table) {
-        hash.addValue(params.table->width).addValue(params.table->height);
-        hash.add(std::span(reinterpret_cast<const std::uint8_t*>(params.table->origins.data()),
-                           params.table->origins.size() * sizeof(glm::vec3)));
-        hash.add(std::span(reinterpret_cast<const std::uint8_t*>(params.table->directions.data()),
-                           params.table->directions.size() * sizeof(glm::vec3)));
-      }
-    } else {
-      hash.addValue(params);  // std430 blocks of vec4 / ivec4 / mat4 members: no padding bytes
-    }
-  }, camera.camera);
+  std::visit(
+      [&hash](const auto& params) {
+        using T = std::decay_t<decltype(params)>;
+        if constexpr (std::is_same_v<T, gpu::RayTableCamera>) {
+          hash.addValue(params.params);
+          if (params.table) {
+            hash.addValue(params.table->width).addValue(params.table->height);
+            hash.add(std::span(reinterpret_cast<const std::uint8_t*>(params.table->origins.data()),
+                               params.table->origins.size() * sizeof(glm::vec3)));
+            hash.add(std::span(reinterpret_cast<const std::uint8_t*>(params.table->directions.data()),
+                               params.table->directions.size() * sizeof(glm::vec3)));
+          }
+        } else {
+          hash.addValue(params);  // std430 blocks of vec4 / ivec4 / mat4 members: no padding bytes
+        }
+      },
+      camera.camera);
   hash.addValue(camera.shape);
   if (camera.quilt) {
     const QuiltLayout& q = *camera.quilt;
@@ -100,7 +102,8 @@ std::vector<std::string> identityMismatches(const std::vector<RankIdentity>& ran
 void checkRankIdentities(Communicator& comm, const RankIdentity& mine) {
   const std::vector<std::uint8_t> all = comm.allGather(pack(mine));
   std::vector<RankIdentity> ranks;
-  for (int r = 0; r < comm.size(); ++r) ranks.push_back(unpack(all.data() + static_cast<std::size_t>(r) * kFields * kFieldBytes));
+  for (int r = 0; r < comm.size(); ++r)
+    ranks.push_back(unpack(all.data() + static_cast<std::size_t>(r) * kFields * kFieldBytes));
   const std::vector<std::string> mismatches = identityMismatches(ranks);
   if (mismatches.empty()) return;
   std::string message = "the " + std::to_string(comm.size()) + " ranks of this job do not render the same frame: ";

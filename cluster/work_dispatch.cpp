@@ -26,7 +26,9 @@ struct ResultHeader {
   std::uint64_t floats = 0;
 };
 
-double msSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
 
 std::span<const std::uint8_t> bytesOf(const std::vector<float>& v) {
   return {reinterpret_cast<const std::uint8_t*>(v.data()), v.size() * sizeof(float)};
@@ -211,8 +213,10 @@ DispatchReport dispatchWork(Communicator& comm, std::span<const WorkUnit> units,
   const auto start = Clock::now();
   DispatchReport report;
   report.ranks.resize(static_cast<std::size_t>(comm.size()));
-  if (comm.rank() == 0) coordinate(comm, units, render, sink, assignment, report);
-  else work(comm, units, render, assignment, report);
+  if (comm.rank() == 0)
+    coordinate(comm, units, render, sink, assignment, report);
+  else
+    work(comm, units, render, assignment, report);
   report.wallMs = msSince(start);
   return report;
 }

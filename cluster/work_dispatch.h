@@ -31,10 +31,10 @@ struct RankWork {
 };
 
 struct DispatchReport {
-  double wallMs = 0.0;              // of dispatchWork on this rank
-  std::vector<RankWork> ranks;      // rank 0: every rank's; other ranks: their own at their index
-  std::uint64_t gatherBytes = 0;    // rank 0: pixel bytes received from other ranks
-  double gatherMs = 0.0;            // rank 0: time spent receiving them (after their header arrived)
+  double wallMs = 0.0;            // of dispatchWork on this rank
+  std::vector<RankWork> ranks;    // rank 0: every rank's; other ranks: their own at their index
+  std::uint64_t gatherBytes = 0;  // rank 0: pixel bytes received from other ranks
+  double gatherMs = 0.0;          // rank 0: time spent receiving them (after their header arrived)
 };
 
 // Environment variable of the failure test: rank N kills itself (SIGKILL) after rendering its first unit, before

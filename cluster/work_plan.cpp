@@ -27,10 +27,14 @@ void addBandsOf(std::vector<WorkUnit>& units, std::uint32_t frame, const gpu::Fr
 std::vector<WorkUnit> planWork(const gpu::FrameShape& shape, std::uint32_t frames, int ranks, WorkGrain grain) {
   std::vector<WorkUnit> units;
   for (std::uint32_t f = 0; f < frames; ++f) {
-    if (frames > 1 || grain == WorkGrain::WholeFrames) units.push_back({f, {0, shape.views, 0, shape.height}});
-    else if (shape.views > 1) addViewsOf(units, f, shape);
-    else if (grain == WorkGrain::WholeViews) units.push_back({f, {0, 1, 0, shape.height}});
-    else addBandsOf(units, f, shape, ranks);
+    if (frames > 1 || grain == WorkGrain::WholeFrames)
+      units.push_back({f, {0, shape.views, 0, shape.height}});
+    else if (shape.views > 1)
+      addViewsOf(units, f, shape);
+    else if (grain == WorkGrain::WholeViews)
+      units.push_back({f, {0, 1, 0, shape.height}});
+    else
+      addBandsOf(units, f, shape, ranks);
   }
   return units;
 }

@@ -17,11 +17,9 @@ inline constexpr std::uint32_t kBandsPerRank = 4;
 inline constexpr std::uint32_t kMinBandRows = 4;
 
 struct WorkUnit {
-  std::uint32_t frame = 0;    // index in the sequence
-  gpu::RenderRegion region;   // counts resolved (never 0)
-  std::uint64_t pixels(std::uint32_t width) const {
-    return std::uint64_t{width} * region.rowCount * region.viewCount;
-  }
+  std::uint32_t frame = 0;   // index in the sequence
+  gpu::RenderRegion region;  // counts resolved (never 0)
+  std::uint64_t pixels(std::uint32_t width) const { return std::uint64_t{width} * region.rowCount * region.viewCount; }
 };
 
 enum class WorkGrain {

@@ -24,9 +24,23 @@ using ::testing::HasSubstr;
 
 // Launcher flags: oversubscribe the 2 cores, no core binding (a bound rank would share one core with lavapipe's
 // threads), shared memory and loopback only, CMA off (containers without ptrace rights), a hard time limit.
-const std::vector<std::string> kLauncherFlags = {
-    "--oversubscribe", "--bind-to", "none", "--mca", "btl", "self,vader", "--mca", "btl_tcp_if_include", "lo",
-    "--mca", "oob_tcp_if_include", "lo", "--mca", "btl_vader_single_copy_mechanism", "none", "--timeout", "120"};
+const std::vector<std::string> kLauncherFlags = {"--oversubscribe",
+                                                 "--bind-to",
+                                                 "none",
+                                                 "--mca",
+                                                 "btl",
+                                                 "self,vader",
+                                                 "--mca",
+                                                 "btl_tcp_if_include",
+                                                 "lo",
+                                                 "--mca",
+                                                 "oob_tcp_if_include",
+                                                 "lo",
+                                                 "--mca",
+                                                 "btl_vader_single_copy_mechanism",
+                                                 "none",
+                                                 "--timeout",
+                                                 "120"};
 
 class ClusterMpirun : public ::testing::Test {
  protected:
@@ -100,10 +114,9 @@ const char* const kTinyLenticular = R"({"name": "tinylent", "model": "lenticular
 // the same unit path as more (rank 0's render thread), which the panel covers at 1, 2 and 3.
 TEST_F(ClusterMpirun, ALenticularPanelCutIntoBandsIsByteIdenticalAtOneTwoAndThreeRanks) {
   // The showcase scene has glass: its random Fresnel choice must not depend on the band either.
-  expectSameFilesAtRankCounts(
-      {"render", "--display", writeConfig("tinylent", kTinyLenticular).string(), "--scene", "builtin:showcase",
-       "--depth", "2"},
-      {"frame.png"}, {1, 2, 3});
+  expectSameFilesAtRankCounts({"render", "--display", writeConfig("tinylent", kTinyLenticular).string(), "--scene",
+                               "builtin:showcase", "--depth", "2"},
+                              {"frame.png"}, {1, 2, 3});
 }
 
 TEST_F(ClusterMpirun, AProjectorArrayCutIntoViewsIsByteIdenticalAtThreeRanks) {
@@ -125,8 +138,9 @@ TEST_F(ClusterMpirun, AQuiltOfCaptureViewsIsByteIdenticalAtTwoRanks) {
 }
 
 TEST_F(ClusterMpirun, ASixFrameCaptureIsByteIdenticalSpreadOverRanksAndWrittenByThem) {
-  const std::vector<std::string> args = {"capture", "--display", writeConfig("tinylent", kTinyLenticular).string(),
-                                         "--scene", "builtin:sphere", "--frames", "6", "--name", "spin"};
+  const std::vector<std::string> args = {"capture", "--display",      writeConfig("tinylent", kTinyLenticular).string(),
+                                         "--scene", "builtin:sphere", "--frames",
+                                         "6",       "--name",         "spin"};
   const auto run = [&](int ranks, const std::string& dir, bool rankWrites) {
     std::vector<std::string> all = args;
     all.insert(all.end(), {"--out-dir", (dir_.path() / dir).string()});
@@ -159,9 +173,7 @@ TEST_F(ClusterMpirun, AKilledRankEndsTheJobOnEveryRankWithoutAnOutputFile) {
   EXPECT_NE(m.exitCode, 0) << m.out;
   EXPECT_LT(seconds, 60.0);
   EXPECT_FALSE(fs::exists(out / "frame.png"));
-  if (fs::exists(out)) {
-    EXPECT_TRUE(fs::is_empty(out)) << "temporary files left in " << out;
-  }
+  if (fs::exists(out)) { EXPECT_TRUE(fs::is_empty(out)) << "temporary files left in " << out; }
 }
 
 TEST_F(ClusterMpirun, ARankWithAnotherDisplayConfigIsRefusedAtStart) {

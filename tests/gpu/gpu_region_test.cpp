@@ -72,7 +72,8 @@ TEST_F(GpuRegion, ViewRangesAndBandsOfAProjectorArrayAreTheWholeFramesPixels) {
       "projectorArray": {"screen": {"width": 160, "height": 90}, "observerDistance": 300, "observerHeight": 0,
       "angularScattering": "auto", "image": {"width": 24, "height": 12},
       "projectors": [{"position": [-10, 0, -180]}, {"position": [0, 0, -180]}, {"position": [10, 0, -180]},
-                     {"position": [20, 0, -180]}]}})", "wall.json", ".");
+                     {"position": [20, 0, -180]}]}})",
+                                                   "wall.json", ".");
   const gpu::FrameCamera camera = gpu::makeDisplayCamera(display, scene_->bounds()).camera;
   gpu::Renderer renderer(sharedContext(), *scene_);
   const gpu::RenderResult whole = renderer.render(camera, regionSettings(2));
