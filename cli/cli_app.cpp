@@ -7,6 +7,7 @@
 #include <new>
 
 #include "cli/arguments.h"
+#include "cli/capture_command.h"
 #ifdef HT_WITH_CLIENT
 #include "cli/client_command.h"
 #endif
@@ -30,6 +31,8 @@ constexpr std::array kCommands = {
     Command{"render", "render a display frame (native interleaved panel image) to PNG/EXR", renderHelp, runRender},
     Command{"show", "render a display frame and keep it on the panel's monitor until Ctrl-C (X11 + Vulkan)", showHelp,
             runShow},
+    Command{"capture", "render a sequence of frames to NAME_fNNNN files (spread over MPI ranks under mpirun)",
+            captureHelp, runCapture},
     Command{"info", "list Vulkan devices, the one holotrace picks, builtin displays and scenes", infoHelp, runInfo},
     Command{"raycast", "trace a ray batch file against a scene, write the hits (binary or CSV)", raycastHelp,
             runRaycast},

@@ -12,10 +12,12 @@
 #include "camera_models/lenticular_params.h"
 #include "camera_models/pinhole_params.h"
 #include "cli/cli_app.h"
+#include "cli/cluster_render.h"
 #include "cli/frame_outputs.h"
 #include "cli/output_paths.h"
 #include "cli/render_report.h"
 #include "cli/view_phase_debug.h"
+#include "cluster/mpi_launch.h"
 #include "common/error.h"
 #include "frame_io/atomic_output_file.h"
 #include "frame_io/ray_table_exr.h"
@@ -33,40 +35,12 @@ double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-gpu::RenderSettings makeSettings(const RenderOptions& options, const DisplayConfig& display) {
-  gpu::RenderSettings settings;
-  settings.spp = options.spp.value_or(display.spp);
-  if (options.maxDepth) settings.maxDepth = *options.maxDepth;
-  settings.forceAllFeatures = options.noSpecialize;
-  settings.seed = options.seed;
-  settings.filter = options.filter;
-  settings.refineSpp = options.refineSpp;
-  settings.refineContrast = options.refineContrast;
-  if (isatty(STDERR_FILENO)) {  // a progress line on a terminal only; logs and pipes get the final report
-    settings.progress = [](double done) { std::fprintf(stderr, "\rrender %5.1f %%", 100.0 * done); };
-  }
-  return settings;
-}
-
 const char* filterName(gpu::SampleFilter filter) {
   switch (filter) {
     case gpu::SampleFilter::Tent: return "tent";
     case gpu::SampleFilter::Gaussian: return "gaussian";
     default: return "box";
   }
-}
-
-// Builds the BVH and uploads the scene, then prints the scene and BVH reports.
-std::unique_ptr<gpu::Renderer> buildRenderer(std::ostream& out, gpu::VulkanContext& context, const Scene& scene,
-                                             double loadMs) {
-  const auto start = Clock::now();
-  auto renderer = std::make_unique<gpu::Renderer>(context, scene);
-  const double uploadMs = msSince(start);
-  printScene(out, scene, renderer->features());
-  out << "  loaded in " << formatMs(loadMs) << "\n";
-  printBvh(out, renderer->bvhReport());
-  out << "  BVH build + upload " << formatMs(uploadMs) << "\n";
-  return renderer;
 }
 
 gpu::RenderResult renderAndReport(std::ostream& out, gpu::Renderer& renderer, const gpu::DisplayCamera& camera,
@@ -106,9 +80,60 @@ int runViewPhaseDebug(std::ostream& out, const RenderOptions& options, const Dis
 
 }  // namespace
 
+gpu::RenderSettings makeRenderSettings(const RenderOptions& options, const DisplayConfig& display) {
+  gpu::RenderSettings settings;
+  settings.spp = options.spp.value_or(display.spp);
+  if (options.maxDepth) settings.maxDepth = *options.maxDepth;
+  settings.forceAllFeatures = options.noSpecialize;
+  settings.seed = options.seed;
+  settings.filter = options.filter;
+  settings.refineSpp = options.refineSpp;
+  settings.refineContrast = options.refineContrast;
+  if (isatty(STDERR_FILENO)) {  // a progress line on a terminal only; logs and pipes get the final report
+    settings.progress = [](double done) { std::fprintf(stderr, "\rrender %5.1f %%", 100.0 * done); };
+  }
+  return settings;
+}
+
+// Builds the BVH and uploads the scene, then prints the scene and BVH reports.
+std::unique_ptr<gpu::Renderer> buildRenderer(std::ostream& out, gpu::VulkanContext& context, const Scene& scene,
+                                             double loadMs) {
+  const auto start = Clock::now();
+  auto renderer = std::make_unique<gpu::Renderer>(context, scene);
+  const double uploadMs = msSince(start);
+  printScene(out, scene, renderer->features());
+  out << "  loaded in " << formatMs(loadMs) << "\n";
+  printBvh(out, renderer->bvhReport());
+  out << "  BVH build + upload " << formatMs(uploadMs) << "\n";
+  return renderer;
+}
+
+namespace {
+
+// `holotrace render` under mpirun: the frame cut into work units over the ranks, rank 0 writes it (cluster_render.h).
+int runClusterRender(const RenderOptions& options, std::ostream& out) {
+  if (options.debugViews) { throw UsageError("holotrace render: --debug views traces nothing; run it without mpirun"); }
+  auto paths = std::make_shared<OutputPaths>();
+  FrameSequence sequence;
+  sequence.prepare = [&options, paths](const DisplayConfig& display, const gpu::DisplayCamera& camera) {
+    *paths = resolveOutputPaths(options, display.name);
+    if (paths->png) frame_io::prepareOutputDirectory(*paths->png);
+    if (paths->exr) frame_io::prepareOutputDirectory(*paths->exr);
+    checkViewLayout({display, camera.quilt}, camera.shape.views, options.layout);
+  };
+  sequence.write = [&options, paths](std::ostream& log, std::uint32_t, const gpu::RenderResult& frame,
+                                     const frame_io::FrameDisplay& display) {
+    writeFrameOutputs(log, *paths, frame, display, options.layout);
+  };
+  return runFrameSequence(options, sequence, out);
+}
+
+}  // namespace
+
 int runRender(std::span<const std::string> args, std::ostream& out) {
   const auto start = Clock::now();
   const RenderOptions options = parseRenderOptions(args);
+  if (cluster::launcherWorldSize()) return runClusterRender(options, out);
 
   const DisplayConfig display = resolveDisplay(options.displaySpec);
   const OutputPaths paths = resolveOutputPaths(options, display.name);
@@ -133,7 +158,7 @@ int runRender(std::span<const std::string> args, std::ostream& out) {
   printDevice(out, context.device());
   const auto renderer = buildRenderer(out, context, scene, loadMs);
 
-  const gpu::RenderResult frame = renderAndReport(out, *renderer, camera, makeSettings(options, display));
+  const gpu::RenderResult frame = renderAndReport(out, *renderer, camera, makeRenderSettings(options, display));
   writeFrameOutputs(out, paths, frame, frameDisplay, options.layout);
   if (options.validation) out << "validation messages: " << context.validationMessageCount() << "\n";
   out << "total " << formatMs(msSince(start)) << "\n";

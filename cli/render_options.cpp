@@ -12,7 +12,6 @@
 namespace ht::cli {
 namespace {
 
-const char* const kCommand = "holotrace render";
 constexpr std::uint32_t kMaxSpp = 4096;  // same bound as the display config's spp
 constexpr std::uint32_t kMaxDepth = 32;  // Renderer limit (gpu/renderer.cpp)
 constexpr std::uint32_t kMaxDevice = 255;
@@ -48,6 +47,7 @@ bool hasExtension(const std::filesystem::path& path, const std::string& wanted) 
 
 std::filesystem::path checkedOutputPath(const ParsedArguments& parsed, const std::string& name,
                                         const std::string& extension) {
+  const std::string& kCommand = parsed.command();
   const std::filesystem::path path = *parsed.text(name);
   if (!hasExtension(path, extension)) {
     throw UsageError(usageMessage(
@@ -59,6 +59,10 @@ std::filesystem::path checkedOutputPath(const ParsedArguments& parsed, const std
 }  // namespace
 
 RenderOptions parseRenderOptions(std::span<const std::string> args) {
+  return parseRenderOptions(args, "holotrace render");
+}
+
+RenderOptions parseRenderOptions(std::span<const std::string> args, const std::string& kCommand) {
   const ParsedArguments parsed = parseArguments(kCommand, kSpecs, args);
   RenderOptions options;
   options.displaySpec = parsed.textOr("--display", options.displaySpec);

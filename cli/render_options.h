@@ -34,6 +34,8 @@ struct RenderOptions {
 
 // Throws UsageError ("holotrace render: ...") for unknown options and bad values.
 RenderOptions parseRenderOptions(std::span<const std::string> args);
+// The same for a command that takes the render options too (`holotrace capture`), named `command` in errors.
+RenderOptions parseRenderOptions(std::span<const std::string> args, const std::string& command);
 
 // The help text of `holotrace render`.
 std::string renderHelp();

@@ -2,6 +2,7 @@
 #include "frame_io/frame_file_names.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 
 #include "common/error.h"
@@ -27,6 +28,12 @@ std::string viewNumber(std::uint32_t view, std::uint32_t views) {
 }
 
 std::string multiViewName(std::uint32_t view, std::uint32_t views) { return "view" + viewNumber(view, views); }
+
+std::string captureFrameStem(const std::string& name, std::uint32_t index) {
+  char suffix[32];
+  std::snprintf(suffix, sizeof suffix, "_f%04u", index);
+  return name + suffix;
+}
 
 std::string withSuffix(const std::string& fileName, const std::string& suffix) {
   const std::filesystem::path path(fileName);

@@ -18,6 +18,10 @@ std::string viewNumber(std::uint32_t view, std::uint32_t views);
 // The name of view `view` in a multiView EXR: "view" + viewNumber.
 std::string multiViewName(std::uint32_t view, std::uint32_t views);
 
+// The stem of frame `index` of a capture sequence `name` (the daemon's Capture, `holotrace capture`): "turn" + 7 ->
+// "turn_f0007" (at least four digits).
+std::string captureFrameStem(const std::string& name, std::uint32_t index);
+
 // "shot.png" + "_v00" -> "shot_v00.png".
 std::string withSuffix(const std::string& fileName, const std::string& suffix);
 

@@ -24,7 +24,7 @@ std::vector<gpu_shared::HtRay> Renderer::Impl::generateRays(const FrameCamera& c
   work.ensure(vk, static_cast<std::uint32_t>(std::min(perBatch, std::max<std::uint64_t>(totalPaths, 1))), 1);
   if (outputs.generation == 0) outputs.ensure(vk, 1, 1);  // raygen writes no outputs; the views need a buffer
   bindState();
-  fillFrame(camera, shape, 0, shape.views, settings);
+  fillFrame(camera, shape, RowBand{0, shape.height}, 0, shape.views, settings);
   const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape));
   std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};
   for (std::uint64_t begin = 0; begin < totalPaths; begin += perBatch) {

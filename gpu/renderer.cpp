@@ -203,18 +203,18 @@ void Renderer::Impl::checkCounters(const char* what) {
   }
 }
 
-void Renderer::Impl::fillFrame(const FrameCamera& camera, const FrameShape& shape, std::uint32_t viewFirst,
-                               std::uint32_t viewCount, const RenderSettings& settings) {
+void Renderer::Impl::fillFrame(const FrameCamera& camera, const FrameShape& shape, const RowBand& band,
+                               std::uint32_t viewFirst, std::uint32_t viewCount, const RenderSettings& settings) {
   FrameBlock& f = frameBlock();
   std::memset(&f, 0, sizeof(f));
   fillFrameBasics(f);
   const std::uint64_t chunkTargets =
       static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
   f.dims = glm::uvec4(shape.width, shape.height, settings.spp, static_cast<std::uint32_t>(chunkTargets));
-  f.views = glm::uvec4(viewCount, viewFirst, static_cast<std::uint32_t>(settings.filter), 0u);
+  f.views = glm::uvec4(viewCount, viewFirst, static_cast<std::uint32_t>(settings.filter), band.first);
   f.scene =
       glm::uvec4(scene.lightCount(), scene.textureCount(), gpu_shared::HT_TRAVERSAL_STEP_LIMIT, settings.maxDepth);
-  f.frame = glm::uvec4(settings.seed, 0u, 0u, 0u);
+  f.frame = glm::uvec4(settings.seed, band.viewRows, shape.targetsPerPixel, 0u);
   f.background = glm::vec4(scene.background(), 0.0f);
   f.ambient = glm::vec4(scene.ambient(), 0.0f);
   f.camera = cameraBlock(camera);

@@ -29,6 +29,16 @@ using ht::FrameShape;
 using ht::frameShape;
 using ht::RayTableCamera;
 
+// The part of the frame to render: views [viewFirst, viewFirst + viewCount) and, of each, the output rows
+// [rowFirst, rowFirst + rowCount) (row 0 = the top, as in RenderResult); a count of 0 means "to the end". Sample
+// positions and random choices are keyed by a target's index in the whole frame, so every pixel of a region is
+// bit-identical to the same pixel of a whole-frame render: the work unit of a cluster render (cluster/work_plan.h).
+// Adaptive refinement compares neighbour rows, so a band of rows with refineSpp > 0 is refused (GpuError).
+struct RenderRegion {
+  std::uint32_t viewFirst = 0, viewCount = 0;
+  std::uint32_t rowFirst = 0, rowCount = 0;
+};
+
 struct RenderSettings {
   std::uint32_t spp = 4;  // samples per target (subpixel or pixel)
   SampleFilter filter = SampleFilter::Box;
@@ -40,6 +50,7 @@ struct RenderSettings {
   // of all its spp + refineSpp samples. refineSpp 0 = off; refineContrast 0 refines every target, > 1 none.
   std::uint32_t refineSpp = 0;
   float refineContrast = 0.08f;
+  RenderRegion region;                                // default: the whole frame
   std::function<void(double fractionDone)> progress;  // called after each batch of paths (optional)
 };
 
@@ -49,8 +60,8 @@ struct StageTiming {
 };
 
 struct RenderResult {
-  std::uint32_t width = 0, height = 0;  // of one view
-  std::uint32_t views = 1;
+  std::uint32_t width = 0, height = 0;  // of one view (of its band of rows when RenderSettings::region has one)
+  std::uint32_t views = 1;              // rendered views (RenderSettings::region's count)
   std::vector<float> rgba;  // linear RGBA float, view after view, row 0 = the view's TOP, 4 floats per pixel
   std::vector<StageTiming> stages;
   double totalMs = 0.0;          // host wall time of the frame

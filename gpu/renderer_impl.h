@@ -50,6 +50,13 @@ std::vector<std::uint32_t> withConstant(std::vector<std::uint32_t> spec, std::ui
 void checkSettings(const RenderSettings& settings);
 void checkShape(const FrameShape& shape, std::uint32_t spp);
 
+// The rows a chunk renders of each of its views: `first` counted from the bottom (as targets count them), of views
+// `viewRows` rows high; the chunk's FrameShape::height is the band's row count (RenderSettings::region).
+struct RowBand {
+  std::uint32_t first = 0;
+  std::uint32_t viewRows = 0;
+};
+
 struct Renderer::Impl {
   VulkanContext::Impl& vk;
   GpuScene scene;
@@ -141,13 +148,14 @@ struct Renderer::Impl {
   // Throws GpuError when a ray hit the traversal step limit (its hits could be missing).
   void checkCounters(const char* what);
 
-  // Writes the camera block and the frame-wide values of a frame of `shape` covering views [viewFirst, +viewCount).
-  void fillFrame(const FrameCamera& camera, const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
-                 const RenderSettings& settings);
+  // Writes the camera block and the frame-wide values of a chunk of `shape` (height: the band's rows) covering views
+  // [viewFirst, +viewCount) and rows `band` of each.
+  void fillFrame(const FrameCamera& camera, const FrameShape& shape, const RowBand& band, std::uint32_t viewFirst,
+                 std::uint32_t viewCount, const RenderSettings& settings);
   // The wavefront frame loop (wavefront_loop.cpp).
   RenderResult render(const FrameCamera& camera, const RenderSettings& settings);
-  void renderChunk(const FrameCamera& camera, const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
-                   const RenderSettings& settings, StageTimes& stageMs, RenderResult& result);
+  void renderChunk(const FrameCamera& camera, const FrameShape& shape, const RowBand& band, std::uint32_t viewFirst,
+                   std::uint32_t viewCount, const RenderSettings& settings, StageTimes& stageMs, RenderResult& result);
   // Traces paths [0, totalPaths) of `spp` samples per target in batches of perBatch (a multiple of spp) and resolves
   // them into the subpixel buffer. refining: the listed targets of FrameBlock.refine (refineInfo.w = the base spp),
   // through the REFINING pipelines of raygen and resolve; else the chunk's base pass, its first call, which clears

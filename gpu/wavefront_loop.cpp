@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstring>
+#include <string>
 
 #include "gpu/renderer_impl.h"
 
@@ -17,13 +18,42 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// The region of a frame of `shape` that `settings` asks for, counts resolved; throws GpuError when it lies outside
+// the frame, or is a band of rows while adaptive refinement (which compares neighbour rows) is on.
+RenderRegion resolveRegion(const RenderSettings& settings, const FrameShape& shape) {
+  RenderRegion r = settings.region;
+  if (r.viewFirst >= shape.views || r.rowFirst >= shape.height) {
+    throw GpuError("render region from view " + std::to_string(r.viewFirst) + ", row " + std::to_string(r.rowFirst) +
+                   " lies outside the frame of " + std::to_string(shape.views) + " views of " +
+                   std::to_string(shape.height) + " rows");
+  }
+  if (r.viewCount == 0) r.viewCount = shape.views - r.viewFirst;
+  if (r.rowCount == 0) r.rowCount = shape.height - r.rowFirst;
+  if (r.viewCount > shape.views - r.viewFirst || r.rowCount > shape.height - r.rowFirst) {
+    throw GpuError("render region of " + std::to_string(r.viewCount) + " views x " + std::to_string(r.rowCount) +
+                   " rows from view " + std::to_string(r.viewFirst) + ", row " + std::to_string(r.rowFirst) +
+                   " exceeds the frame of " + std::to_string(shape.views) + " views of " +
+                   std::to_string(shape.height) + " rows");
+  }
+  if (r.rowCount < shape.height && settings.refineSpp > 0) {
+    throw GpuError("adaptive refinement compares neighbour rows, so it renders whole views, not a band of rows " +
+                   std::to_string(r.rowFirst) + "-" + std::to_string(r.rowFirst + r.rowCount - 1));
+  }
+  return r;
+}
+
 }  // namespace
 
 RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSettings& settings) {
   auto t0 = std::chrono::steady_clock::now();
   checkSettings(settings);
-  const FrameShape shape = frameShape(camera);
-  checkShape(shape, std::max(settings.spp, settings.refineSpp));
+  const FrameShape frame = frameShape(camera);
+  checkShape(frame, std::max(settings.spp, settings.refineSpp));
+  const RenderRegion region = resolveRegion(settings, frame);
+  FrameShape shape = frame;  // of the region
+  shape.height = region.rowCount;
+  shape.views = region.viewCount;
+  const RowBand band{frame.height - region.rowFirst - region.rowCount, frame.height};
   RenderResult result;
   result.width = shape.width;
   result.height = shape.height;
@@ -42,7 +72,7 @@ RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSetti
         settings.progress((first + done * count) / views);
       };
     }
-    renderChunk(camera, shape, first, count, chunkSettings, stageMs, result);
+    renderChunk(camera, shape, band, region.viewFirst + first, count, chunkSettings, stageMs, result);
     auto tRead = std::chrono::steady_clock::now();
     outputs.image.download(result.rgba.data() + viewPixels * first * 4, viewPixels * count * 16);
     readbackMs += msSince(tRead);
@@ -59,9 +89,9 @@ RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSetti
   return result;
 }
 
-void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& shape, std::uint32_t viewFirst,
-                                 std::uint32_t viewCount, const RenderSettings& settings, StageTimes& stageMs,
-                                 RenderResult& result) {
+void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& shape, const RowBand& band,
+                                 std::uint32_t viewFirst, std::uint32_t viewCount, const RenderSettings& settings,
+                                 StageTimes& stageMs, RenderResult& result) {
   const std::uint64_t targets =
       static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
   // Batch size: whole targets, bounded by the path-state memory budget.
@@ -73,7 +103,7 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   work.ensure(vk, static_cast<std::uint32_t>(perBatch), scene.lightCount());
   outputs.ensure(vk, shape.width, shape.height * viewCount);
   bindState();
-  fillFrame(camera, shape, viewFirst, viewCount, settings);
+  fillFrame(camera, shape, band, viewFirst, viewCount, settings);
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));
 
   const double share = settings.refineSpp > 0 ? 0.8 : 1.0;  // progress: the refinement takes the rest

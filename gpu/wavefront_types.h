@@ -66,9 +66,11 @@ struct FrameBlock {
   uint64_t counters;   // GpuCounters (device address)
   uint64_t refine;     // adaptive refinement: slot counts, staging, the refined targets (device address)
   uvec4 dims;          // x = image width, y = image height (one view), z = spp, w = number of targets
-  uvec4 views;         // x = views in this frame, y = index of its first view, z = filter (HT_FILTER_*), w unused
+  uvec4 views;         // x = views in this frame, y = index of its first view, z = filter (HT_FILTER_*),
+                       // w = first row of the band (from the bottom) this chunk renders of each view
   uvec4 scene;         // x = light count, y = texture count, z = step limit, w = max depth
-  uvec4 frame;         // x = seed; yzw unused (per-dispatch values travel in PassConstants)
+  uvec4 frame;         // x = seed, y = rows of a whole view (dims.y: of the band), z = targets per pixel;
+                       // w unused (per-dispatch values travel in PassConstants)
   uvec4 refineInfo;    // adaptive refinement (refine_select.comp): x = contrast threshold (float bits), y = first
                        // entry of the target list in `refine`, z = subgroup size the slots assume,
                        // w = the base pass's spp while the listed targets are traced (resolve.comp averages

@@ -14,8 +14,10 @@ PKGS=(
   libglm-dev libopenimageio-dev openimageio-tools libtinygltf-dev nlohmann-json3-dev
   # tests, benchmarks, comparator ray tracer
   libgtest-dev libgmock-dev libbenchmark-dev libembree-dev libtbb-dev
-  # SHA-256 of rendered frames in tests (OpenSSL libcrypto)
+  # SHA-256 of rendered frames in tests and of the cluster start-up check (OpenSSL libcrypto)
   libssl-dev
+  # cluster rendering across nodes: `mpirun -np N holotrace render|capture` and its tests (docs/CLUSTER.md)
+  libopenmpi-dev openmpi-bin
   # test mesh: the Stanford bunny (69,666 triangles), /usr/share/glmark2/models/bunny.obj
   glmark2-data
   # benchmark meshes (CGAL armadillo, refined_elephant: scripts/fetch-meshes.sh) and plots (scripts/bench.sh)

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "frame_io/frame_file_names.h"
 #include "frame_io/frame_package.h"
 #include "server/capture_output.h"
 #include "server/frame_encoding.h"
@@ -16,6 +17,12 @@
 namespace ht::server {
 namespace v1 = holotrace::v1;
 namespace {
+
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
 
 using Clock = std::chrono::steady_clock;
 
@@ -62,18 +69,6 @@ void waitForTick(ServiceState& state, grpc::ServerContext& context, Clock::time_
   while (Clock::now() < due && !context.IsCancelled()) {
     if (!state.sleepUntil(std::min(due, Clock::now() + std::chrono::milliseconds(20)))) return;
   }
-}
-
-std::string shortNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
-std::string captureStem(const std::string& name, std::uint32_t index) {
-  char suffix[32];
-  std::snprintf(suffix, sizeof suffix, "_f%04u", index);
-  return name + suffix;
 }
 
 frame_io::FrameFormat captureFormat(v1::CaptureFormat format) {
@@ -189,7 +184,7 @@ grpc::Status HolotraceService::Capture(grpc::ServerContext* context, const v1::C
       job.seed = request->render().seed() + i;
       const gpu::RenderResult frame = renderFrameJob(state_.worker, client, job);
       const std::vector<frame_io::FrameFile> files =
-          captureFiles(frame, job, captureStem(request->name(), i), format, layout);
+          captureFiles(frame, job, frame_io::captureFrameStem(request->name(), i), format, layout);
       checkGoing(i);             // no file after a cancel
       output.writeFrame(files);  // the frame's files whole or not at all
       for (const frame_io::FrameFile& file : files) {

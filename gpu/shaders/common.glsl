@@ -55,6 +55,21 @@ layout(set = 0, binding = HT_BINDING_TEXELS) uniform samplerBuffer texelTexels;
 layout(set = 0, binding = HT_BINDING_RAY_TABLE) uniform samplerBuffer rayTableTexels;           // 2 texels per entry: origin, direction
 layout(set = 0, binding = HT_BINDING_SUBPIXEL_TEXELS) uniform samplerBuffer subpixelTexels;           // subpixelBuffer, read through texel fetches
 
+// The index of chunk target `target` in the whole frame: targets count pixels x, then rows y from the bottom, then
+// views, FRAME.frame.z per pixel (raygen.comp). A chunk covers views [FRAME.views.y, + FRAME.views.x) and rows
+// [FRAME.views.w, + FRAME.dims.y) of views FRAME.frame.y rows high. Sample positions and random choices are keyed by
+// this index, never by the index within the chunk, so a chunk of views or a band of rows renders exactly the bits the
+// whole frame has at those targets (RenderSettings::region, the cluster's work units).
+uint frame_global_target(uint target) {
+  uint perPixel = FRAME.frame.z;
+  uint width = FRAME.dims.x;
+  uint pixel = target / perPixel;
+  uint bandPixels = width * FRAME.dims.y;
+  uint y = FRAME.views.w + (pixel % bandPixels) / width;
+  uint view = FRAME.views.y + pixel / bandPixels;
+  return ((view * FRAME.frame.y + y) * width + pixel % width) * perPixel + target % perPixel;
+}
+
 HtRay load_ray(uint q, uint i) {
   int k = int(2u * i);
   vec4 a = q == 0u ? imageLoad(rayQueue0, k) : imageLoad(rayQueue1, k);

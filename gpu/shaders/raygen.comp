@@ -52,10 +52,10 @@ void main() {
   uint pixel = target / perPixel;
   uint c = target % perPixel;
   uint x = pixel % width;
-  uint y = (pixel / width) % height;
+  uint y = FRAME.views.w + (pixel / width) % height;  // the row in the whole view (the chunk may be a band of rows)
   uint view = FRAME.views.y + pixel / (width * height);
-  // Decorrelation uses the target's index over the whole frame (all views), not within this chunk of views.
-  uint globalTarget = target + FRAME.views.y * width * height * perPixel;
+  // Decorrelation uses the target's index over the whole frame (all views, all rows), not within this chunk.
+  uint globalTarget = frame_global_target(target);
   vec2 xi = footprint_sample(globalTarget, s, spp, FRAME.frame.x, FRAME.views.z);
   vec3 origin;
   vec3 dir;

@@ -139,6 +139,18 @@ float fresnel_dielectric(float cosI, float cosT, float eta) {
   return 0.5f * (rParl * rParl + rPerp * rPerp);
 }
 
+// The key of chunk path `chunkPath` (target x sample; in the refinement pass, listed target x sample) for its random
+// choices: its target's index in the whole frame, its sample and the pass's spp (as footprint_sample keys its
+// position: a refined target's samples are those of a frame rendered at the refinement spp). Independent of how the
+// frame is cut into chunks of views or bands of rows (common.glsl frame_global_target).
+uint path_sample_key(uint chunkPath) {
+  uint spp = FRAME.dims.z;
+  uint entry = chunkPath / spp;
+  bool refining = FRAME.refineInfo.w != 0u;
+  uint target = refining ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;
+  return ht_hash(frame_global_target(target) * 0x9E3779B9u ^ ht_hash(chunkPath % spp + spp * 0x68E31DA4u));
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= COUNTERS.queueCount[pc.queue]) return;
@@ -178,7 +190,7 @@ void main() {
       bool reflectRay = sin2T >= 1.0f;  // total internal reflection
       float cosT = sqrt(max(0.0f, 1.0f - sin2T));
       if (!reflectRay) {
-        uint h = ht_hash((pc.batchFirst + path) ^ ht_hash(pc.depth * 0x632BE5ABu ^ FRAME.frame.x));
+        uint h = ht_hash(path_sample_key(pc.batchFirst + path) ^ ht_hash(pc.depth * 0x632BE5ABu ^ FRAME.frame.x));
         reflectRay = ht_uint_to_unit(h) < fresnel_dielectric(cosI, cosT, eta);
       }
       if (reflectRay) {

@@ -15,6 +15,7 @@ target_link_libraries / ht_add_test LIBS name what it links directly):
  6. Only the device library (LIBUSB_MODULES: devices/, calibration from the panel over USB) includes or links libusb.
  7. Only the display sink (present/), its tests and benchmarks include or link X11 (xcb, xcb-randr, Xlib); the core
     libraries never do (gpu/ may enable the Vulkan surface extensions by name, without X headers).
+ 8. Only cluster/ includes or links MPI.
 KNOWN_VIOLATIONS lists the violations of today's tree that pending work removes; a violation not in it fails.
 Usage: check_module_boundaries.py [--root DIR]. Exit 0 when clean, 1 with one line per violation.
 """
@@ -43,7 +44,9 @@ CORE_LAYERS = {
 # devices/ (issue 15): finds display panels and reads their calibration over USB HID; the CLI and the daemon link it.
 LIBUSB_MODULES = ("devices",)
 # Our modules a core library must not depend on.
-ABOVE_CORE = APPS + ("protocol", "frame_io", "devices", "present", "tests", "bench", "tools")
+ABOVE_CORE = APPS + ("protocol", "frame_io", "devices", "present", "cluster", "tests", "bench", "tools")
+# The only module that includes or links MPI: cluster/ (issue 17, docs/CLUSTER.md); apps reach MPI through it.
+MPI_MODULES = ("cluster",)
 X11_MODULES = ("present", "tests", "bench")
 
 # Violations tolerated while a refactor is in flight, as printed by this script (issue 13 emptied it when frame_io/
@@ -167,6 +170,8 @@ def dependency_rule(module, other, kind, verb):
         return "only %s use libusb" % ", ".join(LIBUSB_MODULES)
     if kind == "X11" and module not in X11_MODULES:
         return "only %s use X11" % ", ".join(X11_MODULES)
+    if kind == "MPI" and module not in MPI_MODULES:
+        return "only %s uses MPI" % ", ".join(MPI_MODULES)
     return None
 
 

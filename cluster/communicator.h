@@ -1,0 +1,63 @@
+// communicator.h - the MPI job this process belongs to, as the few operations a cluster render needs. The only
+// code that calls MPI is communicator_mpi.cpp; a build without MPI compiles communicator_none.cpp instead, whose
+// join() throws. MPI errors come back as ClusterError (the communicator's error handler is MPI_ERRORS_RETURN), never
+// as MPI's silent default abort.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace ht::cluster {
+
+// A message waiting to be received (probe()).
+struct Incoming {
+  int source = 0;
+  int tag = 0;
+};
+
+class Communicator {
+ public:
+  // Initialises MPI (thread level FUNNELED: only the thread that joined calls MPI) and sets MPI_ERRORS_RETURN on
+  // the world communicator. Throws ClusterError when MPI is missing from this build or cannot start.
+  static std::unique_ptr<Communicator> join();
+  // A job of one rank without MPI (communicator_solo.cpp): the same code then runs in a plain process.
+  static std::unique_ptr<Communicator> solo();
+  // join() when an MPI launcher started this process (mpi_launch.h), else solo().
+  static std::unique_ptr<Communicator> forThisProcess();
+  virtual ~Communicator() = default;  // finalises MPI unless the job was aborted
+
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+
+  // Root's `bytes` on every rank (any size: sent as a 64-bit length, then chunks of at most 1 GiB).
+  virtual void broadcast(std::vector<std::uint8_t>& bytes, int root) = 0;
+  // Every rank's `mine` (all of the same size), concatenated in rank order, on every rank.
+  virtual std::vector<std::uint8_t> allGather(std::span<const std::uint8_t> mine) = 0;
+  virtual void barrier() = 0;
+
+  // Point to point (chunks of at most 1 GiB; the receiver must know the size).
+  virtual void send(int destination, int tag, std::span<const std::uint8_t> bytes) = 0;
+  virtual void receive(int source, int tag, std::span<std::uint8_t> bytes) = 0;
+  // A message of any source and tag waiting to be received, without blocking.
+  virtual std::optional<Incoming> probe() = 0;
+
+  // Ends every rank of the job with exit status `code` (MPI_Abort); does not return.
+  [[noreturn]] virtual void abort(int code) = 0;
+};
+
+// Typed helpers over send/receive for fixed-size records.
+template <typename T>
+void sendRecord(Communicator& comm, int destination, int tag, const T& record) {
+  comm.send(destination, tag, std::span(reinterpret_cast<const std::uint8_t*>(&record), sizeof(T)));
+}
+template <typename T>
+T receiveRecord(Communicator& comm, int source, int tag) {
+  T record{};
+  comm.receive(source, tag, std::span(reinterpret_cast<std::uint8_t*>(&record), sizeof(T)));
+  return record;
+}
+
+}  // namespace ht::cluster

@@ -1,0 +1,116 @@
+// communicator_mpi.cpp - Communicator over Open MPI (docs/CLUSTER.md §2). Every call's return code is checked: the
+// world communicator returns errors (MPI_ERRORS_RETURN) and they become ClusterError naming the call. Large buffers
+// go in chunks of at most 1 GiB, since MPI 3.1 counts are ints.
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+
+#include "cluster/cluster_error.h"
+#include "cluster/communicator.h"
+
+namespace ht::cluster {
+namespace {
+
+constexpr std::size_t kChunkBytes = std::size_t{1} << 30;
+
+void check(int code, const char* call) {
+  if (code == MPI_SUCCESS) return;
+  char text[MPI_MAX_ERROR_STRING] = {};
+  int length = 0;
+  MPI_Error_string(code, text, &length);
+  throw ClusterError(std::string(call) + " failed: " + std::string(text, static_cast<std::size_t>(length)));
+}
+
+int chunkCount(std::size_t bytes, std::size_t offset) {
+  return static_cast<int>(std::min(kChunkBytes, bytes - offset));
+}
+
+class MpiCommunicator final : public Communicator {
+ public:
+  MpiCommunicator() {
+    int provided = 0;
+    check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+    check(MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN), "MPI_Comm_set_errhandler");
+    if (provided < MPI_THREAD_FUNNELED) {
+      throw ClusterError("MPI_Init_thread: the MPI library offers no MPI_THREAD_FUNNELED support");
+    }
+    check(MPI_Comm_rank(MPI_COMM_WORLD, &rank_), "MPI_Comm_rank");
+    check(MPI_Comm_size(MPI_COMM_WORLD, &size_), "MPI_Comm_size");
+  }
+  ~MpiCommunicator() override { MPI_Finalize(); }
+
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+
+  void broadcast(std::vector<std::uint8_t>& bytes, int root) override {
+    std::uint64_t length = bytes.size();
+    check(MPI_Bcast(&length, 1, MPI_UINT64_T, root, MPI_COMM_WORLD), "MPI_Bcast (length)");
+    bytes.resize(static_cast<std::size_t>(length));
+    for (std::size_t at = 0; at < bytes.size(); at += kChunkBytes) {
+      check(MPI_Bcast(bytes.data() + at, chunkCount(bytes.size(), at), MPI_BYTE, root, MPI_COMM_WORLD), "MPI_Bcast");
+    }
+  }
+
+  std::vector<std::uint8_t> allGather(std::span<const std::uint8_t> mine) override {
+    std::vector<std::uint8_t> all(mine.size() * static_cast<std::size_t>(size_));
+    check(MPI_Allgather(mine.data(), static_cast<int>(mine.size()), MPI_BYTE, all.data(), static_cast<int>(mine.size()),
+                        MPI_BYTE, MPI_COMM_WORLD),
+          "MPI_Allgather");
+    return all;
+  }
+
+  void barrier() override { check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier"); }
+
+  void send(int destination, int tag, std::span<const std::uint8_t> bytes) override {
+    if (bytes.empty()) {
+      check(MPI_Send(nullptr, 0, MPI_BYTE, destination, tag, MPI_COMM_WORLD), "MPI_Send");
+      return;
+    }
+    for (std::size_t at = 0; at < bytes.size(); at += kChunkBytes) {
+      check(MPI_Send(bytes.data() + at, chunkCount(bytes.size(), at), MPI_BYTE, destination, tag, MPI_COMM_WORLD),
+            "MPI_Send");
+    }
+  }
+
+  void receive(int source, int tag, std::span<std::uint8_t> bytes) override {
+    if (bytes.empty()) {
+      check(MPI_Recv(nullptr, 0, MPI_BYTE, source, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
+      return;
+    }
+    for (std::size_t at = 0; at < bytes.size(); at += kChunkBytes) {
+      MPI_Status status;
+      const int expected = chunkCount(bytes.size(), at);
+      check(MPI_Recv(bytes.data() + at, expected, MPI_BYTE, source, tag, MPI_COMM_WORLD, &status), "MPI_Recv");
+      int got = 0;
+      check(MPI_Get_count(&status, MPI_BYTE, &got), "MPI_Get_count");
+      if (got != expected) {
+        throw ClusterError("rank " + std::to_string(source) + " sent " + std::to_string(got) + " bytes (tag " +
+                           std::to_string(tag) + ") where " + std::to_string(expected) + " were expected");
+      }
+    }
+  }
+
+  std::optional<Incoming> probe() override {
+    int flag = 0;
+    MPI_Status status;
+    check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status), "MPI_Iprobe");
+    if (!flag) return std::nullopt;
+    return Incoming{status.MPI_SOURCE, status.MPI_TAG};
+  }
+
+  [[noreturn]] void abort(int code) override {
+    MPI_Abort(MPI_COMM_WORLD, code);
+    std::_Exit(code);  // MPI_Abort does not return; if a broken library did, still end this rank
+  }
+
+ private:
+  int rank_ = 0, size_ = 1;
+};
+
+}  // namespace
+
+std::unique_ptr<Communicator> Communicator::join() { return std::make_unique<MpiCommunicator>(); }
+
+}  // namespace ht::cluster

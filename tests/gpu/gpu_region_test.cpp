@@ -1,0 +1,106 @@
+// Sub-renders (RenderSettings::region): a band of rows or a range of views renders exactly the bits the whole frame
+// has at those pixels, also through glass (whose random Fresnel choice is keyed by the frame-wide target, not by the
+// path's place in its chunk), so a cluster can cut a frame into work units and assemble it bit for bit.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "camera_models/display_config.h"
+#include "camera_models/lenticular_params.h"
+#include "common/error.h"
+#include "gpu/display_camera.h"
+#include "gpu_test_util.h"
+
+namespace ht::test {
+namespace {
+
+gpu::RenderSettings regionSettings(std::uint32_t spp, gpu::RenderRegion region = {}) {
+  gpu::RenderSettings s;
+  s.spp = spp;
+  s.maxDepth = 3;
+  s.seed = 5;
+  s.region = region;
+  return s;
+}
+
+// The floats of rows [rowFirst, rowFirst + rows) of views [viewFirst, + views) of a whole frame.
+std::vector<float> cut(const gpu::RenderResult& whole, std::uint32_t viewFirst, std::uint32_t views,
+                       std::uint32_t rowFirst, std::uint32_t rows) {
+  std::vector<float> part;
+  const std::size_t rowFloats = std::size_t{whole.width} * 4;
+  for (std::uint32_t v = viewFirst; v < viewFirst + views; ++v) {
+    const float* view = whole.rgba.data() + std::size_t{v} * whole.height * rowFloats;
+    part.insert(part.end(), view + rowFirst * rowFloats, view + (rowFirst + rows) * rowFloats);
+  }
+  return part;
+}
+
+bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+class GpuRegion : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { scene_ = new Scene(loadScene("builtin:showcase")); }  // glass, mirror, lights
+  static void TearDownTestSuite() {
+    delete scene_;
+    scene_ = nullptr;
+  }
+  static Scene* scene_;
+};
+Scene* GpuRegion::scene_ = nullptr;
+
+TEST_F(GpuRegion, RowBandsOfALenticularPanelAreTheWholeFramesRows) {
+  DisplayConfig display = builtinDisplay("portrait");
+  display.calibration->screenW = 40;
+  display.calibration->screenH = 30;
+  const gpu::FrameCamera camera = makeLenticularParams(display, scene_->bounds());
+  gpu::Renderer renderer(sharedContext(), *scene_);
+  const gpu::RenderResult whole = renderer.render(camera, regionSettings(2));
+  ASSERT_EQ(whole.height, 30u);
+  for (const auto& [first, rows] : {std::pair{0u, 7u}, {7u, 1u}, {8u, 13u}, {21u, 9u}}) {
+    const gpu::RenderResult band = renderer.render(camera, regionSettings(2, {0, 0, first, rows}));
+    EXPECT_EQ(band.width, 40u);
+    EXPECT_EQ(band.height, rows);
+    EXPECT_TRUE(sameBits(band.rgba, cut(whole, 0, 1, first, rows))) << "rows " << first << " + " << rows;
+  }
+}
+
+TEST_F(GpuRegion, ViewRangesAndBandsOfAProjectorArrayAreTheWholeFramesPixels) {
+  const DisplayConfig display = parseDisplayConfig(R"({"name": "wall", "model": "projector-array", "spp": 2,
+      "projectorArray": {"screen": {"width": 160, "height": 90}, "observerDistance": 300, "observerHeight": 0,
+      "angularScattering": "auto", "image": {"width": 24, "height": 12},
+      "projectors": [{"position": [-10, 0, -180]}, {"position": [0, 0, -180]}, {"position": [10, 0, -180]},
+                     {"position": [20, 0, -180]}]}})",
+                                                   "wall.json", ".");
+  const gpu::FrameCamera camera = gpu::makeDisplayCamera(display, scene_->bounds()).camera;
+  gpu::Renderer renderer(sharedContext(), *scene_);
+  const gpu::RenderResult whole = renderer.render(camera, regionSettings(2));
+  ASSERT_EQ(whole.views, 4u);
+  const gpu::RenderResult views = renderer.render(camera, regionSettings(2, {1, 2, 0, 0}));
+  EXPECT_EQ(views.views, 2u);
+  EXPECT_TRUE(sameBits(views.rgba, cut(whole, 1, 2, 0, 12)));
+  const gpu::RenderResult corner = renderer.render(camera, regionSettings(2, {3, 0, 5, 4}));
+  EXPECT_EQ(corner.views, 1u);
+  EXPECT_TRUE(sameBits(corner.rgba, cut(whole, 3, 1, 5, 4)));
+}
+
+TEST_F(GpuRegion, RegionsOutsideTheFrameAndRefinedBandsAreRefused) {
+  DisplayConfig display = builtinDisplay("portrait");
+  display.calibration->screenW = 16;
+  display.calibration->screenH = 8;
+  const gpu::FrameCamera camera = makeLenticularParams(display, scene_->bounds());
+  gpu::Renderer renderer(sharedContext(), *scene_);
+  EXPECT_THROW(renderer.render(camera, regionSettings(1, {0, 0, 8, 0})), GpuError);
+  EXPECT_THROW(renderer.render(camera, regionSettings(1, {0, 0, 2, 7})), GpuError);
+  EXPECT_THROW(renderer.render(camera, regionSettings(1, {1, 0, 0, 0})), GpuError);
+  gpu::RenderSettings refined = regionSettings(1, {0, 0, 0, 4});
+  refined.refineSpp = 2;
+  EXPECT_THROW(renderer.render(camera, refined), GpuError);
+  refined.region = {};
+  EXPECT_NO_THROW(renderer.render(camera, refined));
+}
+
+}  // namespace
+}  // namespace ht::test
