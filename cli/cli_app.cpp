@@ -12,6 +12,7 @@
 #endif
 #include "cli/command.h"
 #include "cli/info_command.h"
+#include "cli/interleave_command.h"
 #include "cli/raycast_command.h"
 #include "cli/rays_command.h"
 #include "cli/render_command.h"
@@ -28,6 +29,8 @@ constexpr std::array kCommands = {
     Command{"render", "render a display frame (native interleaved panel image) to PNG/EXR", renderHelp, runRender},
     Command{"info", "list Vulkan devices, the one holotrace picks, builtin displays and scenes", infoHelp, runInfo},
     Command{"raycast", "trace a ray batch file against a scene, write the hits (binary or CSV)", raycastHelp, runRaycast},
+    Command{"interleave", "interleave a quilt image (_qs{c}x{r}a{aspect}) into a lenticular panel image", interleaveHelp,
+            runInterleave},
     Command{"rays", "write a display's per-(sub)pixel primary rays (+ view phase) as an EXR ray table", raysHelp, runRays},
 #ifdef HT_WITH_CLIENT
     Command{"client", "talk to a running holotraced: displays|load|render|stream|capture", clientHelp, runClient},
@@ -47,9 +50,9 @@ std::string mainHelp() {
   std::string text =
       "holotrace " HT_VERSION " - light-field display renderer (Vulkan compute ray tracing)\n\n"
       "Usage: holotrace <command> [options]\n\nCommands:\n";
-  for (const Command& c : kCommands) text += "  " + padRight(c.name, 8) + c.summary + "\n";
+  for (const Command& c : kCommands) text += "  " + padRight(c.name, 12) + c.summary + "\n";
   text +=
-      "  help    show this text, or `holotrace help <command>`\n\n"
+      "  help        show this text, or `holotrace help <command>`\n\n"
       "Options:\n  -h, --help     show this text\n  --version      print the version\n\n"
       "Run `holotrace <command> --help` for the options of a command.\n";
   return text;
