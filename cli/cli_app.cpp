@@ -16,6 +16,7 @@
 #include "cli/raycast_command.h"
 #include "cli/rays_command.h"
 #include "cli/render_command.h"
+#include "cli/simulate_command.h"
 #include "common/error.h"
 
 #ifndef HT_VERSION
@@ -31,6 +32,8 @@ constexpr std::array kCommands = {
     Command{"raycast", "trace a ray batch file against a scene, write the hits (binary or CSV)", raycastHelp, runRaycast},
     Command{"interleave", "interleave a quilt image (_qs{c}x{r}a{aspect}) into a lenticular panel image", interleaveHelp,
             runInterleave},
+    Command{"simulate", "what an eye sees of a rendered frame through the display's optics (one eye or a sweep)",
+            simulateHelp, runSimulate},
     Command{"rays", "write a display's per-(sub)pixel primary rays (+ view phase) as an EXR ray table", raysHelp, runRays},
 #ifdef HT_WITH_CLIENT
     Command{"client", "talk to a running holotraced: displays|load|render|stream|capture", clientHelp, runClient},

@@ -30,12 +30,6 @@ const std::array<OptionSpec, 7> kSpecs = {{
     {"--aspect", "", "X", "render aspect W/H of the quilt's cameras (default: the tag, metadata or the display's)"},
 }};
 
-std::string required(const ParsedArguments& parsed, const std::string& name) {
-  auto value = parsed.text(name);
-  if (!value) throw UsageError(usageMessage(kCommand, "missing option '" + name + "'"));
-  return *value;
-}
-
 double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -63,8 +57,8 @@ std::string interleaveHelp() {
 int runInterleave(std::span<const std::string> args, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   const ParsedArguments parsed = parseArguments(kCommand, kSpecs, args);
-  const std::filesystem::path quiltPath = required(parsed, "--quilt");
-  const std::filesystem::path output = required(parsed, "--output");
+  const std::filesystem::path quiltPath = parsed.required("--quilt");
+  const std::filesystem::path output = parsed.required("--output");
   checkImageOutputPath(kCommand, output);
   const QuiltViewFilter filter = parseQuiltViewFilter(parsed.textOr("--filter", "vendor"));
   frame_io::QuiltLayoutHints hints;
@@ -74,7 +68,7 @@ int runInterleave(std::span<const std::string> args, std::ostream& out) {
   if (hints.columns.has_value() != hints.rows.has_value()) {
     throw UsageError(usageMessage(kCommand, "give both '--columns' and '--rows', or neither"));
   }
-  const DisplayConfig display = resolveDisplay(required(parsed, "--display"));
+  const DisplayConfig display = resolveDisplay(parsed.required("--display"));
   frame_io::prepareOutputDirectory(output);  // fail before the work, not after it
 
   const frame_io::InterleavedQuilt panel =

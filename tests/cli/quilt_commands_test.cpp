@@ -143,5 +143,122 @@ TEST(CliInterleave, QuiltsThatCannotFitFailNamingTheValue) {
   EXPECT_THAT(usage.err, HasSubstr("'-o' = "));
 }
 
+// ---- holotrace simulate ---------------------------------------------------------------------------------------------
+
+std::vector<float> rowSlice(const frame_io::ImageFile& image, std::uint32_t x0, std::uint32_t w) {
+  std::vector<float> out;
+  for (std::uint32_t row = 0; row < image.height; ++row) {
+    const auto begin = image.rgba.begin() + std::ptrdiff_t((std::size_t(row) * image.width + x0) * 4);
+    out.insert(out.end(), begin, begin + std::ptrdiff_t(w) * 4);
+  }
+  return out;
+}
+
+// One eye gives a panel-sized view; a sweep of 3 puts 3 views side by side, the middle one the default eye's (the
+// middle of the cone); the same panel seen from two different eyes differs.
+TEST(CliSimulate, OneEyeAndASweepOfALenticularPanel) {
+  ht::test::TempDirectory dir;
+  const fs::path display = writeSmallPanel(dir.path());
+  ProcessResult r = holotrace({"render", "--display", display, "--scene", "builtin:plain", "--spp", "1", "-o",
+                               dir.path() / "panel.png"});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  r = holotrace({"simulate", "--display", display, "--panel", dir.path() / "panel.png", "-o", dir.path() / "mid.png"});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  r = holotrace({"simulate", "--display", display, "--panel", dir.path() / "panel.png", "--sweep", "3", "-o",
+                 dir.path() / "strip.png"});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  EXPECT_THAT(r.out, HasSubstr("3 views side by side of 192x128"));
+  const frame_io::ImageFile mid = frame_io::readImageFile(dir.path() / "mid.png");
+  const frame_io::ImageFile strip = frame_io::readImageFile(dir.path() / "strip.png");
+  ASSERT_EQ(mid.width, 192u);
+  ASSERT_EQ(mid.height, 128u);
+  ASSERT_EQ(strip.width, 3u * 192u);
+  ASSERT_EQ(strip.height, 128u);
+  EXPECT_EQ(rowSlice(strip, 192, 192), mid.rgba);
+  EXPECT_NE(rowSlice(strip, 0, 192), rowSlice(strip, 384, 192));
+}
+
+// The `--debug views` phase image seen from the middle of the cone: every screen point sends the eye the middle
+// view's phase 0.5, within half a subpixel's phase width (0.16/6 = 0.027) plus 8-bit rounding where the line of sight
+// crosses a subpixel of that colour; the rest is crosstalk from the neighbouring subpixels (OPTICS.md §12).
+TEST(CliSimulate, PhasePatternSeenFromTheConeCentreIsTheMiddleView) {
+  ht::test::TempDirectory dir;
+  const fs::path display = writeSmallPanel(dir.path());
+  ProcessResult r = holotrace({"render", "--display", display, "--debug", "views", "--exr", dir.path() / "phase.exr"});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  r = holotrace({"simulate", "--display", display, "--panel", dir.path() / "phase.exr", "-o", dir.path() / "seen.exr"});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  const frame_io::ImageFile seen = frame_io::readImageFile(dir.path() / "seen.exr");
+  std::size_t near = 0, total = 0;
+  for (std::size_t i = 0; i < seen.rgba.size(); ++i) {
+    if (i % 4 == 3) continue;
+    near += std::fabs(seen.rgba[i] - 0.5f) <= 0.03f;
+    ++total;
+  }
+  std::printf("phase within 0.03 of the middle view: %.4f of the subpixels\n", double(near) / double(total));
+  EXPECT_GT(double(near) / double(total), 0.99);  // measured 0.9987
+}
+
+// Projector images as `render` writes them (x_v00.png ..., or a multiView EXR) are read as one frame.
+TEST(CliSimulate, ProjectorImagesFromPerViewPngsOrAMultiViewExr) {
+  ht::test::TempDirectory dir;
+  const fs::path display = fs::path(HT_TEST_DATA_DIR) / "configs" / "display_projector_small.json";
+  // display_projector_small has projectors of two image sizes: the simulator refuses it, naming the projector.
+  ProcessResult r = holotrace({"simulate", "--display", display, "--panel", dir.path() / "none.png", "-o",
+                               dir.path() / "v.png"});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_THAT(r.err, HasSubstr("projectors[1].image"));
+
+  const fs::path wall = dir.path() / "wall.json";
+  std::ofstream(wall) << R"({"name": "wall", "model": "projector-array", "projectorArray": {"screen": {"width": 160,
+      "height": 90}, "observerDistance": 300, "angularScattering": "auto", "image": {"width": 32, "height": 18},
+      "projectors": [{"position": [-20, 0, -180]}, {"position": [0, 0, -180]}, {"position": [20, 0, -180]}]}})";
+  r = holotrace({"render", "--display", wall, "--scene", "builtin:plain", "--spp", "1", "-o", dir.path() / "w.png",
+                 "--exr", dir.path() / "w.exr"});
+  ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+  for (const char* panel : {"w_v00.png", "w.exr"}) {
+    r = holotrace({"simulate", "--display", wall, "--panel", dir.path() / panel, "--sweep", "2", "-o",
+                   dir.path() / (std::string(panel) + ".view.png")});
+    ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
+    const frame_io::ImageFile view = frame_io::readImageFile(dir.path() / (std::string(panel) + ".view.png"));
+    EXPECT_EQ(view.width, 2u * 32u) << panel;
+    EXPECT_EQ(view.height, 18u) << panel;
+  }
+  // One projector image alone is not the frame.
+  r = holotrace({"simulate", "--display", wall, "--panel", dir.path() / "w_v01.png", "-o", dir.path() / "x.png"});
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_THAT(r.err, HasSubstr("the display shows 3 image(s) of 32x18"));
+}
+
+TEST(CliSimulate, BadInputsFailWithoutOutput) {
+  ht::test::TempDirectory dir;
+  const fs::path display = writeSmallPanel(dir.path());
+  writeQuilt(dir.path() / "wrong_size.png", 64, 48);
+  const fs::path out = dir.path() / "out" / "view.png";
+  struct Case {
+    std::vector<std::string> args;
+    int exitCode;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {{"--display", display, "--panel", dir.path() / "wrong_size.png"}, 1, "the display shows 1 image(s) of 192x128"},
+      {{"--display", display, "--panel", dir.path() / "wrong_size.png", "--eye", "0,0,-1"}, 2, "'--eye' = '0,0,-1'"},
+      {{"--display", display, "--panel", dir.path() / "wrong_size.png", "--eye", "0,0,5", "--sweep", "3"}, 2,
+       "not both"},
+      {{"--display", display, "--panel", dir.path() / "wrong_size.png", "--sweep", "1"}, 2, "'--sweep'"},
+      {{"--display", fs::path(HT_TEST_DATA_DIR) / "configs" / "display_pinhole.json", "--panel",
+        dir.path() / "wrong_size.png"},
+       1, "field 'model' = pinhole"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> args = {"simulate", "-o", out};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const ProcessResult r = holotrace(args);
+    EXPECT_EQ(r.exitCode, c.exitCode) << c.message << ": " << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.message));
+    EXPECT_FALSE(fs::exists(out)) << c.message;
+  }
+}
+
 }  // namespace
 }  // namespace ht::cli
