@@ -29,10 +29,15 @@ SceneLibrary::~SceneLibrary() {
 }
 
 std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, const std::string& key,
-                                                  const std::string& spec) {
+                                                  const std::string& spec, std::span<const std::uint8_t> bytes) {
   auto content = std::make_shared<SceneContent>();
   content->contentKey = key;
   const auto start = std::chrono::steady_clock::now();
+  if (isQuiltSpec(spec)) {  // a quilt image: shown by interleaving, nothing to trace
+    content->quilt = std::make_shared<const QuiltContent>(std::filesystem::path(spec).filename().string(), bytes);
+    content->loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return content;
+  }
   content->scene = loadScene(spec);
   content->loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (content->scene.triangleCount() > maxTriangles_) {
@@ -51,7 +56,9 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
 
 std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client, const std::string& spec,
                                                        std::span<const std::uint8_t> bytes) {
-  const std::string key = bytes.empty() ? spec : contentHash(bytes) + spec.substr(spec.rfind('.') + 1);
+  std::string key = bytes.empty() ? spec : contentHash(bytes) + spec.substr(spec.rfind('.') + 1);
+  // A quilt's layout comes from its name as much as from its bytes (server/quilt_content.h).
+  if (!bytes.empty() && isQuiltSpec(spec)) key += "\n" + std::filesystem::path(spec).filename().string();
   std::shared_ptr<SceneContent> content;
   bool reused = false;
   {
@@ -63,7 +70,7 @@ std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client
       if (it != contents_.end()) content = it->second, reused = true;
     }
     if (!content) {
-      content = build(client, key, spec);
+      content = build(client, key, spec, bytes);
       std::lock_guard lock(mutex_);
       contents_[key] = content;
     }
@@ -100,6 +107,7 @@ SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, cons
                                                 const std::function<void(Scene&)>& edit) {
   std::lock_guard editing(buildMutex_);  // one BVH build at a time, and edits of one session in order
   const std::shared_ptr<const SceneSession> session = find(id);
+  if (session->content->quilt) throw BadRequest("scene_id", "'" + id + "' is a quilt image: it has no nodes or lights");
   auto content = std::make_shared<SceneContent>(*session->content);  // copies the scene, shares the Renderer
   edit(content->scene);
   const bool newRenderer = content->editedBy != id;

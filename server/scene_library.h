@@ -16,6 +16,7 @@
 #include "gpu/renderer.h"
 #include "scene/scene.h"
 #include "server/errors.h"
+#include "server/quilt_content.h"
 #include "server/render_worker.h"
 
 namespace ht::server {
@@ -28,6 +29,7 @@ struct SceneContent {
   double loadMs = 0.0;
   std::string editedBy;  // "" = loaded content, shared by every session of the same bytes; else the one session
                          // whose edits (UpdateScene nodes / lights) it carries
+  std::shared_ptr<const QuiltContent> quilt;  // a quilt image (server/quilt_content.h): no scene, no renderer
 };
 
 struct SceneSession {
@@ -66,7 +68,8 @@ class SceneLibrary {
   std::size_t contentCount() const;
 
  private:
-  std::shared_ptr<SceneContent> build(const std::string& client, const std::string& key, const std::string& spec);
+  std::shared_ptr<SceneContent> build(const std::string& client, const std::string& key, const std::string& spec,
+                                      std::span<const std::uint8_t> bytes);
 
   RenderWorker& worker_;
   const std::uint64_t maxTriangles_;
