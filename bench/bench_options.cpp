@@ -38,7 +38,8 @@ std::optional<BenchOptions> parseBenchOptions(std::span<const std::string> args,
   options.size = parsed.unsignedValue("--size", 1, 8192).value_or(options.size);
   options.mesh = parsed.textOr("--mesh", options.mesh);
   if (auto device = parsed.unsignedValue("--device", 0, 255)) options.deviceIndex = int(*device);
-  options.threads = parsed.unsignedValue("--threads", 1, 1024).value_or(std::max(1u, std::thread::hardware_concurrency()));
+  options.threads =
+      parsed.unsignedValue("--threads", 1, 1024).value_or(std::max(1u, std::thread::hardware_concurrency()));
   options.jsonPath = parsed.text("--json");
   return options;
 }

@@ -8,12 +8,12 @@
 namespace ht::bench {
 
 struct BenchOptions {
-  std::uint32_t runs = 7;                                      // timed runs per tracer (after one warm-up)
-  std::uint32_t size = 1024;                                   // image is size x size primary rays
-  std::string mesh = "/usr/share/glmark2/models/bunny.obj";    // anything ht::loadScene reads
-  int deviceIndex = -1;                                        // Vulkan device, -1 = automatic
-  unsigned threads = 0;                                        // Embree threads, 0 = all cores
-  std::optional<std::string> jsonPath;                         // write the result as JSON here
+  std::uint32_t runs = 7;                                    // timed runs per tracer (after one warm-up)
+  std::uint32_t size = 1024;                                 // image is size x size primary rays
+  std::string mesh = "/usr/share/glmark2/models/bunny.obj";  // anything ht::loadScene reads
+  int deviceIndex = -1;                                      // Vulkan device, -1 = automatic
+  unsigned threads = 0;                                      // Embree threads, 0 = all cores
+  std::optional<std::string> jsonPath;                       // write the result as JSON here
 };
 
 // Returns nullopt after printing help (--help); throws UsageError for bad options.

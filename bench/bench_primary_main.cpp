@@ -1,7 +1,7 @@
 // bench_primary_main.cpp - holotrace-bench-primary: holotrace's GPU traversal vs Embree 3 on the same
-// pinhole primary rays (docs/bvh.md §8 6(d): lavapipe target >= 20 % of Embree on the same machine).
+// pinhole primary rays (docs/BVH.md §8 6(d): lavapipe target >= 20 % of Embree on the same machine).
 //
-// Both tracers are warmed up once (lavapipe JIT-compiles at the first dispatch, toolchain.md P7), then run
+// Both tracers are warmed up once (lavapipe JIT-compiles at the first dispatch, docs/TOOLCHAIN.md P7), then run
 // interleaved --runs times; the median of each is reported. GPU time = timestamp time of the trace
 // dispatches (TraceStats::gpuMs); Embree time = wall time of the threaded rtcIntersect1/rtcOccluded1 loop.
 #include <algorithm>
@@ -99,7 +99,8 @@ int runBenchmark(const BenchOptions& options) {
 }  // namespace ht::bench
 
 int main(int argc, char** argv) {
-  return ht::bench::benchMain(argc, argv, "holotrace-bench-primary",
-                              [](const std::vector<std::string>& a, std::string* help) { return ht::bench::parseBenchOptions(a, help); },
-                              [](const auto& options) { return ht::bench::runBenchmark(options); });
+  return ht::bench::benchMain(
+      argc, argv, "holotrace-bench-primary",
+      [](const std::vector<std::string>& a, std::string* help) { return ht::bench::parseBenchOptions(a, help); },
+      [](const auto& options) { return ht::bench::runBenchmark(options); });
 }

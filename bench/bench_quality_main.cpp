@@ -1,5 +1,5 @@
 // bench_quality_main.cpp - holotrace-bench-quality: run time vs error of the direct lenticular path and the quilt
-// path per display (issue 5; method in quality_options.cpp's help text, optics.md §8 "quilt path vs direct").
+// path per display (issue 5; method in quality_options.cpp's help text, docs/OPTICS.md §8 "quilt path vs direct").
 //
 // Every render is timed once per run; --runs N renders every point N times in turn and the comparison uses the
 // medians of same-run ratios (single frames on a shared 2-core host are off by 10-15 %, which moves an
@@ -100,8 +100,8 @@ void warmUp(const Context& c, const DisplayConfig& display, const gpu::FrameCame
   const auto bounds = c.scene.bounds();
   c.renderer.renderLenticular(makeLenticularParams(small, bounds), warmUpSettings(c.options));
   const QuiltLayout layout = defaultQuiltLayout(display);
-  const QuiltLayout tiny = makeQuiltLayout(layout.columns, layout.rows, layout.columns * 16, layout.rows * 16,
-                                           layout.aspect);
+  const QuiltLayout tiny =
+      makeQuiltLayout(layout.columns, layout.rows, layout.columns * 16, layout.rows * 16, layout.aspect);
   c.renderer.renderQuilt(makeQuiltParams(display, bounds, tiny), settings(c.options, 1, 0));
 }
 
@@ -150,8 +150,8 @@ void measureAdaptive(const Context& c, const gpu::FrameCamera& camera, const std
     s.refineContrast = a.contrast;
     const auto frame = renderAndPrintStages(c, camera, s);
     const double targets = double(gpu::frameShape(camera).targets());
-    QualityPoint p{"adaptive", a.baseSpp, "", "", frame.totalMs, stageSum(frame), 0.0, {}, 0.0,
-                   a.refineSpp, a.contrast, double(frame.refinedTargets) / targets};
+    QualityPoint p{"adaptive", a.baseSpp, "",  "",          frame.totalMs, stageSum(frame),
+                   0.0,        {},        0.0, a.refineSpp, a.contrast,    double(frame.refinedTargets) / targets};
     scoreAgainst(p, frame.rgba, reference, d);
     addPoint(d, retimes.emplace_back([&c, &camera, s] { return c.renderer.render(camera, s).totalMs; }), p);
   }
@@ -174,8 +174,8 @@ void measureQuilt(const Context& c, const DisplayConfig& display, const QuiltLay
       const auto start = Clock::now();
       const auto panel = interleaveQuilt(views, lenticular, filter);
       const double interleaveMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-      QualityPoint p{"quilt", spp, name, std::string(quiltViewFilterName(filter)), frame.totalMs, stageSum(frame),
-                     interleaveMs, {}, 0.0};
+      QualityPoint p{"quilt",      spp, name, std::string(quiltViewFilterName(filter)), frame.totalMs, stageSum(frame),
+                     interleaveMs, {},  0.0};
       scoreAgainst(p, panel, reference, d);
       addPoint(d, retime, p);
     }
@@ -255,7 +255,8 @@ int runBenchmark(const QualityOptions& o) {
 }  // namespace ht::bench
 
 int main(int argc, char** argv) {
-  return ht::bench::benchMain(argc, argv, "holotrace-bench-quality",
-                              [](const std::vector<std::string>& a, std::string* help) { return ht::bench::parseQualityOptions(a, help); },
-                              [](const auto& options) { return ht::bench::runBenchmark(options); });
+  return ht::bench::benchMain(
+      argc, argv, "holotrace-bench-quality",
+      [](const std::vector<std::string>& a, std::string* help) { return ht::bench::parseQualityOptions(a, help); },
+      [](const auto& options) { return ht::bench::runBenchmark(options); });
 }

@@ -6,8 +6,8 @@
 //
 // Usage: holotrace-bench-raygen [--runs N] [--targets N] [--device N]
 #include <cstdio>
-#include <functional>
 #include <exception>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -15,10 +15,10 @@
 #include "bench/timing_series.h"
 #include "camera_models/display_config.h"
 #include "common/error.h"
-#include "scene/scene.h"
 #include "gpu/display_camera.h"
 #include "gpu/renderer.h"
 #include "gpu/vulkan_context.h"
+#include "scene/scene.h"
 
 namespace ht::bench {
 namespace {
@@ -34,9 +34,7 @@ std::uint32_t parseCount(const std::string& name, const std::string& value, std:
   unsigned long n = 0;
   try {
     n = std::stoul(value, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
+  } catch (const std::exception&) { used = 0; }
   if (used != value.size() || n < lo || n > hi) {
     throw UsageError("holotrace-bench-raygen: " + name + " = '" + value + "': expected an integer in [" +
                      std::to_string(lo) + ", " + std::to_string(hi) + "]");
@@ -55,10 +53,14 @@ RaygenOptions parseOptions(int argc, char** argv) {
     }
     if (i + 1 >= argc) throw UsageError("holotrace-bench-raygen: option '" + a + "' needs a value (see --help)");
     const std::string v = argv[++i];
-    if (a == "--runs") o.runs = parseCount(a, v, 1, 1000);
-    else if (a == "--targets") o.targets = parseCount(a, v, 1024, 1u << 24);
-    else if (a == "--device") o.deviceIndex = int(parseCount(a, v, 0, 255));
-    else throw UsageError("holotrace-bench-raygen: unknown option '" + a + "' (see --help)");
+    if (a == "--runs")
+      o.runs = parseCount(a, v, 1, 1000);
+    else if (a == "--targets")
+      o.targets = parseCount(a, v, 1024, 1u << 24);
+    else if (a == "--device")
+      o.deviceIndex = int(parseCount(a, v, 0, 255));
+    else
+      throw UsageError("holotrace-bench-raygen: unknown option '" + a + "' (see --help)");
   }
   return o;
 }
@@ -66,7 +68,8 @@ RaygenOptions parseOptions(int argc, char** argv) {
 // A 1920x1080 pinhole camera at 70 degrees, as a display config (no builtin display is a plain pinhole).
 DisplayConfig pinholeCamera() {
   return parseDisplayConfig(R"({"name": "pinhole-1080p", "model": "pinhole",
-      "pinhole": {"width": 1920, "height": 1080, "fovyDeg": 70}})", "bench", "");
+      "pinhole": {"width": 1920, "height": 1080, "fovyDeg": 70}})",
+                            "bench", "");
 }
 
 // Barrel distortion of a wide projector or camera lens (OpenCV convention; lens_distortion.h).
@@ -91,7 +94,7 @@ void runCase(gpu::Renderer& renderer, const Case& c, const RaygenOptions& o) {
   for (std::uint32_t spp : {1u, 4u}) {
     gpu::RenderSettings settings;
     settings.spp = spp;
-    const std::uint64_t first = (frameTargets - targets) / 2;  // the middle of the frame
+    const std::uint64_t first = (frameTargets - targets) / 2;        // the middle of the frame
     renderer.generateRays(camera.camera, settings, first, targets);  // warm-up: JIT compile on lavapipe
     TimingSeries series;
     for (std::uint32_t r = 0; r < o.runs; ++r) {
@@ -112,21 +115,28 @@ int run(int argc, char** argv) {
               context.device().name.c_str(), o.targets, o.runs);
   const Scene scene = loadScene("builtin:sphere");  // raygen traces nothing; the renderer still needs a scene
   gpu::Renderer renderer(context, scene);
-  const std::vector<Case> cases = {
-      builtinCase("portrait"), builtinCase("portrait", gpu::CameraPath::Quilt), builtinCase("gen3-16-landscape"),
-      builtinCase("go"), builtinCase("holovizio-wall-70"),
-      {"holovizio-wall-70 + lens", [] {
-         DisplayConfig c = builtinDisplay("holovizio-wall-70");
-         c.projectorArray->lens = ProjectorArrayConfig::Lens{1.1 * c.projectorArray->projectors[0].width, {}, kBarrelLens};
-         return c;
-       }},
-      builtinCase("integral-15-4k"), builtinCase("capture-8x6"), builtinCase("capture-16x16"),
-      builtinCase("oblique-9x9"), {"pinhole-1080p", pinholeCamera},
-      {"pinhole-1080p + lens", [] {
-         DisplayConfig c = pinholeCamera();
-         c.pinhole.distortion = kBarrelLens;
-         return c;
-       }}};
+  const std::vector<Case> cases = {builtinCase("portrait"),
+                                   builtinCase("portrait", gpu::CameraPath::Quilt),
+                                   builtinCase("gen3-16-landscape"),
+                                   builtinCase("go"),
+                                   builtinCase("holovizio-wall-70"),
+                                   {"holovizio-wall-70 + lens",
+                                    [] {
+                                      DisplayConfig c = builtinDisplay("holovizio-wall-70");
+                                      c.projectorArray->lens = ProjectorArrayConfig::Lens{
+                                          1.1 * c.projectorArray->projectors[0].width, {}, kBarrelLens};
+                                      return c;
+                                    }},
+                                   builtinCase("integral-15-4k"),
+                                   builtinCase("capture-8x6"),
+                                   builtinCase("capture-16x16"),
+                                   builtinCase("oblique-9x9"),
+                                   {"pinhole-1080p", pinholeCamera},
+                                   {"pinhole-1080p + lens", [] {
+                                      DisplayConfig c = pinholeCamera();
+                                      c.pinhole.distortion = kBarrelLens;
+                                      return c;
+                                    }}};
   for (const Case& c : cases) runCase(renderer, c, o);
   return 0;
 }

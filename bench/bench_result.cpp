@@ -26,8 +26,8 @@ double ratio(const QueryResult& q, std::uint64_t rays) {
 
 void printQuery(std::ostream& out, const char* name, const QueryResult& q, std::uint64_t rays) {
   out << name << "  holotrace GPU " << fixed(q.gpu.medianMraysPerSecond(rays), 2) << " Mrays/s ("
-      << fixed(q.gpu.medianMs(), 1) << " ms)   Embree " << fixed(q.embree.medianMraysPerSecond(rays), 2)
-      << " Mrays/s (" << fixed(q.embree.medianMs(), 1) << " ms)   GPU/Embree " << fixed(ratio(q, rays), 3) << "\n"
+      << fixed(q.gpu.medianMs(), 1) << " ms)   Embree " << fixed(q.embree.medianMraysPerSecond(rays), 2) << " Mrays/s ("
+      << fixed(q.embree.medianMs(), 1) << " ms)   GPU/Embree " << fixed(ratio(q, rays), 3) << "\n"
       << std::string(10, ' ') << "hits: holotrace " << q.hits.hitsA << ", Embree " << q.hits.hitsB << " (difference "
       << fixed(100.0 * q.hits.hitCountDifference(), 4) << " %, " << q.hits.hitMissFlips << " hit/miss flips";
   if (q.hits.differentTriangle || q.hits.maxRelativeTDiff > 0.0) {
@@ -38,14 +38,23 @@ void printQuery(std::ostream& out, const char* name, const QueryResult& q, std::
 
 nlohmann::json queryJson(const QueryResult& q, std::uint64_t rays) {
   return {
-      {"gpu", {{"median_ms", q.gpu.medianMs()}, {"median_mrays_per_s", q.gpu.medianMraysPerSecond(rays)},
-               {"runs_ms", q.gpu.ms}, {"max_traversal_steps", q.gpuMaxSteps}}},
-      {"embree", {{"median_ms", q.embree.medianMs()}, {"median_mrays_per_s", q.embree.medianMraysPerSecond(rays)},
-                  {"runs_ms", q.embree.ms}}},
+      {"gpu",
+       {{"median_ms", q.gpu.medianMs()},
+        {"median_mrays_per_s", q.gpu.medianMraysPerSecond(rays)},
+        {"runs_ms", q.gpu.ms},
+        {"max_traversal_steps", q.gpuMaxSteps}}},
+      {"embree",
+       {{"median_ms", q.embree.medianMs()},
+        {"median_mrays_per_s", q.embree.medianMraysPerSecond(rays)},
+        {"runs_ms", q.embree.ms}}},
       {"gpu_over_embree", ratio(q, rays)},
-      {"hits", {{"gpu", q.hits.hitsA}, {"embree", q.hits.hitsB}, {"relative_difference", q.hits.hitCountDifference()},
-                {"hit_miss_flips", q.hits.hitMissFlips}, {"different_triangle", q.hits.differentTriangle},
-                {"max_relative_t_difference", q.hits.maxRelativeTDiff}}},
+      {"hits",
+       {{"gpu", q.hits.hitsA},
+        {"embree", q.hits.hitsB},
+        {"relative_difference", q.hits.hitCountDifference()},
+        {"hit_miss_flips", q.hits.hitMissFlips},
+        {"different_triangle", q.hits.differentTriangle},
+        {"max_relative_t_difference", q.hits.maxRelativeTDiff}}},
   };
 }
 
@@ -62,8 +71,8 @@ void printResult(std::ostream& out, const BenchResult& r) {
       << " timed runs per tracer after a warm-up, interleaved\n"
       << "device:   " << r.device << "\n"
       << "BVH:      holotrace build " << fixed(r.bvhBuildMs, 1) << " ms, SAH cost " << fixed(r.bvhSahCost, 2) << ", "
-      << r.bvhNodes << " nodes, depth " << r.bvhMaxDepth << "; Embree " << r.embreeVersion << " build " << fixed(r.embreeBuildMs, 1)
-      << " ms (default flags, " << r.embreeThreads << " threads for tracing)\n";
+      << r.bvhNodes << " nodes, depth " << r.bvhMaxDepth << "; Embree " << r.embreeVersion << " build "
+      << fixed(r.embreeBuildMs, 1) << " ms (default flags, " << r.embreeThreads << " threads for tracing)\n";
   printQuery(out, "closest ", r.closest, r.rays());
   printQuery(out, "occluded", r.occluded, r.rays());
   out << "hit counts " << (r.hitsAgree() ? "agree" : "DISAGREE") << " (tolerance "
@@ -81,7 +90,8 @@ void writeResultJson(const std::string& path, const BenchResult& r) {
       {"runs", r.runs},
       {"device", r.device},
       {"embree_threads", r.embreeThreads},
-      {"bvh", {{"build_ms", r.bvhBuildMs}, {"sah_cost", r.bvhSahCost}, {"nodes", r.bvhNodes}, {"max_depth", r.bvhMaxDepth}}},
+      {"bvh",
+       {{"build_ms", r.bvhBuildMs}, {"sah_cost", r.bvhSahCost}, {"nodes", r.bvhNodes}, {"max_depth", r.bvhMaxDepth}}},
       {"embree_version", r.embreeVersion},
       {"embree_build_ms", r.embreeBuildMs},
       {"closest", queryJson(r.closest, r.rays())},

@@ -52,8 +52,7 @@ const std::array<cli::OptionSpec, 5> kSpecs = {{
 std::optional<SimviewOptions> parse(std::span<const std::string> args, std::string* help) {
   if (cli::wantsHelp(args)) {
     *help = std::string("Usage: ") + kCommand + " [options]\n\nPSNR/SSIM of simulated views of the direct and the " +
-            "quilt-interleaved panel against pinhole renders from each eye.\n\nOptions:\n" +
-            cli::formatOptions(kSpecs);
+            "quilt-interleaved panel against pinhole renders from each eye.\n\nOptions:\n" + cli::formatOptions(kSpecs);
     return std::nullopt;
   }
   const cli::ParsedArguments parsed = cli::parseArguments(kCommand, kSpecs, args);
@@ -112,8 +111,9 @@ int run(const SimviewOptions& o) {
                secondsSince(start));
 
   const auto w = std::uint32_t(params.panel.x), h = std::uint32_t(params.panel.y);
-  std::printf("| eye | x / D | direct PSNR | quilt vendor lerp PSNR | quilt centred lerp PSNR | direct SSIM | "
-              "vendor SSIM | centred SSIM |\n|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| eye | x / D | direct PSNR | quilt vendor lerp PSNR | quilt centred lerp PSNR | direct SSIM | "
+      "vendor SSIM | centred SSIM |\n|---|---|---|---|---|---|---|---|\n");
   std::uint32_t index = 0;
   for (const glm::dvec3& eye : lenticularViewConeEyes(params, o.eyes)) {
     const auto table = eyeTable(params, eye);
@@ -139,4 +139,6 @@ int run(const SimviewOptions& o) {
 }  // namespace
 }  // namespace ht::bench
 
-int main(int argc, char** argv) { return ht::bench::benchMain(argc, argv, ht::bench::kCommand, ht::bench::parse, ht::bench::run); }
+int main(int argc, char** argv) {
+  return ht::bench::benchMain(argc, argv, ht::bench::kCommand, ht::bench::parse, ht::bench::run);
+}

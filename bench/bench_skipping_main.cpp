@@ -104,8 +104,11 @@ void record(Variant& v, const gpu::RenderResult& r) {
 
 std::string featureText(const SceneFeatures& f) {
   std::string text;
-  for (auto [on, name] : {std::pair{f.lights, "lights"}, {f.mirrors, "mirrors"}, {f.glass, "glass"},
-                          {f.textures, "textures"}, {f.emissive, "emissive"}}) {
+  for (auto [on, name] : {std::pair{f.lights, "lights"},
+                          {f.mirrors, "mirrors"},
+                          {f.glass, "glass"},
+                          {f.textures, "textures"},
+                          {f.emissive, "emissive"}}) {
     if (on) text += (text.empty() ? "" : "+") + std::string(name);
   }
   return text.empty() ? "none" : text;
@@ -177,12 +180,15 @@ void writeJson(const std::string& path, const std::vector<SceneSkip>& results, c
                const std::string& device) {
   nlohmann::json scenes = nlohmann::json::array();
   for (const SceneSkip& s : results) {
-    scenes.push_back({{"scene", s.scene}, {"features", s.features}, {"specialised", variantJson(s.specialised)},
-                      {"all_features", variantJson(s.allFeatures)}, {"frame_ratio_median", median(s.frameRatio)},
+    scenes.push_back({{"scene", s.scene},
+                      {"features", s.features},
+                      {"specialised", variantJson(s.specialised)},
+                      {"all_features", variantJson(s.allFeatures)},
+                      {"frame_ratio_median", median(s.frameRatio)},
                       {"gpu_ratio_median", median(s.gpuRatio)}});
   }
   const nlohmann::json doc = {{"benchmark", kCommand}, {"device", device}, {"display", o.display}, {"size", o.size},
-                              {"spp", o.spp}, {"runs", o.runs}, {"scenes", scenes}};
+                              {"spp", o.spp},          {"runs", o.runs},   {"scenes", scenes}};
   writeTextFile(path, doc.dump(2) + "\n");
 }
 
@@ -201,7 +207,8 @@ int run(const SkipOptions& o) {
 
 int main(int argc, char** argv) {
   // parseOptions prints its own --help text.
-  return ht::bench::benchMain(argc, argv, "holotrace-bench-skipping",
-                              [](const std::vector<std::string>& a, std::string*) { return ht::bench::parseOptions(a); },
-                              [](const auto& options) { return ht::bench::run(options); });
+  return ht::bench::benchMain(
+      argc, argv, "holotrace-bench-skipping",
+      [](const std::vector<std::string>& a, std::string*) { return ht::bench::parseOptions(a); },
+      [](const auto& options) { return ht::bench::run(options); });
 }

@@ -96,8 +96,8 @@ void fillTree(TreeFigures& fig, const bvh::Bvh2& tree, const Scene& scene, const
     // The middle 1/costStride of the set, contiguous: consecutive rays are the kernel's SIMD lanes.
     const std::size_t block = set.rays.size() / std::max<std::size_t>(o.costStride, 1) / 8 * 8;
     const std::span<const gpu_shared::HtRay> middle(set.rays.data() + (set.rays.size() - block) / 2, block);
-    fig.lanes.push_back(countTraversalCost(tree, scene.positions, scene.triangles, middle,
-                                           set.query == RayQuery::Occluded, o.threads));
+    fig.lanes.push_back(
+        countTraversalCost(tree, scene.positions, scene.triangles, middle, set.query == RayQuery::Occluded, o.threads));
   }
 }
 
@@ -160,7 +160,8 @@ int runBenchmark(const TraversalOptions& o) {
 }  // namespace ht::bench
 
 int main(int argc, char** argv) {
-  return ht::bench::benchMain(argc, argv, "holotrace-bench-traversal",
-                              [](const std::vector<std::string>& a, std::string* help) { return ht::bench::parseTraversalOptions(a, help); },
-                              [](const auto& options) { return ht::bench::runBenchmark(options); });
+  return ht::bench::benchMain(
+      argc, argv, "holotrace-bench-traversal",
+      [](const std::vector<std::string>& a, std::string* help) { return ht::bench::parseTraversalOptions(a, help); },
+      [](const auto& options) { return ht::bench::runBenchmark(options); });
 }

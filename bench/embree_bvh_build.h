@@ -12,8 +12,8 @@
 namespace ht::bench {
 
 struct EmbreeBvhBuild {
-  bvh::Bvh2 tree;      // tree.report.sahCost / nodeCount / leafCount / maxDepth filled like ours
-  double buildMs = 0;  // wall time of rtcBuildBVH alone (callbacks allocate the nodes)
+  bvh::Bvh2 tree;        // tree.report.sahCost / nodeCount / leafCount / maxDepth filled like ours
+  double buildMs = 0;    // wall time of rtcBuildBVH alone (callbacks allocate the nodes)
   double convertMs = 0;  // flattening into Bvh2 (not part of the build time)
 };
 

@@ -118,8 +118,10 @@ std::vector<HtHit> EmbreeTracer::traceClosestFlat(std::span<const HtRay> rays, A
   const auto start = Clock::now();
   forEachChunkParallel(rays.size(), kFlatChunk, threads, [&](std::size_t begin, std::size_t end) {
     setEmbreeFloatMode();
-    if (api == Api::Packet8) closestPacket8(scene, rays, begin, end, hits);
-    else closestSingle(scene, rays, begin, end, hits);
+    if (api == Api::Packet8)
+      closestPacket8(scene, rays, begin, end, hits);
+    else
+      closestSingle(scene, rays, begin, end, hits);
   });
   *wallMs = msSince(start);
   return hits;
@@ -132,8 +134,10 @@ std::vector<std::uint32_t> EmbreeTracer::traceOccludedFlat(std::span<const HtRay
   const auto start = Clock::now();
   forEachChunkParallel(rays.size(), kFlatChunk, threads, [&](std::size_t begin, std::size_t end) {
     setEmbreeFloatMode();
-    if (api == Api::Packet8) occludedPacket8(scene, rays, begin, end, occluded);
-    else occludedSingle(scene, rays, begin, end, occluded);
+    if (api == Api::Packet8)
+      occludedPacket8(scene, rays, begin, end, occluded);
+    else
+      occludedSingle(scene, rays, begin, end, occluded);
   });
   *wallMs = msSince(start);
   return occluded;

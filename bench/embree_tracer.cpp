@@ -1,8 +1,8 @@
 // embree_tracer.cpp - see embree_tracer.h.
 #include "bench/embree_tracer.h"
 
-#include "bench/embree_ray.h"
 #include "bench/embree_handles.h"
+#include "bench/embree_ray.h"
 
 #include <embree3/rtcore.h>
 #include <pmmintrin.h>
@@ -40,10 +40,10 @@ void setEmbreeFloatMode() {
 
 }  // namespace
 
-
 EmbreeTracer::EmbreeTracer(const Scene& scene) : handles_(std::make_unique<Handles>()) {
   handles_->device = rtcNewDevice(nullptr);
-  if (!handles_->device) throw Error("Embree: rtcNewDevice failed (RTCError " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+  if (!handles_->device)
+    throw Error("Embree: rtcNewDevice failed (RTCError " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
   const auto start = Clock::now();
   handles_->scene = rtcNewScene(handles_->device);
   RTCGeometry geometry = rtcNewGeometry(handles_->device, RTC_GEOMETRY_TYPE_TRIANGLE);

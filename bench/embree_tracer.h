@@ -32,7 +32,8 @@ class EmbreeTracer {
                                            unsigned threads, double* wallMs) const;
 
   // Flat batches (holotrace-bench-traversal): threads take chunks of kFlatChunk consecutive rays. Single =
-  // rtcIntersect1/rtcOccluded1 per ray; Packet8 = rtcIntersect8/rtcOccluded8 on 8 consecutive rays (embree_packets.cpp).
+  // rtcIntersect1/rtcOccluded1 per ray; Packet8 = rtcIntersect8/rtcOccluded8 on 8 consecutive rays
+  // (embree_packets.cpp).
   static constexpr std::size_t kFlatChunk = 256;
   enum class Api { Single, Packet8 };
   std::vector<gpu_shared::HtHit> traceClosestFlat(std::span<const gpu_shared::HtRay> rays, Api api, unsigned threads,

@@ -10,10 +10,10 @@ namespace ht::bench {
 
 struct HitComparison {
   std::uint64_t rays = 0;
-  std::uint64_t hitsA = 0, hitsB = 0;      // rays with a hit in A / in B
-  std::uint64_t hitMissFlips = 0;          // rays hit by one tracer and missed by the other
-  std::uint64_t differentTriangle = 0;     // both hit, different triangles (ties on shared edges are legal)
-  double maxRelativeTDiff = 0.0;           // over rays both hit: |tA - tB| / max(tA, tB)
+  std::uint64_t hitsA = 0, hitsB = 0;   // rays with a hit in A / in B
+  std::uint64_t hitMissFlips = 0;       // rays hit by one tracer and missed by the other
+  std::uint64_t differentTriangle = 0;  // both hit, different triangles (ties on shared edges are legal)
+  double maxRelativeTDiff = 0.0;        // over rays both hit: |tA - tB| / max(tA, tB)
   // |hitsA - hitsB| relative to max(hitsA, hitsB) (0 when neither hit anything).
   double hitCountDifference() const;
 };

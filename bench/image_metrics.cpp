@@ -40,14 +40,16 @@ std::vector<double> blur(const std::vector<double>& in, std::uint32_t w, std::ui
   for (std::uint32_t y = 0; y < h; ++y) {
     for (std::uint32_t x = 0; x < w; ++x) {
       double s = 0.0;
-      for (int k = -kRadius; k <= kRadius; ++k) s += weights[k + kRadius] * in[std::size_t(y) * w + std::clamp<int>(int(x) + k, 0, int(w) - 1)];
+      for (int k = -kRadius; k <= kRadius; ++k)
+        s += weights[k + kRadius] * in[std::size_t(y) * w + std::clamp<int>(int(x) + k, 0, int(w) - 1)];
       tmp[std::size_t(y) * w + x] = s;
     }
   }
   for (std::uint32_t y = 0; y < h; ++y) {
     for (std::uint32_t x = 0; x < w; ++x) {
       double s = 0.0;
-      for (int k = -kRadius; k <= kRadius; ++k) s += weights[k + kRadius] * tmp[std::size_t(std::clamp<int>(int(y) + k, 0, int(h) - 1)) * w + x];
+      for (int k = -kRadius; k <= kRadius; ++k)
+        s += weights[k + kRadius] * tmp[std::size_t(std::clamp<int>(int(y) + k, 0, int(h) - 1)) * w + x];
       out[std::size_t(y) * w + x] = s;
     }
   }
@@ -74,9 +76,7 @@ double meanSsim(const std::vector<double>& a, const std::vector<double>& b, std:
 
 }  // namespace
 
-double psnrFromMse(double mse) {
-  return mse > 0.0 ? -10.0 * std::log10(mse) : std::numeric_limits<double>::infinity();
-}
+double psnrFromMse(double mse) { return mse > 0.0 ? -10.0 * std::log10(mse) : std::numeric_limits<double>::infinity(); }
 
 ImageMetrics compareImages(std::span<const float> test, std::span<const float> reference, std::uint32_t width,
                            std::uint32_t height) {

@@ -48,8 +48,7 @@ bool streamOnce(v1::Holotrace::Stub& stub, const v1::StreamRequest& request, con
     }
   }
   context.TryCancel();
-  while (open && reader->Read(&part)) {
-  }
+  while (open && reader->Read(&part)) {}
   const grpc::Status status = reader->Finish();
   if (!status.ok() && status.error_code() != grpc::StatusCode::CANCELLED) {
     std::lock_guard lock(totals.mutex);

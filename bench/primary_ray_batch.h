@@ -12,7 +12,7 @@ namespace ht::bench {
 
 struct RayBatch {
   std::uint32_t width = 0, height = 0;
-  std::vector<gpu_shared::HtRay> rays;  // row-major, row 0 = bottom (optics.md §0), unit directions
+  std::vector<gpu_shared::HtRay> rays;  // row-major, row 0 = bottom (docs/OPTICS.md §0), unit directions
 };
 
 RayBatch makePinholeRays(const Bounds3& bounds, std::uint32_t size);

@@ -15,18 +15,25 @@ namespace {
 const char* const kCommand = "holotrace-bench-quality";
 
 const std::array<cli::OptionSpec, 16> kSpecs = {{
-    {"--displays", "", "LIST", "comma-separated displays of any model (default builtin:portrait,builtin:gen3-16-landscape)"},
+    {"--displays", "", "LIST",
+     "comma-separated displays of any model (default builtin:portrait,builtin:gen3-16-landscape)"},
     {"--scene", "", "SPEC", "scene (default builtin:plain)"},
     {"--ref-spp", "", "N", "reference spp, even: two independent halves of N/2 (default 16)"},
     {"--spp", "", "LIST", "direct lenticular spp points (default 1,2,4,8)"},
-    {"--adaptive", "", "LIST", "adaptive points BASE:REFINE:CONTRAST, e.g. 1:8:0.08 (default 1:8:0.12,1:8:0.08,1:8:0.05,1:4:0.08; 'none')"},
+    {"--adaptive", "", "LIST",
+     "adaptive points BASE:REFINE:CONTRAST, e.g. 1:8:0.08 (default 1:8:0.12,1:8:0.08,1:8:0.05,1:4:0.08; 'none')"},
     {"--quilt-spp", "", "LIST", "quilt spp points at the device's standard quilt (default 1,2)"},
     {"--quilt-scaled-spp", "", "LIST", "quilt spp points at the scaled quilt (default 1; 'none': no scaled quilt)"},
     {"--quilt-scale", "", "X", "pixel-count factor of the scaled quilt, tiles grow by sqrt(X) (default 2)"},
-    {"--quilt-size", "", "WxH", "standard quilt texture size (default: the device's, quilt_layout.h); views stay cols x rows"},
+    {"--quilt-size", "", "WxH",
+     "standard quilt texture size (default: the device's, quilt_layout.h); views stay cols x rows"},
     {"--depth", "", "N", "specular bounces, 0-32 (default 4)"},
-    {"--runs", "", "N", "timing runs, 1-99: every point rendered N times in turn, times = medians of same-run ratios to each quilt (default 1)"},
-    {"--quick", "", "", "smoke test: --ref-spp 4 --spp 1,2 --adaptive 1:4:0.08 --quilt-spp 1 --quilt-scaled-spp none (explicit options win)"},
+    {"--runs", "", "N",
+     "timing runs, 1-99: every point rendered N times in turn, times = medians of same-run ratios to each quilt "
+     "(default 1)"},
+    {"--quick", "", "",
+     "smoke test: --ref-spp 4 --spp 1,2 --adaptive 1:4:0.08 --quilt-spp 1 --quilt-scaled-spp none (explicit options "
+     "win)"},
     {"--device", "", "N", "Vulkan device index (default: automatic)"},
     {"--csv", "", "PATH", "write one row per measured point"},
     {"--summary-csv", "", "PATH", "write the equal-time / equal-error comparison per display"},
@@ -39,9 +46,11 @@ const char* const kHelp =
     "          multi-view frames (projectors, cameras) are scored as one image of all their views\n"
     "  adaptive  the direct path at BASE spp, then REFINE spp on the targets whose sRGB contrast to a neighbour\n"
     "          reaches CONTRAST (RenderSettings::refineSpp, gpu/adaptive_refinement.h)\n"
-    "  quilt   lenticular displays only: Renderer::renderQuilt (device default layout, and scaled by --quilt-scale) + the vendor interleave on\n"
+    "  quilt   lenticular displays only: Renderer::renderQuilt (device default layout, and scaled by --quilt-scale) + "
+    "the vendor interleave on\n"
     "          the CPU (camera_models/quilt_interleave.h) with the nearest, vendor-lerp and centred-lerp view filters\n"
-    "Per point: ms/frame (render wall time incl. readback; the quilt's CPU interleave is reported apart), RMSE, PSNR, SSIM on sRGB-encoded [0,1] values, and PSNR\n"
+    "Per point: ms/frame (render wall time incl. readback; the quilt's CPU interleave is reported apart), RMSE, PSNR, "
+    "SSIM on sRGB-encoded [0,1] values, and PSNR\n"
     "corrected for the reference's own noise (MSE - MSE(half A, half B)/4). Summary: at the quilt's time, how many dB\n"
     "the direct path and the adaptive path (the Pareto front of adaptive and direct points) gain (log-time\n"
     "interpolation), and how much faster they reach the quilt's PSNR.\n";
@@ -94,8 +103,9 @@ std::vector<AdaptivePoint> adaptiveList(const cli::ParsedArguments& parsed, std:
     char tail = 0;
     if (std::sscanf(item.c_str(), "%u:%u:%f%c", &base, &refine, &contrast, &tail) != 3 || base < 1 || base > 4096 ||
         refine < 1 || refine > 4096 || !(contrast >= 0.0f && contrast <= 1.0f)) {
-      throw UsageError(cli::usageMessage(kCommand, "--adaptive entry '" + item + "': expected BASE:REFINE:CONTRAST with "
-                                                   "spp in [1, 4096] and a contrast in [0, 1], e.g. 1:8:0.08"));
+      throw UsageError(cli::usageMessage(kCommand, "--adaptive entry '" + item +
+                                                       "': expected BASE:REFINE:CONTRAST with "
+                                                       "spp in [1, 4096] and a contrast in [0, 1], e.g. 1:8:0.08"));
     }
     points.push_back({base, refine, contrast});
   }
@@ -106,8 +116,8 @@ std::vector<AdaptivePoint> adaptiveList(const cli::ParsedArguments& parsed, std:
 
 std::optional<QualityOptions> parseQualityOptions(std::span<const std::string> args, std::string* helpText) {
   if (cli::wantsHelp(args)) {
-    *helpText = std::string("Usage: ") + kCommand + " [options]\n\n" + kHelp + "\nOptions:\n" +
-                cli::formatOptions(kSpecs);
+    *helpText =
+        std::string("Usage: ") + kCommand + " [options]\n\n" + kHelp + "\nOptions:\n" + cli::formatOptions(kSpecs);
     return std::nullopt;
   }
   const cli::ParsedArguments parsed = cli::parseArguments(kCommand, kSpecs, args);

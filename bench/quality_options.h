@@ -18,15 +18,15 @@ struct AdaptivePoint {
 struct QualityOptions {
   std::vector<std::string> displays{"builtin:portrait", "builtin:gen3-16-landscape"};
   std::string scene = "builtin:plain";
-  std::uint32_t refSpp = 16;                       // reference = two independent halves of refSpp/2 each
+  std::uint32_t refSpp = 16;  // reference = two independent halves of refSpp/2 each
   std::vector<std::uint32_t> directSpp{1, 2, 4, 8};
   std::vector<AdaptivePoint> adaptive{{1, 8, 0.12f}, {1, 8, 0.08f}, {1, 8, 0.05f}, {1, 4, 0.08f}};
-  std::vector<std::uint32_t> quiltSpp{1, 2};       // at the device's standard quilt
-  std::vector<std::uint32_t> quiltScaledSpp{1};    // at the scaled quilt (--quilt-scale)
+  std::vector<std::uint32_t> quiltSpp{1, 2};                         // at the device's standard quilt
+  std::vector<std::uint32_t> quiltScaledSpp{1};                      // at the scaled quilt (--quilt-scale)
   std::optional<std::pair<std::uint32_t, std::uint32_t>> quiltSize;  // standard quilt texture size override
-  double quiltScale = 2.0;                         // pixel-count factor of the scaled quilt (tiles x sqrt(scale))
+  double quiltScale = 2.0;  // pixel-count factor of the scaled quilt (tiles x sqrt(scale))
   std::uint32_t maxDepth = 4;
-  std::uint32_t runs = 1;                          // timing runs of every point (frames are deterministic: scored once)
+  std::uint32_t runs = 1;  // timing runs of every point (frames are deterministic: scored once)
   int deviceIndex = -1;
   std::optional<std::string> csvPath, summaryCsvPath, jsonPath;
 };

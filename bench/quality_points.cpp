@@ -107,11 +107,22 @@ std::vector<QualityPoint> inRun(const std::vector<QualityPoint>& points, std::si
 nlohmann::json optionalJson(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
 
 nlohmann::json pointJson(const QualityPoint& p) {
-  return {{"path", p.path}, {"spp", p.spp}, {"quilt", p.quilt}, {"filter", p.filter}, {"render_ms", p.renderMs},
-          {"gpu_stage_ms", p.gpuMs}, {"interleave_cpu_ms", p.interleaveMs}, {"frame_ms", p.frameMs()},
-          {"rmse", p.metrics.rmse}, {"psnr_db", p.metrics.psnrDb}, {"psnr_corrected_db", p.psnrCorrectedDb},
-          {"ssim", p.metrics.ssim}, {"refine_spp", p.refineSpp}, {"refine_contrast", p.refineContrast},
-          {"refined_fraction", p.refinedFraction}, {"run_ms", p.runMs}};
+  return {{"path", p.path},
+          {"spp", p.spp},
+          {"quilt", p.quilt},
+          {"filter", p.filter},
+          {"render_ms", p.renderMs},
+          {"gpu_stage_ms", p.gpuMs},
+          {"interleave_cpu_ms", p.interleaveMs},
+          {"frame_ms", p.frameMs()},
+          {"rmse", p.metrics.rmse},
+          {"psnr_db", p.metrics.psnrDb},
+          {"psnr_corrected_db", p.psnrCorrectedDb},
+          {"ssim", p.metrics.ssim},
+          {"refine_spp", p.refineSpp},
+          {"refine_contrast", p.refineContrast},
+          {"refined_fraction", p.refinedFraction},
+          {"run_ms", p.runMs}};
 }
 
 }  // namespace
@@ -144,16 +155,17 @@ std::vector<EqualComparison> DisplayQuality::compare() const {
 void printQualityReport(std::ostream& out, const QualityReport& r) {
   out << "device: " << r.device << ", scene " << r.scene << ", depth " << r.maxDepth << "\n";
   for (const DisplayQuality& d : r.displays) {
-    out << "\n" << d.display << " (" << d.panelWidth << "x" << d.panelHeight << "), reference spp " << d.refSpp
-        << " (" << fixed(d.refMs / 1000, 1) << " s, own noise PSNR " << fixed(psnrFromMse(d.refNoiseMse), 2)
-        << " dB)" << (d.runs > 1 ? ", frame ms = median of " + std::to_string(d.runs) + " runs" : "") << "\n";
+    out << "\n"
+        << d.display << " (" << d.panelWidth << "x" << d.panelHeight << "), reference spp " << d.refSpp << " ("
+        << fixed(d.refMs / 1000, 1) << " s, own noise PSNR " << fixed(psnrFromMse(d.refNoiseMse), 2) << " dB)"
+        << (d.runs > 1 ? ", frame ms = median of " + std::to_string(d.runs) + " runs" : "") << "\n";
     out << "  path      spp  quilt / refinement          filter        frame ms   RMSE     PSNR  PSNRcorr  SSIM\n";
     for (const QualityPoint& p : d.points) {
       char line[256];
-      const std::string variant = p.path == "adaptive" ? "refine " + std::to_string(p.refineSpp) + " >= " +
-                                                           fixed(p.refineContrast, 3) + " (" +
-                                                           fixed(100.0 * p.refinedFraction, 1) + " %)"
-                                                     : p.quilt;
+      const std::string variant = p.path == "adaptive"
+                                      ? "refine " + std::to_string(p.refineSpp) + " >= " + fixed(p.refineContrast, 3) +
+                                            " (" + fixed(100.0 * p.refinedFraction, 1) + " %)"
+                                      : p.quilt;
       std::snprintf(line, sizeof line, "  %-8s %4u  %-26s  %-12s %9.1f  %.5f  %6.2f  %6.2f  %.4f\n", p.path.c_str(),
                     p.spp, variant.c_str(), p.filter.c_str(), p.frameMs(), p.metrics.rmse, p.metrics.psnrDb,
                     p.psnrCorrectedDb, p.metrics.ssim);
@@ -161,9 +173,8 @@ void printQualityReport(std::ostream& out, const QualityReport& r) {
     }
     for (const EqualComparison& c : d.compare()) {
       out << "  vs quilt " << c.quilt->quilt << " spp " << c.quilt->spp << " " << c.quilt->filter
-          << ": direct at equal time " << gainText(c.directGainDb)
-          << ", at equal PSNR " << (c.speedup ? fixed(*c.speedup, 2) + "x faster" : "n/a (not reached)")
-          << "; adaptive at equal time "
+          << ": direct at equal time " << gainText(c.directGainDb) << ", at equal PSNR "
+          << (c.speedup ? fixed(*c.speedup, 2) + "x faster" : "n/a (not reached)") << "; adaptive at equal time "
           << gainText(c.adaptiveGainDb) << ", at equal PSNR "
           << (c.adaptiveSpeedup ? fixed(*c.adaptiveSpeedup, 2) + "x faster" : "n/a (not reached)");
       if (!c.adaptiveGainDbEachRun.empty()) {
@@ -212,7 +223,9 @@ void writeQualityJson(const std::string& path, const QualityReport& r) {
     nlohmann::json points = nlohmann::json::array(), comparisons = nlohmann::json::array();
     for (const QualityPoint& p : d.points) points.push_back(pointJson(p));
     for (const EqualComparison& c : d.compare()) {
-      comparisons.push_back({{"quilt", c.quilt->quilt}, {"spp", c.quilt->spp}, {"filter", c.quilt->filter},
+      comparisons.push_back({{"quilt", c.quilt->quilt},
+                             {"spp", c.quilt->spp},
+                             {"filter", c.quilt->filter},
                              {"direct_gain_db_at_equal_time", optionalJson(c.directGainDb)},
                              {"direct_speedup_at_equal_psnr", optionalJson(c.speedup)},
                              {"adaptive_gain_db_at_equal_time", optionalJson(c.adaptiveGainDb)},
@@ -221,13 +234,21 @@ void writeQualityJson(const std::string& path, const QualityReport& r) {
       for (const auto& gain : c.adaptiveGainDbEachRun) eachRun.push_back(optionalJson(gain));
       comparisons.back()["adaptive_gain_db_at_equal_time_each_run"] = eachRun;
     }
-    displays.push_back({{"display", d.display}, {"panel", {d.panelWidth, d.panelHeight}}, {"ref_spp", d.refSpp},
+    displays.push_back({{"display", d.display},
+                        {"panel", {d.panelWidth, d.panelHeight}},
+                        {"ref_spp", d.refSpp},
                         {"runs", d.runs},
-                        {"ref_ms", d.refMs}, {"ref_noise_mse", d.refNoiseMse}, {"points", points},
+                        {"ref_ms", d.refMs},
+                        {"ref_noise_mse", d.refNoiseMse},
+                        {"points", points},
                         {"comparisons", comparisons}});
   }
-  const nlohmann::json doc = {{"benchmark", "holotrace-bench-quality"}, {"date", r.date}, {"device", r.device},
-                              {"scene", r.scene}, {"max_depth", r.maxDepth}, {"metric_space", "sRGB-encoded, clamped [0,1]"},
+  const nlohmann::json doc = {{"benchmark", "holotrace-bench-quality"},
+                              {"date", r.date},
+                              {"device", r.device},
+                              {"scene", r.scene},
+                              {"max_depth", r.maxDepth},
+                              {"metric_space", "sRGB-encoded, clamped [0,1]"},
                               {"displays", displays}};
   writeTextFile(path, doc.dump(2) + "\n");
 }

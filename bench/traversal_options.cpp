@@ -15,8 +15,9 @@ namespace {
 const char* const kCommand = "holotrace-bench-traversal";
 
 const std::array<cli::OptionSpec, 10> kSpecs = {{
-    {"--meshes", "", "LIST", "comma-separated meshes/scenes (default: bunny, assets/armadillo.off, "
-                             "assets/refined_elephant.off; scripts/fetch-meshes.sh)"},
+    {"--meshes", "", "LIST",
+     "comma-separated meshes/scenes (default: bunny, assets/armadillo.off, "
+     "assets/refined_elephant.off; scripts/fetch-meshes.sh)"},
     {"--size", "", "N", "N x N primary rays per mesh (default 1024)"},
     {"--runs", "", "N", "timed runs per tracer and ray set, interleaved, after one warm-up (default 5)"},
     {"--cost-stride", "", "N", "CPU traversal-cost counter uses every Nth ray (default 4)"},
@@ -51,14 +52,14 @@ std::vector<std::string> splitList(const std::string& text) {
 
 std::optional<TraversalOptions> parseTraversalOptions(std::span<const std::string> args, std::string* helpText) {
   if (cli::wantsHelp(args)) {
-    *helpText = std::string("Usage: ") + kCommand + " [options]\n\n" + kHelp + "\nOptions:\n" +
-                cli::formatOptions(kSpecs);
+    *helpText =
+        std::string("Usage: ") + kCommand + " [options]\n\n" + kHelp + "\nOptions:\n" + cli::formatOptions(kSpecs);
     return std::nullopt;
   }
   const cli::ParsedArguments parsed = cli::parseArguments(kCommand, kSpecs, args);
   TraversalOptions o;
-  o.meshes = splitList(parsed.textOr("--meshes",
-      "/usr/share/glmark2/models/bunny.obj,assets/armadillo.off,assets/refined_elephant.off"));
+  o.meshes = splitList(parsed.textOr(
+      "--meshes", "/usr/share/glmark2/models/bunny.obj,assets/armadillo.off,assets/refined_elephant.off"));
   const bool quick = parsed.has("--quick");
   o.size = parsed.unsignedValue("--size", 8, 8192).value_or(quick ? 128 : o.size);
   o.runs = parsed.unsignedValue("--runs", 1, 1000).value_or(quick ? 3 : o.runs);

@@ -22,23 +22,39 @@ std::string fixed(double value, int digits) {
 }
 
 nlohmann::json costJson(const TraversalCost& c) {
-  return {{"rays", c.rays}, {"node_visits_per_ray", c.nodesPerRay()}, {"triangle_tests_per_ray", c.trianglesPerRay()},
-          {"cost_per_ray", c.costPerRay()}, {"hits", c.hits}};
+  return {{"rays", c.rays},
+          {"node_visits_per_ray", c.nodesPerRay()},
+          {"triangle_tests_per_ray", c.trianglesPerRay()},
+          {"cost_per_ray", c.costPerRay()},
+          {"hits", c.hits}};
 }
 
 nlohmann::json treeJson(const TreeFigures& t) {
-  return {{"build_ms_median", t.buildMs.medianMs()}, {"build_ms_runs", t.buildMs.ms}, {"sah_cost", t.sahCost},
-          {"nodes", t.nodes}, {"leaves", t.leaves}, {"max_depth", t.maxDepth}};
+  return {{"build_ms_median", t.buildMs.medianMs()},
+          {"build_ms_runs", t.buildMs.ms},
+          {"sah_cost", t.sahCost},
+          {"nodes", t.nodes},
+          {"leaves", t.leaves},
+          {"max_depth", t.maxDepth}};
 }
 
 nlohmann::json setJson(const SetThroughput& s) {
-  return {{"set", s.set}, {"query", s.query}, {"rays", s.rays},
-          {"gpu_ms_runs", s.gpu.ms}, {"embree1_ms_runs", s.embree1.ms}, {"embree8_ms_runs", s.embree8.ms},
-          {"gpu_mrays", mrays(s.gpu, s.rays)}, {"embree1_mrays", mrays(s.embree1, s.rays)},
-          {"embree8_mrays", mrays(s.embree8, s.rays)}, {"ratio_gpu_embree1", median(s.ratio1)},
-          {"ratio_gpu_embree8", median(s.ratio8)}, {"gpu_hits", s.vsEmbree1.hitsA},
-          {"embree_hits", s.vsEmbree1.hitsB}, {"hit_miss_flips_vs_embree1", s.vsEmbree1.hitMissFlips},
-          {"hit_miss_flips_vs_embree8", s.vsEmbree8.hitMissFlips}, {"gpu_max_steps", s.gpuMaxSteps}};
+  return {{"set", s.set},
+          {"query", s.query},
+          {"rays", s.rays},
+          {"gpu_ms_runs", s.gpu.ms},
+          {"embree1_ms_runs", s.embree1.ms},
+          {"embree8_ms_runs", s.embree8.ms},
+          {"gpu_mrays", mrays(s.gpu, s.rays)},
+          {"embree1_mrays", mrays(s.embree1, s.rays)},
+          {"embree8_mrays", mrays(s.embree8, s.rays)},
+          {"ratio_gpu_embree1", median(s.ratio1)},
+          {"ratio_gpu_embree8", median(s.ratio8)},
+          {"gpu_hits", s.vsEmbree1.hitsA},
+          {"embree_hits", s.vsEmbree1.hitsB},
+          {"hit_miss_flips_vs_embree1", s.vsEmbree1.hitMissFlips},
+          {"hit_miss_flips_vs_embree8", s.vsEmbree8.hitMissFlips},
+          {"gpu_max_steps", s.gpuMaxSteps}};
 }
 
 }  // namespace
@@ -59,9 +75,9 @@ void printTraversalReport(std::ostream& out, const TraversalReport& r) {
     }
     out << "  BVH ours:   build " << fixed(m.ours.buildMs.medianMs(), 1) << " ms, SAH " << fixed(m.ours.sahCost, 3)
         << ", " << m.ours.nodes << " nodes, depth " << m.ours.maxDepth << "\n";
-    out << "  BVH Embree: build " << fixed(m.embree.buildMs.medianMs(), 1) << " ms, SAH "
-        << fixed(m.embree.sahCost, 3) << ", " << m.embree.nodes << " nodes, depth " << m.embree.maxDepth
-        << "  -> SAH ratio ours/Embree " << fixed(m.ours.sahCost / m.embree.sahCost, 4) << "\n";
+    out << "  BVH Embree: build " << fixed(m.embree.buildMs.medianMs(), 1) << " ms, SAH " << fixed(m.embree.sahCost, 3)
+        << ", " << m.embree.nodes << " nodes, depth " << m.embree.maxDepth << "  -> SAH ratio ours/Embree "
+        << fixed(m.ours.sahCost / m.embree.sahCost, 4) << "\n";
     for (std::size_t i = 0; i < m.sets.size(); ++i) {
       const TraversalCost& a = m.ours.costs[i];
       const TraversalCost& b = m.embree.costs[i];
@@ -85,9 +101,8 @@ void writeTraversalCsv(const std::string& prefix, const TraversalReport& r) {
       const SetThroughput& s = m.sets[i];
       tp << m.mesh << "," << m.triangles << "," << s.set << "," << s.query << "," << s.rays << ","
          << fixed(mrays(s.gpu, s.rays), 3) << "," << fixed(mrays(s.embree1, s.rays), 3) << ","
-         << fixed(mrays(s.embree8, s.rays), 3) << "," << fixed(median(s.ratio1), 4) << ","
-         << fixed(median(s.ratio8), 4) << "," << s.vsEmbree1.hitMissFlips << "," << s.vsEmbree8.hitMissFlips << ","
-         << s.gpuMaxSteps << "\n";
+         << fixed(mrays(s.embree8, s.rays), 3) << "," << fixed(median(s.ratio1), 4) << "," << fixed(median(s.ratio8), 4)
+         << "," << s.vsEmbree1.hitMissFlips << "," << s.vsEmbree8.hitMissFlips << "," << s.gpuMaxSteps << "\n";
       for (const auto& [tree, c, lanes] : {std::tuple{"ours", m.ours.costs[i], m.ours.lanes[i]},
                                            std::tuple{"embree", m.embree.costs[i], m.embree.lanes[i]}}) {
         cost << m.mesh << "," << s.set << "," << tree << "," << fixed(c.nodesPerRay(), 3) << ","
@@ -96,10 +111,10 @@ void writeTraversalCsv(const std::string& prefix, const TraversalReport& r) {
              << fixed(lanes.laneEfficiency(), 4) << "\n";
       }
     }
-    bvh << m.mesh << "," << m.triangles << "," << fixed(m.ours.buildMs.medianMs(), 2) << ","
-        << fixed(m.ours.sahCost, 4) << "," << m.ours.nodes << "," << m.ours.maxDepth << ","
-        << fixed(m.embree.buildMs.medianMs(), 2) << "," << fixed(m.embree.sahCost, 4) << "," << m.embree.nodes << ","
-        << m.embree.maxDepth << "," << fixed(m.ours.sahCost / m.embree.sahCost, 4) << "\n";
+    bvh << m.mesh << "," << m.triangles << "," << fixed(m.ours.buildMs.medianMs(), 2) << "," << fixed(m.ours.sahCost, 4)
+        << "," << m.ours.nodes << "," << m.ours.maxDepth << "," << fixed(m.embree.buildMs.medianMs(), 2) << ","
+        << fixed(m.embree.sahCost, 4) << "," << m.embree.nodes << "," << m.embree.maxDepth << ","
+        << fixed(m.ours.sahCost / m.embree.sahCost, 4) << "\n";
   }
   writeTextFile(prefix + "_throughput.csv", tp.str());
   writeTextFile(prefix + "_bvh.csv", bvh.str());
@@ -116,13 +131,22 @@ void writeTraversalJson(const std::string& path, const TraversalReport& r) {
       s["cost_embree_tree"] = costJson(m.embree.costs[i]);
       sets.push_back(s);
     }
-    meshes.push_back({{"mesh", m.mesh}, {"triangles", m.triangles}, {"sets", sets},
-                      {"bvh_ours", treeJson(m.ours)}, {"bvh_embree", treeJson(m.embree)},
+    meshes.push_back({{"mesh", m.mesh},
+                      {"triangles", m.triangles},
+                      {"sets", sets},
+                      {"bvh_ours", treeJson(m.ours)},
+                      {"bvh_embree", treeJson(m.embree)},
                       {"sah_ratio_ours_over_embree", m.ours.sahCost / m.embree.sahCost}});
   }
-  const nlohmann::json doc = {{"benchmark", "holotrace-bench-traversal"}, {"date", r.date}, {"device", r.device},
-                              {"embree_version", r.embreeVersion}, {"threads", r.threads}, {"size", r.size},
-                              {"runs", r.runs}, {"cost_stride", r.costStride}, {"meshes", meshes}};
+  const nlohmann::json doc = {{"benchmark", "holotrace-bench-traversal"},
+                              {"date", r.date},
+                              {"device", r.device},
+                              {"embree_version", r.embreeVersion},
+                              {"threads", r.threads},
+                              {"size", r.size},
+                              {"runs", r.runs},
+                              {"cost_stride", r.costStride},
+                              {"meshes", meshes}};
   writeTextFile(path, doc.dump(2) + "\n");
 }
 

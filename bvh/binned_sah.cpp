@@ -108,8 +108,8 @@ SahSplit SahBinner::findBinnedSplit(const BuildPrimitives& prims, std::span<cons
       left.grow(bins[p].box);
       leftN += bins[p].count;
       if (leftN == 0 || rightCount_[p + 1] == 0) continue;
-      float cost = left.halfArea() * static_cast<float>(leftN) +
-                   rightArea_[p + 1] * static_cast<float>(rightCount_[p + 1]);
+      float cost =
+          left.halfArea() * static_cast<float>(leftN) + rightArea_[p + 1] * static_cast<float>(rightCount_[p + 1]);
       if (betterSplit(best, cost, leftN, n)) best = SahSplit{axis, false, p, cost, leftN};
     }
   }

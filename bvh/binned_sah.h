@@ -4,7 +4,7 @@
 // mapped to `bins` equal-width bins of the node's centroid bounds along each axis; one sweep per axis over
 // the bin boxes gives the SAH cost of every plane between bins,
 //   cost(plane) = SA(left) * N(left) + SA(right) * N(right)     (C_int = 1, half areas)
-// and the cheapest plane over the three axes wins. Embree uses 32 bins (bvh.md §2.1), tinybvh 8 (§2.2).
+// and the cheapest plane over the three axes wins. Embree uses 32 bins (docs/BVH.md §2.1), tinybvh 8 (§2.2).
 #pragma once
 #include <cstdint>
 #include <span>

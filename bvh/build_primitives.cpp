@@ -26,8 +26,7 @@ bool isUsableTriangle(std::span<const glm::vec3> positions, const glm::uvec3& tr
   return normal.x != 0.0 || normal.y != 0.0 || normal.z != 0.0;
 }
 
-BuildPrimitives prepareBuildPrimitives(std::span<const glm::vec3> positions,
-                                       std::span<const glm::uvec3> triangles) {
+BuildPrimitives prepareBuildPrimitives(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles) {
   if (triangles.size() >= 0xFFFFFFFFull) {
     throw SceneError("<triangle soup>", std::to_string(triangles.size()) +
                                             " triangles exceed the 32-bit triangle id range (split the mesh)");

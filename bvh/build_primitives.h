@@ -23,7 +23,6 @@ struct BuildPrimitives {
 bool isUsableTriangle(std::span<const glm::vec3> positions, const glm::uvec3& tri);
 
 // Throws ht::SceneError if there are 2^32 or more triangles (ids are 32-bit).
-BuildPrimitives prepareBuildPrimitives(std::span<const glm::vec3> positions,
-                                       std::span<const glm::uvec3> triangles);
+BuildPrimitives prepareBuildPrimitives(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles);
 
 }  // namespace ht::bvh

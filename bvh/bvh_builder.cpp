@@ -1,7 +1,7 @@
 // bvh_builder.cpp - binned SAH build (see bvh_builder.h).
 //
 // Per node: bounds pass, binned SAH split search (binned_sah.h), leaf decision, partition, recursion.
-// Leaf rule (C_trav = C_int = 1, tinybvh; bvh.md §8.2): a node with n <= maxLeafSize triangles becomes a
+// Leaf rule (C_trav = C_int = 1, tinybvh; docs/BVH.md §8.2): a node with n <= maxLeafSize triangles becomes a
 // leaf when its leaf cost n*SA(node) does not exceed the best split cost SA(node) + SA(L)*n(L) + SA(R)*n(R);
 // larger nodes are always split (maxLeafSize is a hard limit, so the packed GPU leaf count stays small).
 // Depth bound: a subtree at depth d can hold at most maxLeafSize * 2^(maxDepth - d) triangles. When the SAH
@@ -86,8 +86,7 @@ class SubtreeBuilder {
     if (n == 1 || levelsLeft == 0) return makeLeaf(nodes[nodeIdx], begin, n);
     SahSplit split = binner_.findBestSplit(prims_, ids, bounds.centroidBox);
     const float nodeArea = bounds.box.halfArea();
-    if (n <= options_.maxLeafSize &&
-        (split.axis < 0 || static_cast<float>(n) * nodeArea <= nodeArea + split.cost)) {
+    if (n <= options_.maxLeafSize && (split.axis < 0 || static_cast<float>(n) * nodeArea <= nodeArea + split.cost)) {
       return makeLeaf(nodes[nodeIdx], begin, n);
     }
 
@@ -114,8 +113,8 @@ class SubtreeBuilder {
     node.triCount = n;
   }
 
-  void buildChildrenInParallel(std::vector<Bvh2Node>& nodes, uint32_t left, uint32_t begin, uint32_t mid,
-                               uint32_t end, uint32_t depth, uint32_t tasks) {
+  void buildChildrenInParallel(std::vector<Bvh2Node>& nodes, uint32_t left, uint32_t begin, uint32_t mid, uint32_t end,
+                               uint32_t depth, uint32_t tasks) {
     const uint32_t leftTasks = tasks / 2;
     std::vector<Bvh2Node> leftNodes(1), rightNodes(1);
     auto leftTask = std::async(std::launch::async, [&] {

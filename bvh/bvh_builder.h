@@ -1,7 +1,7 @@
 // bvh_builder.h - binned SAH BVH builder producing a binary BVH in Wald's 32-byte node layout.
 //
 // Binned SAH after Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies" (RT 2007), with the
-// parameters of bvh.md §8.2: 32 centroid bins (Embree NUM_OBJECT_BINS, kernels/builders/bvh_builder_sah.h),
+// parameters of docs/BVH.md §8.2: 32 centroid bins (Embree NUM_OBJECT_BINS, kernels/builders/bvh_builder_sah.h),
 // C_trav = C_int = 1 (tinybvh), a hard leaf-depth bound so the GPU traversal stack (HT_BVH_MAX_DEPTH) is
 // provably large enough, and subtrees built in parallel.
 #pragma once
@@ -30,7 +30,7 @@ struct BuildReport {
   std::string summary() const;  // one line, e.g. for logs
 };
 
-// Wald's 32-byte node (tinybvh `BVH`, bvh.md §3). Inner node: triCount == 0 and children at leftFirst and
+// Wald's 32-byte node (tinybvh `BVH`, docs/BVH.md §3). Inner node: triCount == 0 and children at leftFirst and
 // leftFirst + 1. Leaf: triCount > 0 triangles at primIndex[leftFirst .. leftFirst + triCount).
 struct Bvh2Node {
   glm::vec3 lo;

@@ -1,16 +1,16 @@
 // bvh_traversal.h - robust closest-hit and any-hit BVH traversal, one source for the CPU reference (C++) and the
 // GPU compute kernel (GLSL).
 //
-// Structure: Aila & Laine 2009 "while-while" loop (bvh.md §2.4, §4): an inner loop descends through inner
+// Structure: Aila & Laine 2009 "while-while" loop (docs/BVH.md §2.4, §4): an inner loop descends through inner
 // nodes, testing BOTH child boxes of a 64 B GpuBvhNode at once (slab_test.h) and visiting the nearer child
 // first while the farther one goes onto a private stack of HT_BVH_MAX_DEPTH entries; a second loop tests the
 // triangles of the leaf reached (watertight_triangle.h). The builder bounds the leaf depth by
 // HT_BVH_MAX_DEPTH and at most one entry is pushed per level, so the stack cannot overflow; a push onto a
-// full stack is nevertheless reported as overflow, never dropped (bvh.md §2.2 caveat on tinybvh's shaders).
+// full stack is nevertheless reported as overflow, never dropped (docs/BVH.md §2.2 caveat on tinybvh's shaders).
 //
 // Step counting: every iteration of every loop increments `steps`; once steps exceed `stepLimit` the
 // traversal stops with overflow = true. lavapipe silently ends a shader's loops after 65,535 iterations in
-// total per invocation (toolchain.md §0), so the GPU kernel passes a limit below that and the host turns
+// total per invocation (docs/TOOLCHAIN.md §0), so the GPU kernel passes a limit below that and the host turns
 // overflow into an error instead of a silent miss. Rays with a NaN/Inf origin or direction, a zero direction
 // or NaN tmin/tmax return a miss after 0 steps.
 //
@@ -26,9 +26,9 @@
 #ifndef HT_BVH_TRAVERSAL_H
 #define HT_BVH_TRAVERSAL_H
 #include "common/glsl_cpp.h"
-#include "bvh/ray_types.h"
-#include "bvh/gpu_node.h"
 #include "bvh/float_bounds.h"
+#include "bvh/gpu_node.h"
+#include "bvh/ray_types.h"
 #include "bvh/slab_test.h"
 #include "bvh/watertight_triangle.h"
 
@@ -86,10 +86,9 @@ HT_SHARED_BEGIN
 // A ray is traced only if origin and direction are finite, the direction is not zero and tmin <= tmax
 // (false for NaN); tmax = +inf is allowed.
 HT_INLINE bool ht_ray_is_valid(HT_IN(HtRay) ray) {
-  bool finiteOrigin = abs(ray.origin.x) <= HT_FLOAT_MAX && abs(ray.origin.y) <= HT_FLOAT_MAX &&
-                      abs(ray.origin.z) <= HT_FLOAT_MAX;
-  bool finiteDir = abs(ray.dir.x) <= HT_FLOAT_MAX && abs(ray.dir.y) <= HT_FLOAT_MAX &&
-                   abs(ray.dir.z) <= HT_FLOAT_MAX;
+  bool finiteOrigin =
+      abs(ray.origin.x) <= HT_FLOAT_MAX && abs(ray.origin.y) <= HT_FLOAT_MAX && abs(ray.origin.z) <= HT_FLOAT_MAX;
+  bool finiteDir = abs(ray.dir.x) <= HT_FLOAT_MAX && abs(ray.dir.y) <= HT_FLOAT_MAX && abs(ray.dir.z) <= HT_FLOAT_MAX;
   bool nonZeroDir = ray.dir.x != 0.0f || ray.dir.y != 0.0f || ray.dir.z != 0.0f;
   return finiteOrigin && finiteDir && nonZeroDir && ray.tmin <= ray.tmax;
 }
@@ -126,11 +125,17 @@ HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, 
   bool finished = false;
   while (!done) {
     steps++;
-    if (steps > stepLimit) { overflow = true; break; }
+    if (steps > stepLimit) {
+      overflow = true;
+      break;
+    }
     // Descend through inner nodes until `cur` is a leaf or the stack is exhausted.
     while ((cur >> HT_REF_COUNT_SHIFT) == 0u) {
       steps++;
-      if (steps > stepLimit) { overflow = true; break; }
+      if (steps > stepLimit) {
+        overflow = true;
+        break;
+      }
       // Members are loaded separately, the child links only when a child box is hit: Mesa 22.3's gallivm
       // turns every 32-bit component of a global/SSBO load into a loop over the 8 lanes that skips inactive
       // ones (lp_bld_nir_soa.c emit_load_global / emit_load_mem), so fewer components loaded is faster.
@@ -138,15 +143,18 @@ HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, 
       bool hit1;
       float tEnter0;
       float tEnter1;
-      ht_slab_boxes(slabRay, HT_LOAD_NODE(cur).c0xy, HT_LOAD_NODE(cur).c1xy, HT_LOAD_NODE(cur).c01z, tmax, hit0,
-                    hit1, tEnter0, tEnter1);
+      ht_slab_boxes(slabRay, HT_LOAD_NODE(cur).c0xy, HT_LOAD_NODE(cur).c1xy, HT_LOAD_NODE(cur).c01z, tmax, hit0, hit1,
+                    tEnter0, tEnter1);
       uvec4 link = uvec4(0u);
       if (hit0 || hit1) link = HT_LOAD_NODE_LINK(cur);
       uint ref0 = ht_child_ref(link.x, link.z);
       uint ref1 = ht_child_ref(link.y, link.w);
       if (hit0 && hit1) {
         bool swapOrder = tEnter1 < tEnter0;
-        if (sp >= HT_BVH_MAX_DEPTH) { overflow = true; break; }
+        if (sp >= HT_BVH_MAX_DEPTH) {
+          overflow = true;
+          break;
+        }
         stack[sp] = swapOrder ? ref0 : ref1;
         sp++;
         cur = swapOrder ? ref1 : ref0;
@@ -160,14 +168,20 @@ HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, 
       }
     }
     if (overflow) break;
-    if (cur == HT_REF_NONE) { finished = true; break; }
+    if (cur == HT_REF_NONE) {
+      finished = true;
+      break;
+    }
 
     // Leaf: test its triangles inline.
     uint slot = (cur & HT_REF_INDEX_MASK) * HT_TRI_STRIDE;
     uint slotEnd = slot + (cur >> HT_REF_COUNT_SHIFT) * HT_TRI_STRIDE;
     for (; slot < slotEnd; slot += HT_TRI_STRIDE) {
       steps++;
-      if (steps > stepLimit) { overflow = true; break; }
+      if (steps > stepLimit) {
+        overflow = true;
+        break;
+      }
       // Only x, y, z: the triangle id in v0.w is read once after the loop, for the final hit.
       vec3 v0 = vec3(HT_LOAD_TRI(slot).x, HT_LOAD_TRI(slot).y, HT_LOAD_TRI(slot).z);
       vec3 v1 = vec3(HT_LOAD_TRI(slot + 1u).x, HT_LOAD_TRI(slot + 1u).y, HT_LOAD_TRI(slot + 1u).z);
@@ -181,11 +195,17 @@ HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, 
         res.hit.triId = slot;  // slot of the hit for now; replaced by the triangle id below
         res.hit.u = u;
         res.hit.v = v;
-        if (anyHit) { done = true; break; }
+        if (anyHit) {
+          done = true;
+          break;
+        }
       }
     }
     if (overflow) break;
-    if (done || sp == 0u) { finished = true; break; }
+    if (done || sp == 0u) {
+      finished = true;
+      break;
+    }
     sp--;
     cur = stack[sp];
   }

@@ -1,4 +1,4 @@
-// gpu_layout.cpp - see gpu_layout.h. Node layout: Aila & Laine 2009 "Compact2" (bvh.md §2.4, §3, gpu_node.h).
+// gpu_layout.cpp - see gpu_layout.h. Node layout: Aila & Laine 2009 "Compact2" (docs/BVH.md §2.4, §3, gpu_node.h).
 #include "bvh/gpu_layout.h"
 
 #include <limits>
@@ -37,7 +37,8 @@ GpuBvhNode packNode(const ChildSlot& c0, const ChildSlot& c1) {
 ChildSlot leafSlot(const Bvh2& bvh, const Bvh2Node& leaf) {
   if (uint64_t{leaf.leftFirst} + leaf.triCount > bvh.primIndex.size()) throwLayout("leaf range out of primIndex");
   if (leaf.triCount > gpu_shared::HT_MAX_LEAF_SIZE) {
-    throwLayout("leaf of " + std::to_string(leaf.triCount) + " triangles exceeds HT_MAX_LEAF_SIZE (build with "
+    throwLayout("leaf of " + std::to_string(leaf.triCount) +
+                " triangles exceeds HT_MAX_LEAF_SIZE (build with "
                 "maxLeafSize <= 16)");
   }
   return ChildSlot{leaf.lo, leaf.hi, leaf.leftFirst, leaf.triCount};

@@ -1,6 +1,6 @@
 // gpu_node.h - the 64-byte two-child BVH node traversed on the GPU and by the CPU reference.
 //
-// Layout after Aila & Laine 2009 ("Compact2", also tinybvh BVH_GPU; bvh.md §2.4, §3): a node stores the
+// Layout after Aila & Laine 2009 ("Compact2", also tinybvh BVH_GPU; docs/BVH.md §2.4, §3): a node stores the
 // boxes of BOTH children, so one 64 B fetch tests two boxes.
 //   c0xy = (c0.lo.x, c0.hi.x, c0.lo.y, c0.hi.y)
 //   c1xy = (c1.lo.x, c1.hi.x, c1.lo.y, c1.hi.y)
@@ -23,9 +23,9 @@ struct GpuBvhNode {
   uvec4 link;
 };
 
-HT_CONST uint HT_TRI_STRIDE = 3u;      // vec4s per triangle slot
-HT_CONST uint HT_BVH_MAX_DEPTH = 64u;  // builder guarantee; traversal stack size
-HT_CONST uint HT_TRAVERSAL_STEP_LIMIT = 60000u;  // < lavapipe's 65,535 loop budget (toolchain.md §0)
+HT_CONST uint HT_TRI_STRIDE = 3u;                // vec4s per triangle slot
+HT_CONST uint HT_BVH_MAX_DEPTH = 64u;            // builder guarantee; traversal stack size
+HT_CONST uint HT_TRAVERSAL_STEP_LIMIT = 60000u;  // < lavapipe's 65,535 loop budget (docs/TOOLCHAIN.md §0)
 
 HT_SHARED_END
 #endif

@@ -1,7 +1,7 @@
 // offset_ray.h - self-intersection-free origins for secondary rays (C++ and GLSL, bit-identical).
 //
 // Source: Wächter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection", Ray Tracing Gems
-// ch. 6 (2019), reference code as reproduced in NVIDIAGameWorks/Falcor RaytracingTests.cpp (bvh.md §5.3):
+// ch. 6 (2019), reference code as reproduced in NVIDIAGameWorks/Falcor RaytracingTests.cpp (docs/BVH.md §5.3):
 //   origin() = 1/32, float_scale() = 1/65536, int_scale() = 256.
 // Each component of p moves int(256 * n) ULPs in the direction of n by integer arithmetic on the float bits
 // (the sign of the step follows the sign of p, because the bit pattern of a negative float grows with its
@@ -16,9 +16,9 @@
 
 HT_SHARED_BEGIN
 
-HT_CONST float HT_OFFSET_ORIGIN = 0.03125f;          // origin(): 1/32
+HT_CONST float HT_OFFSET_ORIGIN = 0.03125f;                // origin(): 1/32
 HT_CONST float HT_OFFSET_FLOAT_SCALE = 1.52587890625e-5f;  // float_scale(): 1/65536
-HT_CONST float HT_OFFSET_INT_SCALE = 256.0f;         // int_scale()
+HT_CONST float HT_OFFSET_INT_SCALE = 256.0f;               // int_scale()
 
 // One component: p moved int(256*n) ULPs towards the sign of n, or by n/65536 close to zero.
 HT_INLINE float ht_offset_component(float p, float n) {

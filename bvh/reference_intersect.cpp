@@ -1,4 +1,4 @@
-// reference_intersect.cpp - see reference_intersect.h. Woop, Benthin, Wald, JCGT 2(1) 2013 (bvh.md §5.1),
+// reference_intersect.cpp - see reference_intersect.h. Woop, Benthin, Wald, JCGT 2(1) 2013 (docs/BVH.md §5.1),
 // all in double precision, no error bound other than t > 0.
 #include "bvh/reference_intersect.h"
 

@@ -1,6 +1,6 @@
 // slab_test.h - conservative ray / box slab test for the two child boxes of a GpuBvhNode (C++ and GLSL).
 //
-// Robustness measures (bvh.md §5.2):
+// Robustness measures (docs/BVH.md §5.2):
 //  * safe reciprocal: |d| below 1e-18 is replaced by +-1e-18 keeping the sign (also of -0), so 1/d is finite
 //    and (plane - o) * (1/d) never evaluates 0 * inf = NaN when the origin lies on a slab plane.
 //    Semantics of Embree's zero_fix (common/math/vec3fa.h, min_rcp_input = 1e-18); tinybvh safercp is the
@@ -39,8 +39,8 @@ HT_INLINE float ht_safe_rcp(float x) {
 // Per-ray data of the slab test, computed once per ray.
 struct HtSlabRay {
   vec3 origin;
-  vec3 invDir;   // ht_safe_rcp of each direction component
-  bool negX;     // direction component < 0 (the near plane is the box's hi plane)
+  vec3 invDir;  // ht_safe_rcp of each direction component
+  bool negX;    // direction component < 0 (the near plane is the box's hi plane)
   bool negY;
   bool negZ;
   float tmin;
@@ -83,8 +83,8 @@ HT_INLINE void ht_slab_boxes(HT_IN(HtSlabRay) r, vec4 c0xy, vec4 c1xy, vec4 c01z
 }
 
 // Tests BOTH child boxes of a node against the ray segment [r.tmin, tmax]; returns the entry distances.
-HT_INLINE void ht_slab_node(HT_IN(HtSlabRay) r, HT_IN(GpuBvhNode) n, float tmax, HT_OUT(bool) hit0,
-                            HT_OUT(bool) hit1, HT_OUT(float) tEnter0, HT_OUT(float) tEnter1) {
+HT_INLINE void ht_slab_node(HT_IN(HtSlabRay) r, HT_IN(GpuBvhNode) n, float tmax, HT_OUT(bool) hit0, HT_OUT(bool) hit1,
+                            HT_OUT(float) tEnter0, HT_OUT(float) tEnter1) {
   ht_slab_boxes(r, n.c0xy, n.c1xy, n.c01z, tmax, hit0, hit1, tEnter0, tEnter1);
 }
 

@@ -1,7 +1,7 @@
 // watertight_triangle.h - watertight ray/triangle intersection (C++ and GLSL).
 //
 // Algorithm: Woop, Benthin, Wald, "Watertight Ray/Triangle Intersection", JCGT 2(1) 2013, with the details of
-// pbrt-v3 src/shapes/triangle.cpp (bvh.md §5.1):
+// pbrt-v3 src/shapes/triangle.cpp (docs/BVH.md §5.1):
 //  1. per ray: kz = argmax |D|, kx = kz+1 mod 3, ky = kx+1 mod 3; Sx = Dx/Dz, Sy = Dy/Dz, Sz = 1/Dz (indices
 //     permuted). Both windings are accepted (pbrt-v3), so kx/ky are not swapped for Dz < 0.
 //  2. translate each vertex by -O and shear: x = P[kx] - Sx*P[kz], y = P[ky] - Sy*P[kz] (P = vertex - O).
@@ -25,9 +25,9 @@ HT_SHARED_BEGIN
 
 // Per-ray precomputation of the watertight test (done once per ray).
 struct HtWatertightRay {
-  uint kx, ky, kz;  // permutation: kz = dominant direction axis
-  float Sx, Sy, Sz; // shear constants
-  float ox, oy, oz; // origin permuted as (O[kx], O[ky], O[kz])
+  uint kx, ky, kz;   // permutation: kz = dominant direction axis
+  float Sx, Sy, Sz;  // shear constants
+  float ox, oy, oz;  // origin permuted as (O[kx], O[ky], O[kz])
   float tmin;
 };
 
@@ -103,8 +103,8 @@ HT_INLINE bool ht_confirm_t_double(HT_IN(HtWatertightRay) r, vec3 a, vec3 b, vec
 // Watertight intersection of the ray with triangle (a, b, c) within [tmin, tmax].
 // On a hit returns true with t and the barycentrics u (of b) and v (of c); otherwise returns false and
 // leaves t = tmax, u = v = 0.
-HT_INLINE bool ht_intersect_triangle(HT_IN(HtWatertightRay) r, vec3 a, vec3 b, vec3 c, float tmax,
-                                     HT_OUT(float) t, HT_OUT(float) u, HT_OUT(float) v) {
+HT_INLINE bool ht_intersect_triangle(HT_IN(HtWatertightRay) r, vec3 a, vec3 b, vec3 c, float tmax, HT_OUT(float) t,
+                                     HT_OUT(float) u, HT_OUT(float) v) {
   t = tmax;
   u = 0.0f;
   v = 0.0f;

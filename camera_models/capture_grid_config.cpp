@@ -17,7 +17,8 @@ namespace {
 glm::dvec2 readSpacing(const JsonLocation& at, const json& object) {
   const std::string expected = "expected [ds, dt] of finite numbers > 0 (world units)";
   const json* field = detail::findField(object, "spacing");
-  if (field == nullptr || !field->is_array() || field->size() != 2) detail::throwFieldError(at, "spacing", field, expected);
+  if (field == nullptr || !field->is_array() || field->size() != 2)
+    detail::throwFieldError(at, "spacing", field, expected);
   glm::dvec2 spacing;
   for (int i = 0; i < 2; ++i) {
     const json& c = (*field)[static_cast<std::size_t>(i)];
@@ -41,13 +42,16 @@ CaptureGridConfig parseCaptureGrid(const JsonLocation& at, const json& section) 
   if (window == nullptr || !window->is_object())
     detail::throwFieldError(at, "window", window, "expected {\"width\": w, \"height\": h} (world units)");
   detail::rejectUnknownKeys(at.child("window"), *window, {"width", "height"});
-  c.windowWidth = detail::requirePositiveNumber(at.child("window"), *window, "width", "expected a finite number > 0 (world units)");
-  c.windowHeight = detail::requirePositiveNumber(at.child("window"), *window, "height", "expected a finite number > 0 (world units)");
+  c.windowWidth =
+      detail::requirePositiveNumber(at.child("window"), *window, "width", "expected a finite number > 0 (world units)");
+  c.windowHeight = detail::requirePositiveNumber(at.child("window"), *window, "height",
+                                                 "expected a finite number > 0 (world units)");
   const json* image = detail::findField(section, "image");
   if (image == nullptr || !image->is_object())
     detail::throwFieldError(at, "image", image, "expected {\"width\": W, \"height\": H} (pixels)");
   detail::rejectUnknownKeys(at.child("image"), *image, {"width", "height"});
-  c.imageWidth = static_cast<std::uint32_t>(detail::requireInteger(at.child("image"), *image, "width", false, 1, 32768));
+  c.imageWidth =
+      static_cast<std::uint32_t>(detail::requireInteger(at.child("image"), *image, "width", false, 1, 32768));
   c.imageHeight =
       static_cast<std::uint32_t>(detail::requireInteger(at.child("image"), *image, "height", false, 1, 32768));
   return c;

@@ -1,8 +1,8 @@
-// capture_grid_model.h - two-plane capture grid rays (shared C++/GLSL), model M5 of optics.md §9.
+// capture_grid_model.h - two-plane capture grid rays (shared C++/GLSL), model M5 of docs/OPTICS.md §9.
 //
 // Light slab of Levoy & Hanrahan, "Light Field Rendering", SIGGRAPH 1996: a ray is the line through (s, t) on the
-// camera plane and (u, v) on the focal plane; optics.md §9 M5 writes o = (s, t, 0), d = normalize(u - s, v - t, F).
-// Here (display-local, as M1) the camera plane is z = distance and the focal window is z = 0, so
+// camera plane and (u, v) on the focal plane; docs/OPTICS.md §9 M5 writes o = (s, t, 0), d = normalize(u - s, v - t,
+// F). Here (display-local, as M1) the camera plane is z = distance and the focal window is z = 0, so
 //   camera (i, j), view = j*columns + i (bottom-left first, like quilt views):
 //     s = (i - (columns-1)/2)*ds,  t = (j - (rows-1)/2)*dt,  o = (s, t, distance)
 //   pixel (x, y) (y from the bottom), xi in [0,1)^2:

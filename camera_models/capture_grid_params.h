@@ -6,7 +6,7 @@
 
 HT_SHARED_BEGIN
 
-// Regular (s, t) camera grid with sheared frusta through a shared (u, v) window (optics.md §9 M5).
+// Regular (s, t) camera grid with sheared frusta through a shared (u, v) window (docs/OPTICS.md §9 M5).
 struct CaptureGridParams {
   ivec4 grid;         // x columns, y rows, z image width (px), w image height (px)
   vec4 geometry;      // x spacing ds, y spacing dt, z distance (camera plane z), w unused

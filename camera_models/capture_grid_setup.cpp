@@ -19,8 +19,8 @@ const CaptureGridConfig& requireCaptureGrid(const DisplayConfig& config) {
 glm::dvec3 resolveCaptureGridTarget(const DisplayConfig& config, const Bounds3& sceneBounds) {
   requireCaptureGrid(config);
   const bool hasArea = !sceneBounds.empty() && (sceneBounds.extent().x > 0.0f || sceneBounds.extent().y > 0.0f);
-  return config.camera.target.value_or(
-      hasArea ? 0.5 * (glm::dvec3(sceneBounds.lo) + glm::dvec3(sceneBounds.hi)) : glm::dvec3(0.0));
+  return config.camera.target.value_or(hasArea ? 0.5 * (glm::dvec3(sceneBounds.lo) + glm::dvec3(sceneBounds.hi))
+                                               : glm::dvec3(0.0));
 }
 
 gpu_shared::CaptureGridParams makeCaptureGridParams(const DisplayConfig& config, const Bounds3& sceneBounds) {
@@ -45,7 +45,8 @@ glm::dvec3 CaptureGridReference::cameraPosition(std::uint32_t view) const {
 }
 
 ReferenceRay CaptureGridReference::ray(std::uint32_t x, std::uint32_t y, std::uint32_t view, glm::dvec2 xi) const {
-  // Levoy & Hanrahan 1996 light slab (optics.md §9 M5): through (s, t) on the camera plane and (u, v) on the window.
+  // Levoy & Hanrahan 1996 light slab (docs/OPTICS.md §9 M5): through (s, t) on the camera plane and (u, v) on the
+  // window.
   const glm::dvec3 o = cameraPosition(view);
   const glm::dvec3 p = target_ + glm::dvec3(((x + xi.x) / grid_.imageWidth - 0.5) * grid_.windowWidth,
                                             ((y + xi.y) / grid_.imageHeight - 0.5) * grid_.windowHeight, 0.0);

@@ -18,7 +18,7 @@ glm::dvec3 resolveCaptureGridTarget(const DisplayConfig& config, const Bounds3& 
 // Throws ConfigError if the config is not a capture-grid display.
 gpu_shared::CaptureGridParams makeCaptureGridParams(const DisplayConfig& config, const Bounds3& sceneBounds);
 
-// optics.md §9 M5 in double (formulas in capture_grid_model.h).
+// docs/OPTICS.md §9 M5 in double (formulas in capture_grid_model.h).
 class CaptureGridReference {
  public:
   CaptureGridReference(const DisplayConfig& config, const Bounds3& sceneBounds);

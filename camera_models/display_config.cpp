@@ -45,8 +45,7 @@ const json& requireObject(const JsonLocation& at, const json& parent, std::strin
 bool isAuto(const json& value) { return value.is_string() && value.get<std::string>() == "auto"; }
 
 // [x, y, z] of finite numbers, or "auto" (nullopt) when allowed.
-std::optional<glm::dvec3> readPoint(const JsonLocation& at, const json& object, std::string_view key,
-                                    bool allowAuto) {
+std::optional<glm::dvec3> readPoint(const JsonLocation& at, const json& object, std::string_view key, bool allowAuto) {
   const json* field = detail::findField(object, key);
   if (field == nullptr || (allowAuto && isAuto(*field))) return std::nullopt;
   std::string expected = std::string("expected [x, y, z] of finite numbers") + (allowAuto ? " or \"auto\"" : "");
@@ -73,8 +72,10 @@ QuiltSize readQuiltSize(const JsonLocation& at, const json& quilt) {
   QuiltSize size;
   size.columns = static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "columns", false, 1, 1024));
   size.rows = static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "rows", false, 1, 1024));
-  size.width = static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "width", false, size.columns, kMaxImageSize));
-  size.height = static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "height", false, size.rows, kMaxImageSize));
+  size.width =
+      static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "width", false, size.columns, kMaxImageSize));
+  size.height =
+      static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "height", false, size.rows, kMaxImageSize));
   return size;
 }
 
@@ -96,7 +97,8 @@ CameraPlacement readCamera(const JsonLocation& at, const json& camera) {
   if (!(placement.depthiness > 0.0))
     detail::throwFieldError(at, "depthiness", detail::findField(camera, "depthiness"), depthExpected);
   if (const json* quilt = detail::findField(camera, "quilt")) {
-    if (!quilt->is_object()) detail::throwFieldError(at, "quilt", quilt, "expected {\"columns\", \"rows\", \"width\", \"height\"}");
+    if (!quilt->is_object())
+      detail::throwFieldError(at, "quilt", quilt, "expected {\"columns\", \"rows\", \"width\", \"height\"}");
     placement.quilt = readQuiltSize(at.child("quilt"), *quilt);
   }
   return placement;
@@ -113,8 +115,8 @@ PinholeSettings readPinhole(const JsonLocation& at, const json& pinhole) {
   settings.eye = readPoint(at, pinhole, "eye", true);
   settings.lookAt = readPoint(at, pinhole, "lookAt", true);
   if (auto up = readPoint(at, pinhole, "up", false)) {
-    if (glm::length(*up) == 0.0) detail::throwFieldError(at, "up", detail::findField(pinhole, "up"),
-                                                         "expected a non-zero [x, y, z] up vector");
+    if (glm::length(*up) == 0.0)
+      detail::throwFieldError(at, "up", detail::findField(pinhole, "up"), "expected a non-zero [x, y, z] up vector");
     settings.up = *up;
   }
   if (detail::findField(pinhole, "distortion") != nullptr) {
@@ -148,7 +150,8 @@ LookingGlassCalibration readCalibration(const JsonLocation& at, const json& fiel
   if (path.is_relative()) path = baseDir / path;
   std::string text = detail::readTextFile(path.string(), at.file, at.field("calibration"),
                                           "expected a readable visual.json, path relative to the config file "
-                                          "(resolved to " + path.string() + ")");
+                                          "(resolved to " +
+                                              path.string() + ")");
   return parseLookingGlassCalibrationText(text, path.string());
 }
 
@@ -216,8 +219,9 @@ DisplayConfig fromVisualJson(const json& root, const std::string& sourceName) {
 
 DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, const std::filesystem::path& baseDir) {
   const JsonLocation at{sourceName, ""};
-  detail::rejectUnknownKeys(at, root, {"name", "description", "model", "calibration", "camera", "spp", "pinhole",
-                              "projectorArray", "integral", "captureGrid", "oblique", "rayTable"});
+  detail::rejectUnknownKeys(at, root,
+                            {"name", "description", "model", "calibration", "camera", "spp", "pinhole",
+                             "projectorArray", "integral", "captureGrid", "oblique", "rayTable"});
   DisplayConfig config;
   config.sourcePath = sourceName;
   config.name = detail::optionalString(at, root, "name").value_or(std::filesystem::path(sourceName).stem().string());
@@ -232,8 +236,7 @@ DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, con
   if (detail::findField(root, "pinhole") != nullptr)
     config.pinhole = readPinhole(at.child("pinhole"), requireObject(at, root, "pinhole"));
   if (detail::findField(root, "projectorArray") != nullptr)
-    config.projectorArray =
-        parseProjectorArray(at.child("projectorArray"), requireObject(at, root, "projectorArray"));
+    config.projectorArray = parseProjectorArray(at.child("projectorArray"), requireObject(at, root, "projectorArray"));
   if (detail::findField(root, "integral") != nullptr)
     config.integral = parseIntegral(at.child("integral"), requireObject(at, root, "integral"));
   if (detail::findField(root, "captureGrid") != nullptr)

@@ -35,7 +35,7 @@ struct QuiltSize {
   std::uint32_t width = 0, height = 0;
 };
 
-// Where the display's focal rectangle sits in the scene (looking-glass-webxr camera, optics.md §4.3).
+// Where the display's focal rectangle sits in the scene (looking-glass-webxr camera, docs/OPTICS.md §4.3).
 // The display-local frame has its origin at `target` and world-aligned axes (+z toward the viewer).
 struct CameraPlacement {
   std::optional<glm::dvec3> target;  // world position of the focal-rectangle centre; nullopt = "auto" (bounds centre)
@@ -45,24 +45,24 @@ struct CameraPlacement {
   std::optional<QuiltSize> quilt;    // "quilt": {"columns", "rows", "width", "height"}; nullopt = device default
 };
 
-// Pinhole camera (model "pinhole", optics.md §9 M0); also the preview camera of a lenticular display.
+// Pinhole camera (model "pinhole", docs/OPTICS.md §9 M0); also the preview camera of a lenticular display.
 struct PinholeSettings {
   std::optional<std::uint32_t> width, height;  // image size in pixels; nullopt = panel size or 1280x720
   std::optional<double> fovyDeg;               // vertical fov in degrees; nullopt = camera.fovyDeg (lenticular) or 45
   std::optional<glm::dvec3> eye;               // nullopt = "auto"
   std::optional<glm::dvec3> lookAt;            // nullopt = "auto" (target / bounds centre)
   glm::dvec3 up{0.0, 1.0, 0.0};
-  LensDistortionSettings distortion;           // "distortion": {"k1", "k2", "k3", "p1", "p2"}, each default 0
+  LensDistortionSettings distortion;  // "distortion": {"k1", "k2", "k3", "p1", "p2"}, each default 0
 };
 
 struct DisplayConfig {
   std::string name;
   std::string description;
-  std::string sourcePath;             // file path, or "builtin:NAME"
+  std::string sourcePath;  // file path, or "builtin:NAME"
   DisplayModel model = DisplayModel::Lenticular;
   std::optional<LookingGlassCalibration> calibration;  // required for (and only for) the lenticular model
   CameraPlacement camera;
-  std::uint32_t spp = 4;              // default samples per subpixel / pixel, [1, 4096]
+  std::uint32_t spp = 4;  // default samples per subpixel / pixel, [1, 4096]
   PinholeSettings pinhole;
   std::optional<ProjectorArrayConfig> projectorArray;  // required for (and only for) model "projector-array"
   std::optional<IntegralConfig> integral;              // required for (and only for) model "integral"

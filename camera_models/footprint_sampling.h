@@ -10,7 +10,7 @@
 //   tent:     radius 1 footprint (support [-0.5, 1.5)), inverse CDF of the triangle per axis
 //   Gaussian: sigma 0.5 footprint per axis (Box-Muller), untruncated; 99.7 % within [-1, 2)
 // For the lenticular model the footprint is the subpixel, whose x extent is its width in view phase, so a wide
-// filter prefilters across views (optics.md §8 item 4; Zwicker et al. 2006) instead of snapping to them.
+// filter prefilters across views (docs/OPTICS.md §8 item 4; Zwicker et al. 2006) instead of snapping to them.
 //
 // Points: the R2 low-discrepancy sequence (Roberts 2018, "The unreasonable effectiveness of quasirandom sequences":
 // alpha = (1/g, 1/g^2), g^3 = g + 1) with a per-target Cranley-Patterson rotation (Cranley & Patterson 1976) so

@@ -41,20 +41,25 @@ LensSampling readSampling(const JsonLocation& at, const json& object) {
 }  // namespace
 
 IntegralConfig parseIntegral(const JsonLocation& at, const json& section) {
-  detail::rejectUnknownKeys(at, section, {"panelWidth", "panelHeight", "pixelPitch", "lensPitch", "lensOffset", "lensRotationDeg",
-                              "gap", "focalLength", "viewerDistance", "frontPlane", "sampling"});
+  detail::rejectUnknownKeys(at, section,
+                            {"panelWidth", "panelHeight", "pixelPitch", "lensPitch", "lensOffset", "lensRotationDeg",
+                             "gap", "focalLength", "viewerDistance", "frontPlane", "sampling"});
   IntegralConfig c;
   c.panelWidth = static_cast<std::uint32_t>(detail::requireInteger(at, section, "panelWidth", false, 1, kMaxPanelSize));
   c.panelHeight =
       static_cast<std::uint32_t>(detail::requireInteger(at, section, "panelHeight", false, 1, kMaxPanelSize));
-  c.pixelPitch = detail::requirePositiveNumber(at, section, "pixelPitch", "expected a finite pixel pitch > 0 (display units)");
-  c.lensPitch = detail::requirePositiveNumber(at, section, "lensPitch", "expected a finite lens pitch > 0 (display units)");
+  c.pixelPitch =
+      detail::requirePositiveNumber(at, section, "pixelPitch", "expected a finite pixel pitch > 0 (display units)");
+  c.lensPitch =
+      detail::requirePositiveNumber(at, section, "lensPitch", "expected a finite lens pitch > 0 (display units)");
   c.lensOffset = readOffset(at, section);
-  c.lensRotationDeg = detail::optionalNumber(at, section, "lensRotationDeg", false,
-                                             "expected a finite angle in degrees").value_or(0.0);
+  c.lensRotationDeg =
+      detail::optionalNumber(at, section, "lensRotationDeg", false, "expected a finite angle in degrees").value_or(0.0);
   c.gap = detail::requirePositiveNumber(at, section, "gap", "expected a finite LCD-to-lens gap > 0 (display units)");
-  c.focalLength = detail::requirePositiveNumber(at, section, "focalLength", "expected a finite lens focal length > 0 (display units)");
-  c.viewerDistance = detail::requirePositiveNumber(at, section, "viewerDistance", "expected a finite viewer distance > 0 (display units)");
+  c.focalLength = detail::requirePositiveNumber(at, section, "focalLength",
+                                                "expected a finite lens focal length > 0 (display units)");
+  c.viewerDistance = detail::requirePositiveNumber(at, section, "viewerDistance",
+                                                   "expected a finite viewer distance > 0 (display units)");
   c.frontPlane = c.viewerDistance;
   if (detail::findField(section, "frontPlane") != nullptr) {
     const std::string expected = "expected a finite distance in (0, viewerDistance] (display units)";

@@ -1,8 +1,8 @@
 // integral_config.h - the "integral" section of a display config (model "integral", docs/configs.md): an integral-
-// imaging / microlens panel with full parallax (optics.md §7, §9 M4).
+// imaging / microlens panel with full parallax (docs/OPTICS.md §7, §9 M4).
 //
-// Display units (e.g. mm), display-local frame (optics.md §0): lens array = plane z = 0 centred on the origin, LCD at
-// z = -gap, viewer plane at z = +viewerDistance, +z toward the viewer.
+// Display units (e.g. mm), display-local frame (docs/OPTICS.md §0): lens array = plane z = 0 centred on the origin, LCD
+// at z = -gap, viewer plane at z = +viewerDistance, +z toward the viewer.
 #pragma once
 #include <cstdint>
 
@@ -13,7 +13,7 @@
 
 namespace ht {
 
-enum class LensSampling { Centre, Aperture };  // optics.md §7 "LensletCenter" / "LensletAverage"
+enum class LensSampling { Centre, Aperture };  // docs/OPTICS.md §7 "LensletCenter" / "LensletAverage"
 
 struct IntegralConfig {
   std::uint32_t panelWidth = 0, panelHeight = 0;  // LCD pixels
@@ -25,7 +25,7 @@ struct IntegralConfig {
   double focalLength = 0.0;                       // lens focal length f, > 0
   double viewerDistance = 0.0;                    // lens plane -> viewer plane distance L, > 0
   // Rays start on the plane z = frontPlane (0 < frontPlane <= viewerDistance; default viewerDistance) and travel into
-  // the display: scene content between that plane and the screen is in front of the screen (optics.md §7, §9 M4).
+  // the display: scene content between that plane and the screen is in front of the screen (docs/OPTICS.md §7, §9 M4).
   double frontPlane = 0.0;
   LensSampling sampling = LensSampling::Centre;
 };

@@ -6,12 +6,12 @@
 
 HT_SHARED_BEGIN
 
-// Integral-imaging panel (optics.md §7, §9 M4); lengths in display units.
+// Integral-imaging panel (docs/OPTICS.md §7, §9 M4); lengths in display units.
 struct IntegralParams {
-  vec4 panel;         // x LCD width (px), y LCD height (px), z pixel pitch, w sampling (0 lens centre, 1 aperture)
-  vec4 lens;          // x lens pitch, y focal length f, z gap g, w front plane z (rays start there)
-  vec4 grid;          // xy lens-grid offset (a lens centre), z cos(rotation), w sin(rotation)
-  vec4 scale;         // x world units per display unit, yzw unused
+  vec4 panel;  // x LCD width (px), y LCD height (px), z pixel pitch, w sampling (0 lens centre, 1 aperture)
+  vec4 lens;   // x lens pitch, y focal length f, z gap g, w front plane z (rays start there)
+  vec4 grid;   // xy lens-grid offset (a lens centre), z cos(rotation), w sin(rotation)
+  vec4 scale;  // x world units per display unit, yzw unused
   // Lens-grid coordinates g = R^-1 (p - offset)/pitch as g = x*A + y*B + g0, split for exact fract (integral_model.h):
   vec4 rateX;         // x, y: hi, lo of A.x (d gx / dx);  z, w: hi, lo of A.y (d gy / dx)
   vec4 rateY;         // x, y: hi, lo of B.x (d gx / dy);  z, w: hi, lo of B.y (d gy / dy)

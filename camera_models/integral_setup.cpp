@@ -31,8 +31,8 @@ gpu_shared::IntegralParams makeIntegralParams(const DisplayConfig& config, const
   const IntegralConfig& c = requireIntegral(config);
   const ScreenPlacement placement = resolveIntegralPlacement(config, sceneBounds);
   gpu_shared::IntegralParams p{};
-  p.panel = glm::vec4(glm::dvec4(c.panelWidth, c.panelHeight, c.pixelPitch,
-                                 c.sampling == LensSampling::Aperture ? 1.0 : 0.0));
+  p.panel = glm::vec4(
+      glm::dvec4(c.panelWidth, c.panelHeight, c.pixelPitch, c.sampling == LensSampling::Aperture ? 1.0 : 0.0));
   p.lens = glm::vec4(glm::dvec4(c.lensPitch, c.focalLength, c.gap, c.frontPlane));
   p.grid = glm::vec4(glm::dvec4(c.lensOffset, std::cos(rotationRad(c)), std::sin(rotationRad(c))));
   p.scale = glm::vec4(static_cast<float>(placement.scale), 0.0f, 0.0f, 0.0f);
@@ -66,7 +66,7 @@ glm::dvec2 IntegralReference::pixelPosition(std::uint32_t x, std::uint32_t y, gl
 }
 
 glm::dvec2 IntegralReference::lensCentre(glm::dvec2 q) const {
-  // Lens index = round(R^-1 (q - offset) / pitch) (optics.md §7).
+  // Lens index = round(R^-1 (q - offset) / pitch) (docs/OPTICS.md §7).
   const glm::dvec2 grid = glm::transpose(rotation_) * (q - integral_.lensOffset) / integral_.lensPitch;
   const glm::dvec2 index(std::floor(grid.x + 0.5), std::floor(grid.y + 0.5));
   return integral_.lensOffset + rotation_ * (index * integral_.lensPitch);
@@ -78,7 +78,8 @@ double IntegralReference::lensBorderDistance(glm::dvec2 q) const {
   return 0.5 - std::max(std::fabs(rel.x), std::fabs(rel.y));
 }
 
-glm::dvec2 IntegralReference::samplePosition(std::uint32_t x, std::uint32_t y, std::uint32_t view, glm::dvec2 xi) const {
+glm::dvec2 IntegralReference::samplePosition(std::uint32_t x, std::uint32_t y, std::uint32_t view,
+                                             glm::dvec2 xi) const {
   const bool aperture = integral_.sampling == LensSampling::Aperture;
   const glm::dvec2 f = aperture ? glm::dvec2(0.5) : xi;
   return pixelPosition(x, y, view < 3 ? glm::dvec2((view + f.x) / 3.0, f.y) : f);

@@ -18,7 +18,7 @@ namespace ht {
 ScreenPlacement resolveIntegralPlacement(const DisplayConfig& config, const Bounds3& sceneBounds);
 gpu_shared::IntegralParams makeIntegralParams(const DisplayConfig& config, const Bounds3& sceneBounds);
 
-// optics.md §9 M4 in double (formulas and sources in integral_model.h).
+// docs/OPTICS.md §9 M4 in double (formulas and sources in integral_model.h).
 class IntegralReference {
  public:
   IntegralReference(const DisplayConfig& config, const Bounds3& sceneBounds);

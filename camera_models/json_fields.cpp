@@ -127,9 +127,9 @@ long long requireInteger(const JsonLocation& at, const json& object, std::string
                          long long lo, long long hi) {
   std::optional<long long> number = optionalInteger(at, object, key, allowWrapped, lo, hi);
   if (!number)
-    throwFieldError(at, key, nullptr,
-                    "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                        "] (the field is required)");
+    throwFieldError(
+        at, key, nullptr,
+        "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (the field is required)");
   return *number;
 }
 
@@ -160,7 +160,8 @@ std::optional<std::string> optionalString(const JsonLocation& at, const json& ob
   throwFieldError(at, key, field, "expected a string");
 }
 
-void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object, std::initializer_list<std::string_view> allowed) {
+void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object,
+                       std::initializer_list<std::string_view> allowed) {
   for (const auto& [key, value] : object.items()) {
     if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
     std::string list;

@@ -15,7 +15,7 @@ namespace ht::detail {
 struct JsonLocation {
   std::string file;
   std::string prefix;
-  std::string field(std::string_view key) const;           // prefix + "." + key (or key at top level)
+  std::string field(std::string_view key) const;  // prefix + "." + key (or key at top level)
   JsonLocation child(std::string_view key) const { return {file, field(key)}; }
 };
 
@@ -57,7 +57,8 @@ std::optional<std::string> optionalString(const JsonLocation& at, const nlohmann
 
 // Throws a ConfigError for the first key of `object` not in `allowed`, listing the allowed keys: typos in our
 // config sections must not pass silently.
-void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object, std::initializer_list<std::string_view> allowed);
+void rejectUnknownKeys(const JsonLocation& at, const nlohmann::json& object,
+                       std::initializer_list<std::string_view> allowed);
 
 // Required finite number > 0; `expected` is the error's "expected ..." text.
 double requirePositiveNumber(const JsonLocation& at, const nlohmann::json& object, std::string_view key,

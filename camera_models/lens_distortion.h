@@ -17,7 +17,7 @@
 
 HT_SHARED_BEGIN
 
-HT_CONST int HT_UNDISTORT_ITERATIONS = 12;       // the most Newton steps
+HT_CONST int HT_UNDISTORT_ITERATIONS = 12;        // the most Newton steps
 HT_CONST float HT_UNDISTORT_TOLERANCE = 1.0e-7f;  // |F(u)|_1 at which a step stops, relative to 1 + |x_d|_1
 
 // The GPU block LensDistortion is in camera_params.h (radial.w = 1 marks a lens with distortion).

@@ -39,10 +39,11 @@ void checkNoFold(const LensDistortionSettings& d, double maxRadius, const std::s
     const double r = i * step;
     if (radialProfile(d, r) >= maxRadius) return;
     if (!(radialSlope(d, r) > 0.0)) {
-      throw ConfigError(file, field, coefficientsText(d),
-                        "a lens that does not fold inside the image: the radial profile stops rising at normalized radius " +
-                            detail::formatNumber(r) + ", before the image corner's " + detail::formatNumber(maxRadius) +
-                            " (reduce |k1|, or fit k2/k3 so that 1 + 3 k1 r^2 + 5 k2 r^4 + 7 k3 r^6 > 0)");
+      throw ConfigError(
+          file, field, coefficientsText(d),
+          "a lens that does not fold inside the image: the radial profile stops rising at normalized radius " +
+              detail::formatNumber(r) + ", before the image corner's " + detail::formatNumber(maxRadius) +
+              " (reduce |k1|, or fit k2/k3 so that 1 + 3 k1 r^2 + 5 k2 r^4 + 7 k3 r^6 > 0)");
     }
   }
   throw ConfigError(file, field, coefficientsText(d),
@@ -54,7 +55,8 @@ void checkNoFold(const LensDistortionSettings& d, double maxRadius, const std::s
 
 LensDistortionSettings parseLensDistortion(const detail::JsonLocation& at, const nlohmann::json& distortion) {
   detail::rejectUnknownKeys(at, distortion, {"k1", "k2", "k3", "p1", "p2"});
-  const std::string expected = "expected a finite Brown-Conrady coefficient (OpenCV convention, normalized coordinates)";
+  const std::string expected =
+      "expected a finite Brown-Conrady coefficient (OpenCV convention, normalized coordinates)";
   LensDistortionSettings d;
   for (auto [key, value] : {std::pair{"k1", &d.k1}, {"k2", &d.k2}, {"k3", &d.k3}, {"p1", &d.p1}, {"p2", &d.p2}}) {
     *value = detail::optionalNumber(at, distortion, key, false, expected).value_or(0.0);

@@ -1,16 +1,16 @@
 // lenticular_model.h - direct per-subpixel primary rays for a Looking Glass lenticular panel (shared C++/GLSL).
 //
-// Model M2 of optics.md §9: the vendor view phase (holoplaycore.js `GetSubpixelViews`, optics.md §3.1; Gen3 cells
-// `GetCellForPixel`/`GetPixelShift`, §3.2) picks a point on the view cone, the camera of looking-glass-webxr
-// `LookingGlassXRDevice.ts onFrameStart` (optics.md §4.3 / §9 M1) turns it into a ray through the focal rectangle.
+// Model M2 of docs/OPTICS.md §9: the vendor view phase (holoplaycore.js `GetSubpixelViews`, docs/OPTICS.md §3.1; Gen3
+// cells `GetCellForPixel`/`GetPixelShift`, §3.2) picks a point on the view cone, the camera of looking-glass-webxr
+// `LookingGlassXRDevice.ts onFrameStart` (docs/OPTICS.md §4.3 / §9 M1) turns it into a ray through the focal rectangle.
 //
-// Conventions (optics.md §0): pixel (x, y) with y counted from the BOTTOM, c = 0, 1, 2 = R, G, B; display-local frame
-// +x right, +y up, +z toward the viewer, origin at the centre of the focal rectangle; t = 0 is the leftmost view.
+// Conventions (docs/OPTICS.md §0): pixel (x, y) with y counted from the BOTTOM, c = 0, 1, 2 = R, G, B; display-local
+// frame +x right, +y up, +z toward the viewer, origin at the centre of the focal rectangle; t = 0 is the leftmost view.
 //
 // Sampling: xi in [0,1)^2 is the position inside the subpixel's footprint, a rectangle 1/3 px wide and 1 px tall
 // centred on the vendor's sample point (u + c*subp, v) (classic) or on the Gen3 cell-offset position. xi = (0.5, 0.5)
 // reproduces the vendor formula; other xi move the sample point, and the phase is evaluated at the moved point, so
-// averaging over xi prefilters across views (optics.md §8 item 4).
+// averaging over xi prefilters across views (docs/OPTICS.md §8 item 4).
 //
 // Float precision: phi = x*A + y*B + small, A = pitch_s/W, B = tilt*pitch_s/H, reaches ~1000 on 8K panels where one
 // float ulp is 6e-5. makeLenticularParams() therefore stores A and B split into hi + lo parts (cellOffset[0].zw and
@@ -37,17 +37,15 @@ HT_SHARED_BEGIN
 HT_CONST float HT_LENTICULAR_T_MAX = 0.99999994f;
 
 // Channel whose physical subpixel feeds output channel c: BGR panels (flipSubp) swap R and B, c' = 2 - c
-// (HoloPlayCore ri/bi, optics.md §1 and §9 M2).
-HT_INLINE uint lenticular_physical_channel(LenticularParams p, uint c) {
-  return p.panel.w > 0.5f ? 2u - c : c;
-}
+// (HoloPlayCore ri/bi, docs/OPTICS.md §1 and §9 M2).
+HT_INLINE uint lenticular_physical_channel(LenticularParams p, uint c) { return p.panel.w > 0.5f ? 2u - c : c; }
 
-// Whether the panel places its subpixels by Gen3 cells (optics.md §3.2) rather than the classic 1/3-pixel steps.
+// Whether the panel places its subpixels by Gen3 cells (docs/OPTICS.md §3.2) rather than the classic 1/3-pixel steps.
 HT_INLINE bool lenticular_has_cells(LenticularParams p) {
   return HT_LENTICULAR_CELL_MODE(p) != 0 && HT_LENTICULAR_CELL_COUNT(p) > 0;
 }
 
-// Gen3 subpixel cell of pixel (x, y), y from the bottom (holoplaycore.js GetCellForPixel, optics.md §3.2).
+// Gen3 subpixel cell of pixel (x, y), y from the bottom (holoplaycore.js GetCellForPixel, docs/OPTICS.md §3.2).
 HT_INLINE uint lenticular_cell(LenticularParams p, uint x, uint y) {
   int mode = HT_LENTICULAR_CELL_MODE(p);
   uint cell = 0u;
@@ -61,8 +59,8 @@ HT_INLINE uint lenticular_cell(LenticularParams p, uint x, uint y) {
 
 // Sample point of subpixel (x, y, c) at footprint position xi, as an offset in pixels from the pixel's lower-left
 // corner: the sample lies at ((x, y) + offset) / (W, H) in screen uv.
-//   classic: centre (0.5 + c*subp*W, 0.5) = (0.5 +- c/3, 0.5) (subp = +-1/(3W), optics.md §2 / §3.1)
-//   Gen3:    centre (0.5 + offX, 0.5 + offY) with offsets in pixels (optics.md §3.2)
+//   classic: centre (0.5 + c*subp*W, 0.5) = (0.5 +- c/3, 0.5) (subp = +-1/(3W), docs/OPTICS.md §2 / §3.1)
+//   Gen3:    centre (0.5 + offX, 0.5 + offY) with offsets in pixels (docs/OPTICS.md §3.2)
 HT_INLINE vec2 lenticular_sample_offset_px(LenticularParams p, uint x, uint y, uint c, vec2 xi) {
   uint cp = lenticular_physical_channel(p, c);
   vec2 centre = vec2(0.5f, 0.5f);
@@ -93,7 +91,7 @@ HT_INLINE vec2 lenticular_rate_split(vec2 stored, float fallback) {
   return (stored.x == 0.0f && stored.y == 0.0f) ? vec2(fallback, 0.0f) : stored;
 }
 
-// View phase t in [0, 1) of subpixel (x, y, c) at footprint position xi (optics.md §3.1, §3.2, §9 M2):
+// View phase t in [0, 1) of subpixel (x, y, c) at footprint position xi (docs/OPTICS.md §3.1, §3.2, §9 M2):
 //   phi = (u_s + v_s*tilt)*pitch_s - center,   u_s, v_s = sample point (includes c*subp or the Gen3 offsets)
 //   t   = invView ? 1 - fract(phi) : fract(phi)
 // evaluated as phi = fract(x*A_hi) + fract(y*B_hi) + (x*A_lo + y*B_lo + ox*A + oy*B - center), where
@@ -101,8 +99,7 @@ HT_INLINE vec2 lenticular_rate_split(vec2 stored, float fallback) {
 // lenticular_view_phase_at_offset: the same at a sample offset o = lenticular_sample_offset_px(p, x, y, c, xi).
 HT_INLINE float lenticular_view_phase_at_offset(LenticularParams p, uint x, uint y, vec2 o) {
   vec2 rateX = lenticular_rate_split(vec2(p.cellOffset[0].z, p.cellOffset[0].w), p.phase.x / p.panel.x);
-  vec2 rateY = lenticular_rate_split(vec2(p.cellOffset[1].z, p.cellOffset[1].w),
-                                     p.phase.y * p.phase.x / p.panel.y);
+  vec2 rateY = lenticular_rate_split(vec2(p.cellOffset[1].z, p.cellOffset[1].w), p.phase.y * p.phase.x / p.panel.y);
   HT_PRECISE float fx = fract(float(x) * rateX.x);
   HT_PRECISE float fy = fract(float(y) * rateY.x);
   HT_PRECISE float small = float(x) * rateX.y + float(y) * rateY.y;
@@ -115,7 +112,8 @@ HT_INLINE float lenticular_view_phase(LenticularParams p, uint x, uint y, uint c
   return lenticular_view_phase_at_offset(p, x, y, lenticular_sample_offset_px(p, x, y, c, xi));
 }
 
-// Ray for view phase t through the focal-plane point at screen uv (optics.md §9 M1/M2, looking-glass-webxr camera):
+// Ray for view phase t through the focal-plane point at screen uv (docs/OPTICS.md §9 M1/M2, looking-glass-webxr
+// camera):
 //   theta = viewCone*(t - 0.5);  o = (D tan(theta), 0, D)
 //   P = ((u - 0.5)*aspect*size, (v - 0.5)*size, 0), u, v mirrored by flipImageX / flipImageY;  d = normalize(P - o)
 // then display-local -> world through localToWorld. dir is unit length.

@@ -1,4 +1,4 @@
-// lenticular_params.cpp - raw calibration -> shader values -> LenticularParams (optics.md §2, §4.3, §9 M2).
+// lenticular_params.cpp - raw calibration -> shader values -> LenticularParams (docs/OPTICS.md §2, §4.3, §9 M2).
 #include "camera_models/lenticular_params.h"
 
 #include <bit>
@@ -29,8 +29,8 @@ bool hasArea(const Bounds3& bounds) {
 }  // namespace
 
 LenticularShaderValues lenticularShaderValues(const LookingGlassCalibration& c) {
-  // optics.md §2 (looking-glass-webxr src/LookingGlassConfig.ts at b44ed27; LKG-Toolkit Calibration.cs ProcessPitch,
-  // ProcessSlope). subp is negated with flipImageX as in looking-glass-webxr HEAD.
+  // docs/OPTICS.md §2 (looking-glass-webxr src/LookingGlassConfig.ts at b44ed27; LKG-Toolkit Calibration.cs
+  // ProcessPitch, ProcessSlope). subp is negated with flipImageX as in looking-glass-webxr HEAD.
   const double flip = c.flipImageX ? -1.0 : 1.0;
   const double width = static_cast<double>(c.screenW);
   const double height = static_cast<double>(c.screenH);
@@ -63,7 +63,7 @@ LenticularCamera resolveLenticularCamera(const DisplayConfig& config, const Boun
   // looking-glass-webxr LookingGlassXRDevice.ts onFrameStart: D = 0.5 * targetDiam / tan(fovy / 2).
   const double fovy = config.camera.fovyDeg * std::numbers::pi / 180.0;
   camera.focalDistance = 0.5 * camera.size / std::tan(0.5 * fovy);
-  // optics.md §2: viewCone_rad = viewCone * depthiness * pi / 180 (full cone, webxr convention).
+  // docs/OPTICS.md §2: viewCone_rad = viewCone * depthiness * pi / 180 (full cone, webxr convention).
   camera.viewConeRad = calibration.viewCone * config.camera.depthiness * std::numbers::pi / 180.0;
   return camera;
 }
@@ -109,7 +109,7 @@ gpu_shared::LenticularParams makeLenticularParams(const DisplayConfig& config, c
     }
   }
   // Phase rates per pixel, split for exact integer-part removal (lenticular_model.h, lenticular_view_phase):
-  // A = pitch_s / W along x, B = tilt * pitch_s / H along y (expanding phi of optics.md §3.1 in x and y).
+  // A = pitch_s / W along x, B = tilt * pitch_s / H along y (expanding phi of docs/OPTICS.md §3.1 in x and y).
   const glm::vec2 rateX = splitPhaseRate(shader.pitch / width, calibration.screenW);
   const glm::vec2 rateY = splitPhaseRate(shader.tilt * shader.pitch / height, calibration.screenH);
   p.cellOffset[0].z = rateX.x;

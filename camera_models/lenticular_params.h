@@ -12,18 +12,18 @@
 
 namespace ht {
 
-// Shader uniforms from raw calibration values (optics.md §2; looking-glass-webxr src/LookingGlassConfig.ts):
+// Shader uniforms from raw calibration values (docs/OPTICS.md §2; looking-glass-webxr src/LookingGlassConfig.ts):
 //   pitch_s = pitch * (screenW / DPI) * cos(atan(1 / slope)),  tilt = screenH / (screenW * slope) * (flipX ? -1 : 1),
 //   subp = 1 / (3 * screenW) * (flipX ? -1 : 1),  center unchanged.
 struct LenticularShaderValues {
-  double pitch = 0.0;   // pitch_s: lenses across the full screen width
+  double pitch = 0.0;  // pitch_s: lenses across the full screen width
   double tilt = 0.0;
-  double subp = 0.0;    // one subpixel in u units, signed
+  double subp = 0.0;  // one subpixel in u units, signed
   double center = 0.0;
 };
 LenticularShaderValues lenticularShaderValues(const LookingGlassCalibration& calibration);
 
-// The display's camera resolved against the scene (looking-glass-webxr LookingGlassXRDevice.ts, optics.md §4.3):
+// The display's camera resolved against the scene (looking-glass-webxr LookingGlassXRDevice.ts, docs/OPTICS.md §4.3):
 // focal rectangle of height `size` and width aspect*size centred on `target`, cameras at distance
 // D = 0.5*size/tan(fovy/2), spread over viewCone_rad = viewCone*depthiness*pi/180 (full cone).
 // "auto" target = bounds centre; "auto" size = 1.1 * max(extent.y, extent.x/aspect). Empty or flat bounds fall back
@@ -32,7 +32,7 @@ struct LenticularCamera {
   glm::dvec3 target{0.0};
   double size = 2.0;
   double focalDistance = 0.0;
-  double aspect = 1.0;        // screenW / screenH
+  double aspect = 1.0;  // screenW / screenH
   double viewConeRad = 0.0;
 };
 LenticularCamera resolveLenticularCamera(const DisplayConfig& config, const Bounds3& sceneBounds);

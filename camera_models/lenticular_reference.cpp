@@ -12,7 +12,7 @@ LenticularReference::LenticularReference(const DisplayConfig& config, const Boun
 }
 
 std::uint32_t LenticularReference::cell(std::uint32_t x, std::uint32_t y) const {
-  // holoplaycore.js GetCellForPixel (optics.md §3.2); xPos = int(u*W) = x, yPos = int(v*H) = y.
+  // holoplaycore.js GetCellForPixel (docs/OPTICS.md §3.2); xPos = int(u*W) = x, yPos = int(v*H) = y.
   const std::size_t count = calibration_.subpixelCells.size();
   if (calibration_.cellPatternMode == 0 || count == 0) return 0;
   std::uint32_t cellIndex = 0;

@@ -1,7 +1,7 @@
 // lenticular_reference.h - double-precision oracle of the lenticular model, written independently of the shared
 // float code in lenticular_model.h (tests, and benchmarks as the accuracy reference).
 //
-// Straight transcription of optics.md §9 M2: u = (x+0.5)/W, v = (y+0.5)/H (y from the bottom);
+// Straight transcription of docs/OPTICS.md §9 M2: u = (x+0.5)/W, v = (y+0.5)/H (y from the bottom);
 // classic phi = (u + c*subp + v*tilt)*pitch_s - center (holoplaycore.js GetSubpixelViews, §3.1);
 // Gen3 phi = ((u + offX/W) + (v + offY/H)*tilt)*pitch_s - center (GetCellForPixel / GetPixelShift, §3.2);
 // t = invView ? 1 - fract(phi) : fract(phi); flipSubp evaluates channel 2 - c; the footprint sample point moves by

@@ -1,4 +1,4 @@
-// looking_glass_calibration.cpp - visual.json parsing and validation (optics.md §1).
+// looking_glass_calibration.cpp - visual.json parsing and validation (docs/OPTICS.md §1).
 #include "camera_models/looking_glass_calibration.h"
 
 #include <cmath>
@@ -77,16 +77,16 @@ std::vector<SubpixelCell> readCells(const JsonLocation& at, const json& object, 
   if (field != nullptr) {
     if (!field->is_array()) detail::throwFieldError(at, "subpixelCells", field, "expected an array of cells");
     if (field->size() > gpu_shared::HT_MAX_SUBPIXEL_CELLS)
-      detail::throwFieldError(at, "subpixelCells", field,
-                              "expected at most " + maxCells + " cells (HT_MAX_SUBPIXEL_CELLS), got " +
-                                  std::to_string(field->size()));
+      detail::throwFieldError(
+          at, "subpixelCells", field,
+          "expected at most " + maxCells + " cells (HT_MAX_SUBPIXEL_CELLS), got " + std::to_string(field->size()));
     for (std::size_t i = 0; i < field->size(); ++i)
       cells.push_back(readCell(at.child("subpixelCells[" + std::to_string(i) + "]"), (*field)[i]));
   }
   if (mode != 0 && cells.empty())
     detail::throwFieldError(at, "subpixelCells", field,
-                            "expected 1 to " + maxCells + " cells because CellPatternMode is " +
-                                std::to_string(mode) + " (or set CellPatternMode 0)");
+                            "expected 1 to " + maxCells + " cells because CellPatternMode is " + std::to_string(mode) +
+                                " (or set CellPatternMode 0)");
   return cells;
 }
 
@@ -113,8 +113,7 @@ LookingGlassCalibration parseLookingGlassCalibration(const json& raw, const std:
   if (!(c.viewCone > 0.0 && c.viewCone < 180.0))
     detail::throwFieldError(at, "viewCone", detail::findField(raw, "viewCone"), coneRange);
   c.invView = detail::requireFlag(at, raw, "invView");
-  c.verticalAngle =
-      detail::optionalNumber(at, raw, "verticalAngle", true, "expected a finite number").value_or(0.0);
+  c.verticalAngle = detail::optionalNumber(at, raw, "verticalAngle", true, "expected a finite number").value_or(0.0);
   c.DPI = requirePositive(at, raw, "DPI", "panel dots per inch");
   c.screenW = static_cast<std::uint32_t>(detail::requireInteger(at, raw, "screenW", true, 1, kMaxScreenSize));
   c.screenH = static_cast<std::uint32_t>(detail::requireInteger(at, raw, "screenH", true, 1, kMaxScreenSize));
@@ -132,8 +131,8 @@ LookingGlassCalibration parseLookingGlassCalibrationText(std::string_view text, 
 }
 
 LookingGlassCalibration loadLookingGlassCalibration(const std::filesystem::path& file) {
-  std::string text = detail::readTextFile(file.string(), file.string(), "(file)",
-                                          "expected an existing, readable visual.json file");
+  std::string text =
+      detail::readTextFile(file.string(), file.string(), "(file)", "expected an existing, readable visual.json file");
   return parseLookingGlassCalibrationText(text, file.string());
 }
 

@@ -1,6 +1,6 @@
 // looking_glass_calibration.h - a Looking Glass factory calibration (`visual.json`), parsed and validated.
 //
-// Fields and their meaning: optics.md §1 (LKG-Toolkit Toolkit-API/Device/Calibration.cs, SubpixelCell.cs). The raw
+// Fields and their meaning: docs/OPTICS.md §1 (LKG-Toolkit Toolkit-API/Device/Calibration.cs, SubpixelCell.cs). The raw
 // file is accepted unchanged: numbers bare or wrapped as {"value": x}, configVersion "1.0" or "3.0", booleans as
 // 0/1 or true/false, `CellPatternMode` or `cellPatternMode`. Unknown keys are kept (as text) in `rawJson`.
 #pragma once
@@ -25,24 +25,24 @@ struct SubpixelCell {
 };
 
 struct LookingGlassCalibration {
-  std::string configVersion;        // "1.0" (Gen1, early Portrait) or "3.0" (Gen2/Gen3 templates)
-  std::string serial;               // prefix names the device type (LKG-P Portrait, LKG-J 16" Gen3 landscape, ...)
-  double pitch = 0.0;               // raw lenticular pitch, lenses per inch across the slanted lens (> 0)
-  double slope = 0.0;               // raw lens slant (!= 0), pixels of y per pixel of x along a lens, signed
-  double center = 0.0;              // phase offset of the lens pattern, in lenses
-  double viewCone = 0.0;            // degrees, full cone (looking-glass-webxr convention), (0, 180)
-  bool invView = false;             // reversed view order: t = 1 - fract(phi)
-  double verticalAngle = 0.0;       // present in every file seen, read by no known shader; kept
-  double DPI = 0.0;                 // panel dots per inch (> 0)
-  std::uint32_t screenW = 0;        // native panel width in pixels, [1, 32768]
-  std::uint32_t screenH = 0;        // native panel height in pixels, [1, 32768]
-  bool flipImageX = false;          // mirror horizontally (negates tilt and subp, optics.md §2)
-  bool flipImageY = false;          // mirror vertically
-  bool flipSubp = false;            // BGR panel: output R/B use the phase of subpixel 2 - c
-  double fringe = 0.0;              // Large/Pro fringe correction; optional, default 0; not used by the ray model
-  int cellPatternMode = 0;          // CellPatternMode 0 (classic) .. 4 (Gen3 cell layouts, optics.md §3.2)
+  std::string configVersion;   // "1.0" (Gen1, early Portrait) or "3.0" (Gen2/Gen3 templates)
+  std::string serial;          // prefix names the device type (LKG-P Portrait, LKG-J 16" Gen3 landscape, ...)
+  double pitch = 0.0;          // raw lenticular pitch, lenses per inch across the slanted lens (> 0)
+  double slope = 0.0;          // raw lens slant (!= 0), pixels of y per pixel of x along a lens, signed
+  double center = 0.0;         // phase offset of the lens pattern, in lenses
+  double viewCone = 0.0;       // degrees, full cone (looking-glass-webxr convention), (0, 180)
+  bool invView = false;        // reversed view order: t = 1 - fract(phi)
+  double verticalAngle = 0.0;  // present in every file seen, read by no known shader; kept
+  double DPI = 0.0;            // panel dots per inch (> 0)
+  std::uint32_t screenW = 0;   // native panel width in pixels, [1, 32768]
+  std::uint32_t screenH = 0;   // native panel height in pixels, [1, 32768]
+  bool flipImageX = false;     // mirror horizontally (negates tilt and subp, docs/OPTICS.md §2)
+  bool flipImageY = false;     // mirror vertically
+  bool flipSubp = false;       // BGR panel: output R/B use the phase of subpixel 2 - c
+  double fringe = 0.0;         // Large/Pro fringe correction; optional, default 0; not used by the ray model
+  int cellPatternMode = 0;     // CellPatternMode 0 (classic) .. 4 (Gen3 cell layouts, docs/OPTICS.md §3.2)
   std::vector<SubpixelCell> subpixelCells;  // <= 4 cells; >= 1 when cellPatternMode != 0
-  std::string rawJson;              // the file's JSON object as read (compact text), unknown keys included
+  std::string rawJson;                      // the file's JSON object as read (compact text), unknown keys included
 };
 
 // Parses and validates a visual.json object. `file` names the source in errors; `fieldPrefix` is prepended to field

@@ -39,7 +39,8 @@ ObliqueConfig parseOblique(const JsonLocation& at, const json& section) {
   if (image == nullptr || !image->is_object())
     detail::throwFieldError(at, "image", image, "expected {\"width\": W, \"height\": H} (pixels)");
   detail::rejectUnknownKeys(at.child("image"), *image, {"width", "height"});
-  c.imageWidth = static_cast<std::uint32_t>(detail::requireInteger(at.child("image"), *image, "width", false, 1, 32768));
+  c.imageWidth =
+      static_cast<std::uint32_t>(detail::requireInteger(at.child("image"), *image, "width", false, 1, 32768));
   c.imageHeight =
       static_cast<std::uint32_t>(detail::requireInteger(at.child("image"), *image, "height", false, 1, 32768));
   const json* window = detail::findField(section, "window");

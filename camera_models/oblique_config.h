@@ -1,5 +1,5 @@
 // oblique_config.h - the "oblique" section of a display config (model "oblique", docs/configs.md): a grid of
-// sheared orthographic views, one per emission direction (Burnett "Oblique Slice and Dice", optics.md §9 M6).
+// sheared orthographic views, one per emission direction (Burnett "Oblique Slice and Dice", docs/OPTICS.md §9 M6).
 //
 // World units, display-local frame placed at camera.target (world-aligned axes): the window is centred on the origin
 // in the plane z = 0, rays start on the plane z = zFront (toward the viewer, +z) and travel into the scene.

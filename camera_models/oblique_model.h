@@ -1,9 +1,10 @@
-// oblique_model.h - oblique (sheared orthographic) direction camera rays (shared C++/GLSL), model M6 of optics.md §9.
+// oblique_model.h - oblique (sheared orthographic) direction camera rays (shared C++/GLSL), model M6 of docs/OPTICS.md
+// §9.
 //
-// Burnett, "Oblique Slice and Dice" (TLBurnett3/LightField Src/Renderer/README.md; optics.md §7, §9 M6): one image
+// Burnett, "Oblique Slice and Dice" (TLBurnett3/LightField Src/Renderer/README.md; docs/OPTICS.md §7, §9 M6): one image
 // per emission direction e_k; for a window point X the ray is o = X + e_k*zFront', d = -e_k (all rays of a view are
 // parallel, so each view is one coherent batch). Pixels are later scattered into the hogels/lenticules that emit e_k.
-// Our parametrisation (display-local, optics.md §0):
+// Our parametrisation (display-local, docs/OPTICS.md §0):
 //   view k = j*columns + i (bottom-left first, like quilt views):
 //     thx_i = coneX*((i+0.5)/columns - 0.5),  thy_j = coneY*((j+0.5)/rows - 0.5)
 //     e_k = normalize(tan(thx_i), tan(thy_j), 1)            (emission direction, out of the display)
@@ -31,8 +32,7 @@ HT_INLINE vec2 oblique_view_tangents(ObliqueParams p, uint view) {
   return vec2(tan(thx), tan(thy));
 }
 
-HT_INLINE void oblique_ray(ObliqueParams p, uint x, uint y, uint view, vec2 xi, HT_OUT(vec3) origin,
-                           HT_OUT(vec3) dir) {
+HT_INLINE void oblique_ray(ObliqueParams p, uint x, uint y, uint view, vec2 xi, HT_OUT(vec3) origin, HT_OUT(vec3) dir) {
   vec2 t = oblique_view_tangents(p, view);
   HT_PRECISE vec3 windowPoint = vec3(((float(x) + xi.x) / float(p.grid.z) - 0.5f) * p.window.x,
                                      ((float(y) + xi.y) / float(p.grid.w) - 0.5f) * p.window.y, 0.0f);

@@ -1,5 +1,5 @@
 // oblique_params.h - GPU-visible parameter block of the oblique (sheared orthographic) direction camera
-// (oblique_model.h, optics.md §9 M6). std430-safe: only vec4/ivec4/mat4 members.
+// (oblique_model.h, docs/OPTICS.md §9 M6). std430-safe: only vec4/ivec4/mat4 members.
 #ifndef HT_OBLIQUE_PARAMS_H
 #define HT_OBLIQUE_PARAMS_H
 #include "common/glsl_cpp.h"

@@ -60,7 +60,7 @@ ObliqueReference::ObliqueReference(const DisplayConfig& config, const Bounds3& s
     : oblique_(requireOblique(config)), geometry_(resolveObliqueGeometry(config, sceneBounds)) {}
 
 glm::dvec3 ObliqueReference::emissionDirection(std::uint32_t view) const {
-  // Direction grid of optics.md §9 M6: angles evenly spaced at bin centres across the full cones.
+  // Direction grid of docs/OPTICS.md §9 M6: angles evenly spaced at bin centres across the full cones.
   const double i = view % oblique_.columns, j = view / oblique_.columns;
   const double thx = degToRad(oblique_.horizontalConeDeg) * ((i + 0.5) / oblique_.columns - 0.5);
   const double thy = degToRad(oblique_.verticalConeDeg) * ((j + 0.5) / oblique_.rows - 0.5);
@@ -73,7 +73,7 @@ glm::dvec3 ObliqueReference::windowPoint(std::uint32_t x, std::uint32_t y, glm::
 }
 
 ReferenceRay ObliqueReference::ray(std::uint32_t x, std::uint32_t y, std::uint32_t view, glm::dvec2 xi) const {
-  // Burnett's oblique view (optics.md §9 M6): o = X + e_k*(zFront/e_k.z), d = -e_k.
+  // Burnett's oblique view (docs/OPTICS.md §9 M6): o = X + e_k*(zFront/e_k.z), d = -e_k.
   const glm::dvec3 e = emissionDirection(view);
   return {windowPoint(x, y, xi) + e * (geometry_.zFront / e.z), -e};
 }

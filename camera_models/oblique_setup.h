@@ -14,7 +14,7 @@ namespace ht {
 
 // The oblique camera placed in the scene (world units, world-aligned display-local frame at `target`).
 struct ObliqueGeometry {
-  glm::dvec3 target{0.0};                  // window centre: camera.target, "auto" = bounds centre (origin if empty)
+  glm::dvec3 target{0.0};  // window centre: camera.target, "auto" = bounds centre (origin if empty)
   double windowWidth = 0.0, windowHeight = 0.0;  // oblique.window, or "auto": height = camera.size / auto fit
                                                  // (screen_placement.h), width = height * imageWidth / imageHeight
   double zFront = 0.0;  // oblique.zFront, or "auto" = max(bounds.hi.z - target.z, 0) + 5% of the larger window side
@@ -24,7 +24,7 @@ struct ObliqueGeometry {
 ObliqueGeometry resolveObliqueGeometry(const DisplayConfig& config, const Bounds3& sceneBounds);
 gpu_shared::ObliqueParams makeObliqueParams(const DisplayConfig& config, const Bounds3& sceneBounds);
 
-// optics.md §9 M6 in double (formulas and sources in oblique_model.h).
+// docs/OPTICS.md §9 M6 in double (formulas and sources in oblique_model.h).
 class ObliqueReference {
  public:
   ObliqueReference(const DisplayConfig& config, const Bounds3& sceneBounds);

@@ -1,8 +1,8 @@
-// pinhole_model.h - pinhole camera rays (shared C++/GLSL), model M0 of optics.md §9.
+// pinhole_model.h - pinhole camera rays (shared C++/GLSL), model M0 of docs/OPTICS.md §9.
 //
 //   d_cam = ((2(x+xi_x)/W - 1)*aspect*tan(fovy/2), (2(y+xi_y)/H - 1)*tan(fovy/2), -1),  o = eye
 //
-// Pixel (x, y) with y counted from the BOTTOM (optics.md §0), xi in [0,1)^2 the sample position inside the pixel.
+// Pixel (x, y) with y counted from the BOTTOM (docs/OPTICS.md §0), xi in [0,1)^2 the sample position inside the pixel.
 // The camera looks down -z with +y up; cameraToWorld maps camera space to world (column 3 = eye).
 // Through a distorting lens (p.distortion, lens_distortion.h) the pixel's normalized image point
 // ((2(x+xi_x)/W - 1)*aspect*tan(fovy/2), (2(y+xi_y)/H - 1)*tan(fovy/2)) is the distorted point x_d; the ray leaves

@@ -1,4 +1,4 @@
-// pinhole_params.cpp - pinhole camera defaults and the PinholeParams block (optics.md §9 M0).
+// pinhole_params.cpp - pinhole camera defaults and the PinholeParams block (docs/OPTICS.md §9 M0).
 #include "camera_models/pinhole_params.h"
 
 #include <cmath>
@@ -81,14 +81,15 @@ gpu_shared::PinholeParams makePinholeParams(const DisplayConfig& config, const B
                       "expected an up vector not parallel to the view direction " + pointText(forward));
   const glm::dvec3 right = glm::normalize(side);
   const glm::dvec3 up = glm::cross(right, forward);
-  // Camera space: looks down -z, +y up (optics.md §9 M0); columns = right, up, -forward, eye.
+  // Camera space: looks down -z, +y up (docs/OPTICS.md §9 M0); columns = right, up, -forward, eye.
   const glm::dmat4 cameraToWorld(glm::dvec4(right, 0.0), glm::dvec4(up, 0.0), glm::dvec4(-forward, 0.0),
                                  glm::dvec4(camera.eye, 1.0));
   const double fovy = camera.fovyDeg * std::numbers::pi / 180.0;
   gpu_shared::PinholeParams p{};
   p.cameraToWorld = glm::mat4(cameraToWorld);
   const double tanHalf = std::tan(0.5 * fovy), aspect = static_cast<double>(camera.width) / camera.height;
-  p.lens = glm::vec4(glm::dvec4(tanHalf, aspect, static_cast<double>(camera.width), static_cast<double>(camera.height)));
+  p.lens =
+      glm::vec4(glm::dvec4(tanHalf, aspect, static_cast<double>(camera.width), static_cast<double>(camera.height)));
   p.distortion = makeLensDistortion(config.pinhole.distortion, glm::dvec2(aspect * tanHalf, tanHalf), config.sourcePath,
                                     "pinhole.distortion");
   return p;

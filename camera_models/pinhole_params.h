@@ -1,5 +1,5 @@
 // pinhole_params.h - from a display config to the GPU parameter block of the pinhole model
-// (camera_params.h PinholeParams, consumed by pinhole_model.h; optics.md §9 M0).
+// (camera_params.h PinholeParams, consumed by pinhole_model.h; docs/OPTICS.md §9 M0).
 #pragma once
 #include <cstdint>
 

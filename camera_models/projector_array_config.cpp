@@ -18,11 +18,12 @@ namespace {
 
 constexpr long long kMaxImageSize = 32768;
 
-// [x, y, z], finite, z < 0: projectors sit behind the screen (optics.md §9 M3, P_k.z < 0).
+// [x, y, z], finite, z < 0: projectors sit behind the screen (docs/OPTICS.md §9 M3, P_k.z < 0).
 glm::dvec3 readPosition(const JsonLocation& at, const json& object) {
   const std::string expected = "expected [x, y, z] of finite numbers (display units) with z < 0 (behind the screen)";
   const json* field = detail::findField(object, "position");
-  if (field == nullptr || !field->is_array() || field->size() != 3) detail::throwFieldError(at, "position", field, expected);
+  if (field == nullptr || !field->is_array() || field->size() != 3)
+    detail::throwFieldError(at, "position", field, expected);
   glm::dvec3 p;
   for (int i = 0; i < 3; ++i) {
     const json& c = (*field)[static_cast<std::size_t>(i)];
@@ -41,7 +42,8 @@ std::array<double, 9> readHomography(const JsonLocation& at, const json& object,
       "expected [[h00, h01, h02], [h10, h11, h12], [h20, h21, h22]] of finite numbers with h20*x + h21*y + h22 > 0 "
       "at every image corner";
   const json* field = detail::findField(object, "homography");
-  if (field == nullptr || !field->is_array() || field->size() != 3) detail::throwFieldError(at, "homography", field, expected);
+  if (field == nullptr || !field->is_array() || field->size() != 3)
+    detail::throwFieldError(at, "homography", field, expected);
   std::array<double, 9> h{};
   for (std::size_t r = 0; r < 3; ++r) {
     const json& row = (*field)[r];
@@ -55,8 +57,8 @@ std::array<double, 9> readHomography(const JsonLocation& at, const json& object,
   for (double x : {0.0, double(width)})
     for (double y : {0.0, double(height)})
       if (!(h[6] * x + h[7] * y + h[8] > 0.0)) detail::throwFieldError(at, "homography", field, expected);
-  const double det = h[0] * (h[4] * h[8] - h[5] * h[7]) - h[1] * (h[3] * h[8] - h[5] * h[6]) +
-                     h[2] * (h[3] * h[7] - h[4] * h[6]);
+  const double det =
+      h[0] * (h[4] * h[8] - h[5] * h[7]) - h[1] * (h[3] * h[8] - h[5] * h[6]) + h[2] * (h[3] * h[7] - h[4] * h[6]);
   if (!(std::fabs(det) > 0.0)) detail::throwFieldError(at, "homography", field, expected + " (non-singular)");
   return h;
 }
@@ -83,7 +85,8 @@ ProjectorConfig readProjector(const JsonLocation& at, const json& object, std::o
 // {"focalLength": f (px, > 0), "principalOffset": [dx, dy] (px, default [0, 0]), "distortion": {...}}.
 ProjectorArrayConfig::Lens readLens(const JsonLocation& at, const json* lens) {
   if (!lens->is_object())
-    detail::throwFieldError(at, "", lens, "expected {\"focalLength\": f, \"principalOffset\": [dx, dy], \"distortion\": {...}}");
+    detail::throwFieldError(at, "", lens,
+                            "expected {\"focalLength\": f, \"principalOffset\": [dx, dy], \"distortion\": {...}}");
   detail::rejectUnknownKeys(at, *lens, {"focalLength", "principalOffset", "distortion"});
   ProjectorArrayConfig::Lens out;
   out.focalLengthPx = detail::requirePositiveNumber(at, *lens, "focalLength",
@@ -93,7 +96,8 @@ ProjectorArrayConfig::Lens readLens(const JsonLocation& at, const json* lens) {
     if (!offset->is_array() || offset->size() != 2) detail::throwFieldError(at, "principalOffset", offset, expected);
     for (std::size_t i = 0; i < 2; ++i) {
       const json& v = (*offset)[i];
-      if (!v.is_number() || !std::isfinite(v.get<double>())) detail::throwFieldError(at, "principalOffset", offset, expected);
+      if (!v.is_number() || !std::isfinite(v.get<double>()))
+        detail::throwFieldError(at, "principalOffset", offset, expected);
       out.principalOffsetPx[static_cast<int>(i)] = v.get<double>();
     }
   }
@@ -108,24 +112,27 @@ ProjectorArrayConfig::Lens readLens(const JsonLocation& at, const json* lens) {
 
 std::array<double, 9> linearProjectorMapping(double screenWidth, double screenHeight, std::uint32_t width,
                                              std::uint32_t height) {
-  // Doronin RenderProjector (optics.md §6): S = (-Sw/2 + Sw*(i+0.5)/W, -Sh/2 + Sh*(j+0.5)/H) with j from the bottom;
-  // (i+0.5, j+0.5) is the pixel position here, so the matrix acts on (px, py, 1).
-  return {screenWidth / width, 0.0, -0.5 * screenWidth, 0.0, screenHeight / height, -0.5 * screenHeight,
-          0.0, 0.0, 1.0};
+  // Doronin RenderProjector (docs/OPTICS.md §6): S = (-Sw/2 + Sw*(i+0.5)/W, -Sh/2 + Sh*(j+0.5)/H) with j from the
+  // bottom; (i+0.5, j+0.5) is the pixel position here, so the matrix acts on (px, py, 1).
+  return {screenWidth / width, 0.0, -0.5 * screenWidth, 0.0, screenHeight / height, -0.5 * screenHeight, 0.0, 0.0, 1.0};
 }
 
 ProjectorArrayConfig parseProjectorArray(const JsonLocation& at, const json& section) {
-  detail::rejectUnknownKeys(at, section, {"screen", "observerDistance", "observerHeight", "angularScattering", "image",
-                              "projectors", "lens"});
+  detail::rejectUnknownKeys(
+      at, section,
+      {"screen", "observerDistance", "observerHeight", "angularScattering", "image", "projectors", "lens"});
   ProjectorArrayConfig config;
   const json* screen = detail::findField(section, "screen");
   if (screen == nullptr || !screen->is_object())
     detail::throwFieldError(at, "screen", screen, "expected {\"width\": w, \"height\": h} (display units)");
   const JsonLocation screenAt = at.child("screen");
   detail::rejectUnknownKeys(screenAt, *screen, {"width", "height"});
-  config.screenWidth = detail::requirePositiveNumber(screenAt, *screen, "width", "expected a finite screen width (display units) > 0");
-  config.screenHeight = detail::requirePositiveNumber(screenAt, *screen, "height", "expected a finite screen height (display units) > 0");
-  config.observerDistance = detail::requirePositiveNumber(at, section, "observerDistance", "expected a finite observer distance (display units) > 0");
+  config.screenWidth =
+      detail::requirePositiveNumber(screenAt, *screen, "width", "expected a finite screen width (display units) > 0");
+  config.screenHeight =
+      detail::requirePositiveNumber(screenAt, *screen, "height", "expected a finite screen height (display units) > 0");
+  config.observerDistance = detail::requirePositiveNumber(at, section, "observerDistance",
+                                                          "expected a finite observer distance (display units) > 0");
   config.observerHeight =
       detail::optionalNumber(at, section, "observerHeight", false, "expected a finite height (display units)")
           .value_or(0.0);
@@ -142,7 +149,8 @@ ProjectorArrayConfig parseProjectorArray(const JsonLocation& at, const json& sec
     if (!image->is_object()) detail::throwFieldError(at, "image", image, "expected {\"width\": W, \"height\": H}");
     const JsonLocation imageAt = at.child("image");
     detail::rejectUnknownKeys(imageAt, *image, {"width", "height"});
-    defaultWidth = static_cast<std::uint32_t>(detail::requireInteger(imageAt, *image, "width", false, 1, kMaxImageSize));
+    defaultWidth =
+        static_cast<std::uint32_t>(detail::requireInteger(imageAt, *image, "width", false, 1, kMaxImageSize));
     defaultHeight =
         static_cast<std::uint32_t>(detail::requireInteger(imageAt, *image, "height", false, 1, kMaxImageSize));
   }

@@ -1,5 +1,5 @@
 // projector_array_config.h - the "projectorArray" section of a display config (model "projector-array",
-// docs/configs.md): a HoloVizio-class horizontal-parallax-only (HPO) projector array (optics.md §6, §9 M3).
+// docs/configs.md): a HoloVizio-class horizontal-parallax-only (HPO) projector array (docs/OPTICS.md §6, §9 M3).
 //
 // Geometry is in display units (e.g. mm) in the display-local frame: screen = plane z = 0 centred on the origin,
 // +x right, +y up, +z toward the viewer; projectors behind the screen (z < 0); observer line z = observerDistance,
@@ -14,17 +14,17 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json_fwd.hpp>
 
-#include "camera_models/lens_settings.h"
 #include "camera_models/json_fields.h"
+#include "camera_models/lens_settings.h"
 
 namespace ht {
 
 // One projector: position and its pixel -> screen mapping.
 struct ProjectorConfig {
-  glm::dvec3 position{0.0};              // display units, z < 0
-  std::uint32_t width = 0, height = 0;   // image size in pixels
+  glm::dvec3 position{0.0};             // display units, z < 0
+  std::uint32_t width = 0, height = 0;  // image size in pixels
   // Row-major 3x3 homography from pixel coordinates (px, py, 1) (py from the bottom, pixel centres at +0.5) to
-  // homogeneous screen coordinates; nullopt = linear: the image fills the screen (optics.md §6, Doronin
+  // homogeneous screen coordinates; nullopt = linear: the image fills the screen (docs/OPTICS.md §6, Doronin
   // RenderProjector: S = (-Sw/2 + Sw*px/W, -Sh/2 + Sh*py/H)).
   std::optional<std::array<double, 9>> homography;
 };
@@ -36,7 +36,7 @@ struct ProjectorArrayConfig {
   // Horizontal angular scattering of the screen (rad, >= 0); nullopt = "auto": 1.5 x the angle between the two
   // central projectors seen from the screen centre (LightFieldDisplayModel GenerateSampleModels/main.cpp).
   std::optional<double> angularScattering;
-  std::vector<ProjectorConfig> projectors;       // [1, HT_MAX_PROJECTORS]
+  std::vector<ProjectorConfig> projectors;  // [1, HT_MAX_PROJECTORS]
   // "lens": the projectors' lens, all alike (a wall of one projector model): focal length (px), principal point
   // offset from the image centre (px) and Brown-Conrady distortion; nullopt = ideal lenses.
   struct Lens {

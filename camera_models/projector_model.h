@@ -1,14 +1,14 @@
-// projector_model.h - primary rays of an HPO projector array (shared C++/GLSL), model M3 of optics.md §9.
+// projector_model.h - primary rays of an HPO projector array (shared C++/GLSL), model M3 of docs/OPTICS.md §9.
 //
 // Double-perspective (multiple-centre-of-projection) ray: horizontal direction from the projector, vertical
 // perspective from the observer (Jones et al., SIGGRAPH 2007; planar form of wps1215/LightFieldDisplayModel
-// RenderingNaive/RayTracer.cpp RenderProjector, optics.md §6):
+// RenderingNaive/RayTracer.cpp RenderProjector, docs/OPTICS.md §6):
 //   S  = H_k (i + xi_x, j + xi_y, 1), dehomogenised, on the screen z = 0      (pixel (i, j), j from the bottom)
 //   ox = S.x - (S.x - P_k.x)/P_k.z * Dobs                                      (line P_k -> S continued to z = Dobs)
 //   o  = (ox, h, Dobs);  d = normalize(S - o)
-// Display units are scaled to world units by p.scale.x, then placed by localToWorld. Screen scattering (optics.md §9
-// M3): projector_scattered_ray rotates the ray about the vertical axis through S by dA ~ N(0, sigma),
-// sigma = angular_scattering/1.11741/sqrt(2) (from LightFieldInterpolation.cpp's weight exp(-dA^2*1.11741^2/as^2)).
+// Display units are scaled to world units by p.scale.x, then placed by localToWorld. Screen scattering (docs/OPTICS.md
+// §9 M3): projector_scattered_ray rotates the ray about the vertical axis through S by dA ~ N(0, sigma), sigma =
+// angular_scattering/1.11741/sqrt(2) (from LightFieldInterpolation.cpp's weight exp(-dA^2*1.11741^2/as^2)).
 #ifndef HT_PROJECTOR_MODEL_H
 #define HT_PROJECTOR_MODEL_H
 #include "common/glsl_cpp.h"
@@ -81,7 +81,7 @@ HT_INLINE void projector_view_ray(HT_IN(ProjectorView) v, uint x, uint y, vec2 x
 }
 
 // As projector_view_ray, with the screen's horizontal scattering sampled by xiAngle in [0,1)^2 (Box-Muller normal
-// draw): the ray is rotated about the vertical axis through S by dA, origin and direction alike (optics.md §9 M3).
+// draw): the ray is rotated about the vertical axis through S by dA, origin and direction alike (docs/OPTICS.md §9 M3).
 HT_INLINE void projector_view_scattered_ray(HT_IN(ProjectorView) v, uint x, uint y, vec2 xi, vec2 xiAngle,
                                             HT_OUT(vec3) origin, HT_OUT(vec3) dir) {
   vec3 s = projector_screen_point(v, vec2(float(x) + xi.x, float(y) + xi.y));
@@ -101,8 +101,8 @@ HT_INLINE void projector_ray(HT_IN(ProjectorArrayParams) p, uint x, uint y, uint
                              HT_OUT(vec3) dir) {
   projector_view_ray(projector_view(p, view), x, y, xi, origin, dir);
 }
-HT_INLINE void projector_scattered_ray(HT_IN(ProjectorArrayParams) p, uint x, uint y, uint view, vec2 xi,
-                                       vec2 xiAngle, HT_OUT(vec3) origin, HT_OUT(vec3) dir) {
+HT_INLINE void projector_scattered_ray(HT_IN(ProjectorArrayParams) p, uint x, uint y, uint view, vec2 xi, vec2 xiAngle,
+                                       HT_OUT(vec3) origin, HT_OUT(vec3) dir) {
   projector_view_scattered_ray(projector_view(p, view), x, y, xi, xiAngle, origin, dir);
 }
 

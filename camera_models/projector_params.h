@@ -9,7 +9,7 @@ HT_SHARED_BEGIN
 
 HT_CONST uint HT_MAX_PROJECTORS = 128u;
 
-// HoloVizio-class array of N projectors on a planar diffusing screen (optics.md §6, §9 M3).
+// HoloVizio-class array of N projectors on a planar diffusing screen (docs/OPTICS.md §6, §9 M3).
 struct ProjectorArrayParams {
   vec4 observer;      // x observer distance Dobs (> 0), y observer height h, z angular scattering (rad), w count N
   vec4 scale;         // x world units per display unit, yzw unused

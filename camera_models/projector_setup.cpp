@@ -96,7 +96,7 @@ glm::dvec3 ProjectorArrayReference::screenPoint(std::uint32_t projector, glm::dv
 
 ReferenceRay ProjectorArrayReference::ray(std::uint32_t x, std::uint32_t y, std::uint32_t projector,
                                           glm::dvec2 xi) const {
-  // Doronin RenderProjector / Jones 2007 (optics.md §6, §9 M3).
+  // Doronin RenderProjector / Jones 2007 (docs/OPTICS.md §6, §9 M3).
   const glm::dvec3 s = screenPoint(projector, {x + xi.x, y + xi.y});
   const glm::dvec3 position = array_.projectors.at(projector).position;
   const double ox = s.x - (s.x - position.x) / position.z * array_.observerDistance;

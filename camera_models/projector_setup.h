@@ -19,7 +19,8 @@ using ProjectorPlacement = ScreenPlacement;
 ProjectorPlacement resolveProjectorPlacement(const DisplayConfig& config, const Bounds3& sceneBounds);
 
 // angularScattering, or "auto": 1.5 x the angle between the two central projectors (sorted by the horizontal angle
-// atan(P.x / -P.z) seen from the screen centre; LightFieldDisplayModel GenerateSampleModels/main.cpp, optics.md §6).
+// atan(P.x / -P.z) seen from the screen centre; LightFieldDisplayModel GenerateSampleModels/main.cpp, docs/OPTICS.md
+// §6).
 double resolveAngularScattering(const ProjectorArrayConfig& array);
 
 // The projector's pixel -> screen homography (its own, or the linear mapping), row-major.
@@ -28,7 +29,7 @@ std::array<double, 9> projectorHomography(const ProjectorArrayConfig& array, std
 // Throws ConfigError if the config is not a projector-array display.
 gpu_shared::ProjectorArrayParams makeProjectorArrayParams(const DisplayConfig& config, const Bounds3& sceneBounds);
 
-// optics.md §9 M3 in double (see projector_model.h for the formulas and sources).
+// docs/OPTICS.md §9 M3 in double (see projector_model.h for the formulas and sources).
 class ProjectorArrayReference {
  public:
   ProjectorArrayReference(const DisplayConfig& config, const Bounds3& sceneBounds);

@@ -57,8 +57,8 @@ ViewBlend blendFor(float t, std::uint32_t views, QuiltViewFilter filter) {
 }
 
 // Panel row y (from the bottom; stored at row h-1-y).
-void interleaveRow(const QuiltViews& q, const gpu_shared::LenticularParams& p, QuiltViewFilter filter,
-                   std::uint32_t y, std::vector<float>& panel) {
+void interleaveRow(const QuiltViews& q, const gpu_shared::LenticularParams& p, QuiltViewFilter filter, std::uint32_t y,
+                   std::vector<float>& panel) {
   const auto w = std::uint32_t(p.panel.x), h = std::uint32_t(p.panel.y);
   float v = (float(y) + 0.5f) / float(h);
   if (p.flags.w != 0) v = 1.0f - v;

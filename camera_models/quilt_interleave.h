@@ -1,5 +1,5 @@
 // quilt_interleave.h - a quilt of views -> the native image of a lenticular panel, on the CPU, as the Looking Glass
-// shaders do it (optics.md §3, §4.1; holoplaycore.js `Shader`, HoloPlayCore C `HoloPlayShaders.h`):
+// shaders do it (docs/OPTICS.md §3, §4.1; holoplaycore.js `Shader`, HoloPlayCore C `HoloPlayShaders.h`):
 // every subpixel (x, y, c) of the panel takes the view phase t of the shared lenticular model at the subpixel's
 // sample point (lenticular_view_phase(p, x, y, c, xi = (0.5, 0.5)) of lenticular_model.h: classic and Gen3 cell
 // offsets, BGR panels and invView included) and samples the views at the pixel's own uv, the same for the three

@@ -1,4 +1,4 @@
-// quilt_layout.cpp - quilt names, tile layout and device defaults (see quilt_layout.h; optics.md §4.1, §4.2).
+// quilt_layout.cpp - quilt names, tile layout and device defaults (see quilt_layout.h; docs/OPTICS.md §4.1, §4.2).
 #include "camera_models/quilt_layout.h"
 
 #include <charconv>
@@ -99,15 +99,15 @@ QuiltLayout defaultQuiltLayout(const DisplayConfig& config) {
   if (const auto& q = config.camera.quilt) return makeQuiltLayout(q->columns, q->rows, q->width, q->height, aspect);
   const bool gen3 = c.cellPatternMode != 0;
   const auto is = [&](std::uint32_t w, std::uint32_t h) { return c.screenW == w && c.screenH == h; };
-  // optics.md §4.2 (LKG-Toolkit HardCodedLKGDeviceTemplates.cs; looking-glass-webxr quiltResolution).
-  if (is(1536, 2048)) return makeQuiltLayout(8, 6, 3360, 3360, aspect);             // Portrait
-  if (is(1440, 2560)) return makeQuiltLayout(11, 6, 4092, 4092, aspect);            // Go
-  if (gen3 && is(3840, 2160)) return makeQuiltLayout(7, 7, 6000, 6000, aspect);     // 16" Gen3 landscape
-  if (gen3 && is(2160, 3840)) return makeQuiltLayout(11, 6, 6000, 6000, aspect);    // 16" Gen3 portrait
-  if (gen3 && is(7680, 4320)) return makeQuiltLayout(7, 7, 8190, 8190, aspect);     // 32" Gen3 landscape
-  if (gen3 && is(4320, 7680)) return makeQuiltLayout(11, 6, 8184, 8184, aspect);    // 32" Gen3 portrait
-  if (is(7680, 4320)) return makeQuiltLayout(5, 9, 8192, 8192, aspect);             // 32" Gen2
-  return makeQuiltLayout(5, 9, 4096, 4096, aspect);                                 // 8.9" / 15.6" / 16" Gen2
+  // docs/OPTICS.md §4.2 (LKG-Toolkit HardCodedLKGDeviceTemplates.cs; looking-glass-webxr quiltResolution).
+  if (is(1536, 2048)) return makeQuiltLayout(8, 6, 3360, 3360, aspect);           // Portrait
+  if (is(1440, 2560)) return makeQuiltLayout(11, 6, 4092, 4092, aspect);          // Go
+  if (gen3 && is(3840, 2160)) return makeQuiltLayout(7, 7, 6000, 6000, aspect);   // 16" Gen3 landscape
+  if (gen3 && is(2160, 3840)) return makeQuiltLayout(11, 6, 6000, 6000, aspect);  // 16" Gen3 portrait
+  if (gen3 && is(7680, 4320)) return makeQuiltLayout(7, 7, 8190, 8190, aspect);   // 32" Gen3 landscape
+  if (gen3 && is(4320, 7680)) return makeQuiltLayout(11, 6, 8184, 8184, aspect);  // 32" Gen3 portrait
+  if (is(7680, 4320)) return makeQuiltLayout(5, 9, 8192, 8192, aspect);           // 32" Gen2
+  return makeQuiltLayout(5, 9, 4096, 4096, aspect);                               // 8.9" / 15.6" / 16" Gen2
 }
 
 glm::uvec2 quiltTileOrigin(const QuiltLayout& layout, std::uint32_t view) {

@@ -1,9 +1,9 @@
 // quilt_layout.h - Looking Glass quilts: the `_qs{cols}x{rows}a{aspect}` file-name tag, tile layout and the device
-// default quilt sizes (optics.md §4.1, §4.2). Host side only; the quilt cameras are quilt_model.h.
+// default quilt sizes (docs/OPTICS.md §4.1, §4.2). Host side only; the quilt cameras are quilt_model.h.
 //
-// Layout (holoplaycore.js GetQuiltCoordinates; LKG-Toolkit QuiltSettings.ViewPortion*, optics.md §4.1): view i sits in
-// tile (i mod cols, floor(i / cols)) counted from the BOTTOM-LEFT in GL texture space (y up); view 0 is the leftmost
-// camera, views run left to right, then upward. Tiles are tileW x tileH pixels; the quilt may be larger than
+// Layout (holoplaycore.js GetQuiltCoordinates; LKG-Toolkit QuiltSettings.ViewPortion*, docs/OPTICS.md §4.1): view i
+// sits in tile (i mod cols, floor(i / cols)) counted from the BOTTOM-LEFT in GL texture space (y up); view 0 is the
+// leftmost camera, views run left to right, then upward. Tiles are tileW x tileH pixels; the quilt may be larger than
 // cols*tileW x rows*tileH (the unused remainder is the "view portion" < 1).
 #pragma once
 #include <cstdint>
@@ -49,7 +49,8 @@ struct QuiltLayout {
 QuiltLayout makeQuiltLayout(std::uint32_t columns, std::uint32_t rows, std::uint32_t quiltWidth,
                             std::uint32_t quiltHeight, double aspect);
 
-// The config's camera.quilt when it has one, else the device default quilt (optics.md §4.2, LKG-Toolkit templates / webxr quiltResolution), chosen by panel size and
+// The config's camera.quilt when it has one, else the device default quilt (docs/OPTICS.md §4.2, LKG-Toolkit
+// templates / webxr quiltResolution), chosen by panel size and
 // generation (CellPatternMode != 0 = Gen3): Portrait 1536x2048 -> 3360^2 8x6; Go 1440x2560 -> 4092^2 11x6;
 // Gen3 16" 3840x2160 -> 6000^2 7x7, 2160x3840 -> 6000^2 11x6; Gen3 32" 7680x4320 -> 8190^2 7x7, 4320x7680 -> 8184^2
 // 11x6; Gen2 32" 7680x4320 -> 8192^2 5x9; other (8.9"/15.6"/16" Gen2) -> 4096^2 5x9. Aspect = screenW/screenH.

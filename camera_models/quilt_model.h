@@ -1,11 +1,11 @@
-// quilt_model.h - the Looking Glass quilt cameras (shared C++/GLSL), model M1 of optics.md §9.
+// quilt_model.h - the Looking Glass quilt cameras (shared C++/GLSL), model M1 of docs/OPTICS.md §9.
 //
-// looking-glass-webxr src/LookingGlassXRDevice.ts onFrameStart (optics.md §4.3, §9 M1):
+// looking-glass-webxr src/LookingGlassXRDevice.ts onFrameStart (docs/OPTICS.md §4.3, §9 M1):
 //   D = 0.5*targetDiam/tan(fovy/2);  theta_i = viewCone*((i + 0.5)/N - 0.5);  o_i = (D tan(theta_i), 0, D)
 //   tile pixel (x, y) of w x h (y from the bottom), xi in [0,1)^2 inside the pixel:
 //   P = (((x + xi_x)/w - 0.5)*aspect*targetDiam, ((y + xi_y)/h - 0.5)*targetDiam, 0);  d = normalize(P - o_i)
-// View 0 is the leftmost camera and the bottom-left tile (optics.md §4.1); quilt_layout.h places tiles. The result is
-// the lenticular model's lenticular_ray_for_phase at the bin centre t = (i + 0.5)/N (tests/camera_models).
+// View 0 is the leftmost camera and the bottom-left tile (docs/OPTICS.md §4.1); quilt_layout.h places tiles. The result
+// is the lenticular model's lenticular_ray_for_phase at the bin centre t = (i + 0.5)/N (tests/camera_models).
 #ifndef HT_QUILT_MODEL_H
 #define HT_QUILT_MODEL_H
 #include "common/glsl_cpp.h"

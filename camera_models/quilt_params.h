@@ -6,7 +6,7 @@
 
 HT_SHARED_BEGIN
 
-// Sheared (off-axis) view array of a Looking Glass quilt (optics.md §4.3, §9 M1).
+// Sheared (off-axis) view array of a Looking Glass quilt (docs/OPTICS.md §4.3, §9 M1).
 struct QuiltParams {
   vec4 camera;        // x focal distance D, y focal-rectangle height (targetDiam), z render aspect W/H,
                       // w viewCone (rad, full cone)

@@ -9,10 +9,10 @@ gpu_shared::QuiltParams makeQuiltParams(const DisplayConfig& config, const Bound
                                         const QuiltLayout& layout) {
   const LenticularCamera camera = resolveLenticularCamera(config, sceneBounds);
   gpu_shared::QuiltParams p{};
-  // looking-glass-webxr LookingGlassXRDevice.ts (optics.md §4.3): D, targetDiam, aspect, full viewCone in radians.
+  // looking-glass-webxr LookingGlassXRDevice.ts (docs/OPTICS.md §4.3): D, targetDiam, aspect, full viewCone in radians.
   p.camera = glm::vec4(glm::dvec4(camera.focalDistance, camera.size, layout.aspect, camera.viewConeRad));
   p.tiles = glm::ivec4(static_cast<int>(layout.columns), static_cast<int>(layout.rows),
-                        static_cast<int>(layout.tileWidth), static_cast<int>(layout.tileHeight));
+                       static_cast<int>(layout.tileWidth), static_cast<int>(layout.tileHeight));
   p.views = glm::vec4(static_cast<float>(layout.views()), 0.0f, 0.0f, 0.0f);
   p.localToWorld = glm::mat4(1.0f);
   p.localToWorld[3] = glm::vec4(glm::dvec4(camera.target, 1.0));

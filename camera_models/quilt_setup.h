@@ -19,7 +19,7 @@ namespace ht {
 gpu_shared::QuiltParams makeQuiltParams(const DisplayConfig& config, const Bounds3& sceneBounds,
                                         const QuiltLayout& layout);
 
-// optics.md §9 M1 in double: theta_i = viewCone*((i+0.5)/N - 0.5), o = target + (D tan(theta_i), 0, D),
+// docs/OPTICS.md §9 M1 in double: theta_i = viewCone*((i+0.5)/N - 0.5), o = target + (D tan(theta_i), 0, D),
 // P = target + (((x+xi_x)/w - 0.5)*aspect*size, ((y+xi_y)/h - 0.5)*size, 0), d = normalize(P - o).
 class QuiltReference {
  public:

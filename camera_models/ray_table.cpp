@@ -52,7 +52,8 @@ RayTableConfig parseRayTable(const JsonLocation& at, const json& section, const 
   c.file = file->get<std::string>();
   if (c.file.is_relative() && !baseDir.empty()) c.file = baseDir / c.file;
   const std::string expected = "expected world units per table unit, a finite number > 0";
-  if (detail::findField(section, "units") != nullptr) c.units = detail::requirePositiveNumber(at, section, "units", expected);
+  if (detail::findField(section, "units") != nullptr)
+    c.units = detail::requirePositiveNumber(at, section, "units", expected);
   return c;
 }
 
@@ -67,8 +68,8 @@ void RayTable::validate(const std::string& source) const {
   checkRayTableSize(width, height, source);
   const std::size_t count = std::size_t(width) * height;
   if (origins.size() != count || directions.size() != count)
-    throw ConfigError(source, "entries", std::to_string(origins.size()) + " origins, " +
-                                             std::to_string(directions.size()) + " directions",
+    throw ConfigError(source, "entries",
+                      std::to_string(origins.size()) + " origins, " + std::to_string(directions.size()) + " directions",
                       "expected width*height = " + std::to_string(count) + " of each");
   for (std::uint32_t y = 0; y < height; ++y) {
     for (std::uint32_t x = 0; x < width; ++x) {
@@ -92,8 +93,8 @@ void RayTable::validate(const std::string& source) const {
         if (glm::dot(at(q[0], q[1]), at(q[2], q[3])) <= 0.0)
           throw ConfigError(source, entryName("direction", q[2], q[3]), vecText(directions[index(q[2], q[3])]),
                             "expected neighbouring directions less than 90 degrees apart (neighbour " +
-                                entryName("direction", q[0], q[1]) + " = " +
-                                vecText(directions[index(q[0], q[1])]) + ")");
+                                entryName("direction", q[0], q[1]) + " = " + vecText(directions[index(q[0], q[1])]) +
+                                ")");
       }
     }
   }
@@ -109,9 +110,8 @@ void RayTable::normalizeDirections() {
 
 glm::dvec3 resolveRayTableTarget(const DisplayConfig& config, const Bounds3& sceneBounds) {
   requireRayTable(config);
-  return config.camera.target.value_or(sceneBounds.empty()
-                                           ? glm::dvec3(0.0)
-                                           : 0.5 * (glm::dvec3(sceneBounds.lo) + glm::dvec3(sceneBounds.hi)));
+  return config.camera.target.value_or(
+      sceneBounds.empty() ? glm::dvec3(0.0) : 0.5 * (glm::dvec3(sceneBounds.lo) + glm::dvec3(sceneBounds.hi)));
 }
 
 gpu_shared::RayTableParams makeRayTableParams(const DisplayConfig& config, const RayTable& table,
@@ -139,8 +139,7 @@ ReferenceRay RayTableReference::ray(std::uint32_t x, std::uint32_t y, glm::dvec2
   const std::uint32_t x1 = std::min(x0 + 1, t.width - 1), y1 = std::min(y0 + 1, t.height - 1);
   const double fx = x1 == x0 ? 0.0 : qx - x0, fy = y1 == y0 ? 0.0 : qy - y0;
   auto blend = [&](const std::vector<glm::vec3>& v) {
-    const glm::dvec3 a00(v[t.index(x0, y0)]), a10(v[t.index(x1, y0)]), a01(v[t.index(x0, y1)]),
-        a11(v[t.index(x1, y1)]);
+    const glm::dvec3 a00(v[t.index(x0, y0)]), a10(v[t.index(x1, y0)]), a01(v[t.index(x0, y1)]), a11(v[t.index(x1, y1)]);
     return (1.0 - fy) * ((1.0 - fx) * a00 + fx * a10) + fy * ((1.0 - fx) * a01 + fx * a11);
   };
   return {target_ + units_ * blend(t.origins), glm::normalize(blend(t.directions))};

@@ -1,10 +1,10 @@
 // ray_table_model.h - rays of a display calibrated per pixel (model "ray-table"), shared C++/GLSL.
 //
-// The table holds one ray (origin, unit direction) per pixel, index i = y*width + x, y from the bottom (optics.md §0);
-// table entry (x, y) is the ray through the pixel's centre. A sample at footprint xi in [0,1)^2 of pixel (x, y) lies
-// at table position (x + xi.x - 0.5, y + xi.y - 0.5), clamped to [0, width-1] x [0, height-1]; origin and direction
-// are bilinearly interpolated between the four surrounding entries and the direction renormalised (normalised linear
-// interpolation). At xi = (0.5, 0.5) (and wherever the clamped position is an entry) both weights are 0 and the
+// The table holds one ray (origin, unit direction) per pixel, index i = y*width + x, y from the bottom (docs/OPTICS.md
+// §0); table entry (x, y) is the ray through the pixel's centre. A sample at footprint xi in [0,1)^2 of pixel (x, y)
+// lies at table position (x + xi.x - 0.5, y + xi.y - 0.5), clamped to [0, width-1] x [0, height-1]; origin and
+// direction are bilinearly interpolated between the four surrounding entries and the direction renormalised (normalised
+// linear interpolation). At xi = (0.5, 0.5) (and wherever the clamped position is an entry) both weights are 0 and the
 // entry is returned bit-exactly: no renormalisation then, the loader stores unit directions (RayTable).
 //
 // Table access goes through macros so that GLSL and C++ share this code (as bvh/bvh_traversal.h):

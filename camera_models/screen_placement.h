@@ -1,5 +1,5 @@
 // screen_placement.h - where a display whose geometry is given in display units (mm) sits in the scene:
-// world = target + scale * local, world-aligned axes (display-local frame of optics.md §0).
+// world = target + scale * local, world-aligned axes (display-local frame of docs/OPTICS.md §0).
 #pragma once
 #include <glm/glm.hpp>
 

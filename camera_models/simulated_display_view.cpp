@@ -88,14 +88,15 @@ SimulatedView simulateDisplayView(const DisplayConfig& config, const DisplayFram
   checkImages(config, images);
   switch (config.model) {
     case DisplayModel::Lenticular:
-      return overBlack(simulateLenticularView(makeLenticularParams(config, Bounds3{}), images.rgba, eye, threads), false);
+      return overBlack(simulateLenticularView(makeLenticularParams(config, Bounds3{}), images.rgba, eye, threads),
+                       false);
     case DisplayModel::ProjectorArray: {
       const SimulatedViewShape shape = simulatedViewShape(config);
       const glm::dvec2 screen(config.projectorArray->screenWidth, config.projectorArray->screenHeight);
-      return overBlack(simulateProjectorView(makeProjectorArrayParams(config, Bounds3{}), screen, images.width,
-                                             images.height, images.rgba, eye,
-                                             {shape.outputWidth, shape.outputHeight}, threads),
-                       true);
+      return overBlack(
+          simulateProjectorView(makeProjectorArrayParams(config, Bounds3{}), screen, images.width, images.height,
+                                images.rgba, eye, {shape.outputWidth, shape.outputHeight}, threads),
+          true);
     }
     case DisplayModel::Integral:
       return overBlack(simulateIntegralView(makeIntegralParams(config, Bounds3{}), images.rgba, eye, threads), false);
@@ -106,8 +107,7 @@ SimulatedView simulateDisplayView(const DisplayConfig& config, const DisplayFram
 std::vector<glm::dvec3> displayViewConeEyes(const DisplayConfig& config, std::uint32_t count) {
   switch (config.model) {
     case DisplayModel::Lenticular: return lenticularViewConeEyes(makeLenticularParams(config, Bounds3{}), count);
-    case DisplayModel::ProjectorArray:
-      return projectorViewConeEyes(makeProjectorArrayParams(config, Bounds3{}), count);
+    case DisplayModel::ProjectorArray: return projectorViewConeEyes(makeProjectorArrayParams(config, Bounds3{}), count);
     case DisplayModel::Integral:
       return integralViewConeEyes(makeIntegralParams(config, Bounds3{}), config.integral->viewerDistance, count);
     default: throwNoSimulator(config);

@@ -12,7 +12,7 @@
 //   integral         display units, lens plane z = 0, LCD z = -gap (integral_model.h)
 // Images are linear RGBA float, row 0 = top, 4 floats per pixel; y in the formulas counts from the bottom.
 //
-// Lenticular (lenticular_model.h, optics.md §3, §9 M2). Subpixel s = (x, y, c) at screen point P_s carries view
+// Lenticular (lenticular_model.h, docs/OPTICS.md §3, §9 M2). Subpixel s = (x, y, c) at screen point P_s carries view
 // phase t_s and the light of the ray from o(t_s) = (D tan(viewCone (t_s - 0.5)), 0, D) through P_s, i.e. it is seen
 // from o(t_s) and along the line through it (horizontal parallax only: the lens sheet spreads light vertically).
 // An eye E sees it when the line from P_s through E meets z = D at o(t_s):
@@ -27,7 +27,7 @@
 // (|A|/|B|, at most 8 either way) the candidate of least |miss| stands in. So every output subpixel shows the one
 // panel subpixel of its colour that the eye sees within the lens, at most one lens period away.
 //
-// Projector array (projector_model.h, optics.md §6, §9 M3). Output pixel = screen point S on a W x H grid over the
+// Projector array (projector_model.h, docs/OPTICS.md §6, §9 M3). Output pixel = screen point S on a W x H grid over the
 // Sw x Sh screen. Projector k lights S from pixel H_k^-1 S (through its lens distortion), with light leaving S in the
 // horizontal direction from P_k through S; the screen scatters it by the Gaussian of LightFieldDisplayModel
 // (w_k = exp(-dA^2 1.11741^2 / as^2), dA = that direction's horizontal angle minus the angle of S -> E, as =
@@ -36,7 +36,7 @@
 // some projector aims (nearly) at the eye, falling to 0 where the eye is outside every projector's lobe (a wall seen
 // from beyond its view zone is dark there, whatever the colour says). Uncovered screen points are black, alpha 0.
 //
-// Integral imaging (integral_model.h, optics.md §7, §9 M4). Output pixel (x, y) of the LCD grid looks through its
+// Integral imaging (integral_model.h, docs/OPTICS.md §7, §9 M4). Output pixel (x, y) of the LCD grid looks through its
 // lens (centre c). The model emits LCD point p through aperture point s along slope e = (s - p)/g - (s - c)/f per unit
 // z; an eye sees p through s when e = (E.xy - s)/E.z, so p = s - g ((E.xy - s)/E.z + (s - c)/f). "centre" sampling
 // uses s = c (pinhole lens); "aperture" sampling averages a 4 x 4 grid of s over the lens. Channel c is sampled
@@ -75,8 +75,8 @@ SimulatedView simulateProjectorView(const gpu_shared::ProjectorArrayParams& para
 
 // `lcd`: the LCD image (panel.x x panel.y, the layout of an integral render). Throws Error if the size does not
 // match or E.z <= 0.
-SimulatedView simulateIntegralView(const gpu_shared::IntegralParams& params, std::span<const float> lcd,
-                                   glm::dvec3 eye, unsigned threads = 0);
+SimulatedView simulateIntegralView(const gpu_shared::IntegralParams& params, std::span<const float> lcd, glm::dvec3 eye,
+                                   unsigned threads = 0);
 
 // Eyes spread across each model's view cone, left to right, at bin centres (i + 0.5)/n of it (one eye: the centre):
 //   lenticular: the virtual camera line, o(t) = (D tan(viewCone (t - 0.5)), 0, D) for t = (i + 0.5)/n;

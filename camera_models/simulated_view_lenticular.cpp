@@ -44,15 +44,15 @@ std::vector<float> subpixelMisses(const gpu_shared::LenticularParams& p, glm::dv
 }
 
 struct LensWalk {
-  double slant = 0.0;        // -B/A: pixels the constant-phase line moves per row
-  int halfPeriod = 1;        // ceil(1/(2|A|)) candidates either side of the line
-  int rowsEitherWay = 1;     // rows searched either way for a crossing
-  float crossing = 0.0f;     // |A|/6: half a subpixel's phase width
+  double slant = 0.0;     // -B/A: pixels the constant-phase line moves per row
+  int halfPeriod = 1;     // ceil(1/(2|A|)) candidates either side of the line
+  int rowsEitherWay = 1;  // rows searched either way for a crossing
+  float crossing = 0.0f;  // |A|/6: half a subpixel's phase width
 };
 
 LensWalk lensWalk(const gpu_shared::LenticularParams& p) {
-  const double a = double(p.phase.x) / p.panel.x;               // phase per pixel in x
-  const double b = double(p.phase.y) * p.phase.x / p.panel.y;   // phase per pixel in y
+  const double a = double(p.phase.x) / p.panel.x;              // phase per pixel in x
+  const double b = double(p.phase.y) * p.phase.x / p.panel.y;  // phase per pixel in y
   LensWalk walk;
   walk.slant = -b / a;
   walk.halfPeriod = std::clamp(int(std::ceil(0.5 / std::fabs(a))), 1, int(p.panel.x));
@@ -103,8 +103,8 @@ SimulatedView simulateLenticularView(const gpu_shared::LenticularParams& p, std:
                                      glm::dvec3 eye, unsigned threads) {
   const auto w = std::uint32_t(p.panel.x), h = std::uint32_t(p.panel.y);
   if (panel.size() != std::size_t(w) * h * 4) {
-    throw Error("simulateLenticularView: the panel is " + std::to_string(w) + "x" + std::to_string(h) +
-                " (needs " + std::to_string(std::size_t(w) * h * 4) + " floats), got " + std::to_string(panel.size()));
+    throw Error("simulateLenticularView: the panel is " + std::to_string(w) + "x" + std::to_string(h) + " (needs " +
+                std::to_string(std::size_t(w) * h * 4) + " floats), got " + std::to_string(panel.size()));
   }
   if (!(eye.z > 0.0) || !std::isfinite(eye.x) || !std::isfinite(eye.y) || !std::isfinite(eye.z)) {
     throw Error("simulateLenticularView: the eye must be finite and in front of the display (z > 0)");

@@ -16,8 +16,8 @@ namespace {
 struct ProjectorInverse {
   glm::dmat3 screenToPixel{1.0};  // inverse homography
   glm::dvec3 position{0.0};
-  glm::dvec2 imageSize{0.0};      // its image (px)
-  glm::dvec2 size{0.0};           // the part of it inside the frame
+  glm::dvec2 imageSize{0.0};  // its image (px)
+  glm::dvec2 size{0.0};       // the part of it inside the frame
 };
 
 ProjectorInverse projectorInverse(const gpu_shared::ProjectorArrayParams& p, std::uint32_t k, glm::uvec2 frame) {
@@ -65,13 +65,13 @@ double horizontalAngle(glm::dvec3 from, glm::dvec3 to) { return std::atan2(to.x 
 }  // namespace
 
 SimulatedView simulateProjectorView(const gpu_shared::ProjectorArrayParams& p, glm::dvec2 screenSize, std::uint32_t w,
-                                    std::uint32_t h, std::span<const float> images, glm::dvec3 eye,
-                                    glm::uvec2 outSize, unsigned threads) {
+                                    std::uint32_t h, std::span<const float> images, glm::dvec3 eye, glm::uvec2 outSize,
+                                    unsigned threads) {
   const auto count = std::uint32_t(p.observer.w);
   const std::size_t floats = std::size_t(w) * h * count * 4;
   if (w == 0 || h == 0 || count == 0 || count > gpu_shared::HT_MAX_PROJECTORS || images.size() != floats) {
-    throw Error("simulateProjectorView: " + std::to_string(count) + " projector images of " + std::to_string(w) +
-                "x" + std::to_string(h) + " need " + std::to_string(floats) + " floats, got " +
+    throw Error("simulateProjectorView: " + std::to_string(count) + " projector images of " + std::to_string(w) + "x" +
+                std::to_string(h) + " need " + std::to_string(floats) + " floats, got " +
                 std::to_string(images.size()));
   }
   if (outSize.x == 0 || outSize.y == 0 || !(screenSize.x > 0.0 && screenSize.y > 0.0)) {

@@ -91,9 +91,7 @@ ParsedArguments parseArguments(const std::string& command, std::span<const Optio
   std::map<std::string, std::string> values;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
-    if (!looksLikeOption(arg)) {
-      throw UsageError(usageMessage(command, "unexpected argument '" + arg + "'"));
-    }
+    if (!looksLikeOption(arg)) { throw UsageError(usageMessage(command, "unexpected argument '" + arg + "'")); }
     const std::size_t eq = arg.rfind("--", 0) == 0 ? arg.find('=') : std::string::npos;
     const std::string flag = arg.substr(0, eq);
     const OptionSpec* spec = findSpec(specs, flag);

@@ -15,10 +15,10 @@
 namespace ht::cli {
 
 struct OptionSpec {
-  std::string name;        // long form, e.g. "--spp"
-  std::string alias;       // optional short form, e.g. "-o" ("" = none)
-  std::string valueName;   // e.g. "N", "PATH"; empty = a flag that takes no value
-  std::string help;        // one line for --help
+  std::string name;       // long form, e.g. "--spp"
+  std::string alias;      // optional short form, e.g. "-o" ("" = none)
+  std::string valueName;  // e.g. "N", "PATH"; empty = a flag that takes no value
+  std::string help;       // one line for --help
 
   bool takesValue() const { return !valueName.empty(); }
 };

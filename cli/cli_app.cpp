@@ -29,12 +29,14 @@ namespace {
 constexpr std::array kCommands = {
     Command{"render", "render a display frame (native interleaved panel image) to PNG/EXR", renderHelp, runRender},
     Command{"info", "list Vulkan devices, the one holotrace picks, builtin displays and scenes", infoHelp, runInfo},
-    Command{"raycast", "trace a ray batch file against a scene, write the hits (binary or CSV)", raycastHelp, runRaycast},
-    Command{"interleave", "interleave a quilt image (_qs{c}x{r}a{aspect}) into a lenticular panel image", interleaveHelp,
-            runInterleave},
+    Command{"raycast", "trace a ray batch file against a scene, write the hits (binary or CSV)", raycastHelp,
+            runRaycast},
+    Command{"interleave", "interleave a quilt image (_qs{c}x{r}a{aspect}) into a lenticular panel image",
+            interleaveHelp, runInterleave},
     Command{"simulate", "what an eye sees of a rendered frame through the display's optics (one eye or a sweep)",
             simulateHelp, runSimulate},
-    Command{"rays", "write a display's per-(sub)pixel primary rays (+ view phase) as an EXR ray table", raysHelp, runRays},
+    Command{"rays", "write a display's per-(sub)pixel primary rays (+ view phase) as an EXR ray table", raysHelp,
+            runRays},
 #ifdef HT_WITH_CLIENT
     Command{"client", "talk to a running holotraced: displays|load|render|stream|capture", clientHelp, runClient},
 #endif
@@ -50,9 +52,9 @@ std::string padRight(const std::string& text, std::size_t width) {
 }
 
 std::string mainHelp() {
-  std::string text =
-      "holotrace " HT_VERSION " - light-field display renderer (Vulkan compute ray tracing)\n\n"
-      "Usage: holotrace <command> [options]\n\nCommands:\n";
+  std::string text = "holotrace " HT_VERSION
+                     " - light-field display renderer (Vulkan compute ray tracing)\n\n"
+                     "Usage: holotrace <command> [options]\n\nCommands:\n";
   for (const Command& c : kCommands) text += "  " + padRight(c.name, 12) + c.summary + "\n";
   text +=
       "  help        show this text, or `holotrace help <command>`\n\n"

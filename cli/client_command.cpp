@@ -37,8 +37,9 @@ const std::array<OptionSpec, 14> kOptions = {{
     {"--frames", "", "N", "stream: stop after N frames (default 10); capture: file count (default 1)"},
     {"--name", "", "NAME", "capture: file name prefix under the daemon's output root"},
     {"--exr", "", "", "capture: linear half EXR instead of 8-bit PNG"},
-    {"--move", "", "NODE=X,Y,Z", "load/render/stream/capture: set scene node NODE's world matrix (names: `client load`) "
-                                 "to a translation by X,Y,Z (built-in objects: an offset from where they are made)"},
+    {"--move", "", "NODE=X,Y,Z",
+     "load/render/stream/capture: set scene node NODE's world matrix (names: `client load`) "
+     "to a translation by X,Y,Z (built-in objects: an offset from where they are made)"},
 }};
 
 std::string defaultSocket() {
@@ -107,7 +108,8 @@ void moveNode(Stub& stub, const std::string& sceneId, const std::string& spec, s
     if (ok && k < 2) ok = pos < spec.size() && spec[pos++] == ',';
   }
   if (!ok || pos != spec.size()) {
-    throw UsageError(usageMessage(kCommand, "--move expects NODE=X,Y,Z (e.g. glass-sphere=0,0.3,0), not '" + spec + "'"));
+    throw UsageError(
+        usageMessage(kCommand, "--move expects NODE=X,Y,Z (e.g. glass-sphere=0,0.3,0), not '" + spec + "'"));
   }
   grpc::ClientContext context;
   v1::UpdateSceneRequest request;
@@ -118,8 +120,8 @@ void moveNode(Stub& stub, const std::string& sceneId, const std::string& spec, s
   for (int k = 0; k < 3; ++k) node->set_world(12 + k, t[static_cast<std::size_t>(k)]);
   v1::UpdateSceneResponse response;
   check(stub.UpdateScene(&context, request, &response), "UpdateScene");
-  out << "moved " << node->node() << ": world = translate(" << t[0] << ", " << t[1] << ", " << t[2] << "), BVH rebuilt in "
-      << response.rebuild_ms() << " ms, SAH " << response.sah_cost() << "\n";
+  out << "moved " << node->node() << ": world = translate(" << t[0] << ", " << t[1] << ", " << t[2]
+      << "), BVH rebuilt in " << response.rebuild_ms() << " ms, SAH " << response.sah_cost() << "\n";
 }
 
 v1::SceneHandle openScene(Stub& stub, const ParsedArguments& a, std::ostream& out) {
@@ -214,8 +216,7 @@ int stream(Stub& stub, const ParsedArguments& a, std::ostream& out) {
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   context.TryCancel();
-  while (readFrame(*reader, header, bytes)) {
-  }
+  while (readFrame(*reader, header, bytes)) {}
   const grpc::Status status = reader->Finish();
   if (status.error_code() != grpc::StatusCode::CANCELLED) check(status, "StreamFrames");
   out << received << " frames in " << s << " s (" << (s > 0 ? received / s : 0.0) << " frames/s)\n";
@@ -251,11 +252,13 @@ std::string clientHelp() {
          "  render    render one frame, print timings, optionally save it (--out)\n"
          "  stream    receive --frames frames at --fps, then cancel\n"
          "  capture   write --frames native panel files NAME_fNNNN.png|.exr under the daemon's output root\n\n"
-         "Options:\n" + formatOptions(kOptions);
+         "Options:\n" +
+         formatOptions(kOptions);
 }
 
 int runClient(std::span<const std::string> args, std::ostream& out) {
-  if (args.empty()) throw UsageError(usageMessage(kCommand, "missing subcommand (displays|load|render|stream|capture)"));
+  if (args.empty())
+    throw UsageError(usageMessage(kCommand, "missing subcommand (displays|load|render|stream|capture)"));
   const std::string sub = args[0];
   const ParsedArguments a = parseArguments(kCommand, kOptions, args.subspan(1));
   auto stub = connectTo(a);

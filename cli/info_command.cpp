@@ -3,8 +3,8 @@
 
 #include <array>
 #include <exception>
-#include <optional>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "camera_models/display_config.h"
@@ -57,7 +57,7 @@ void printNames(std::ostream& out, const char* title, const std::vector<std::str
 struct DeviceChoice {
   std::optional<std::uint32_t> index;  // unset if no device could be chosen
   std::uint32_t validationMessages = 0;
-  std::exception_ptr failure;          // the GpuError that prevented the choice
+  std::exception_ptr failure;  // the GpuError that prevented the choice
 };
 
 // Creates a context exactly as `render` does, so the mark shows the device `render` would use.
@@ -67,9 +67,7 @@ DeviceChoice chooseDevice(const gpu::VulkanContext::Options& options) {
     const gpu::VulkanContext context(options);
     choice.index = context.device().index;
     choice.validationMessages = context.validationMessageCount();
-  } catch (const GpuError&) {
-    choice.failure = std::current_exception();
-  }
+  } catch (const GpuError&) { choice.failure = std::current_exception(); }
   return choice;
 }
 

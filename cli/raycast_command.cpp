@@ -68,8 +68,8 @@ int runRaycast(std::span<const std::string> argv, std::ostream& out) {
     const auto hits = renderer.traceClosest(rays, &stats);
     writeHitsFile(hitsPath, hits);
   }
-  out << "traced " << rays.size() << (args.has("--any") ? " any-hit" : " closest-hit") << " rays in "
-      << msSince(t0) << " ms (GPU " << stats.gpuMs << " ms) -> " << hitsPath << "\n";
+  out << "traced " << rays.size() << (args.has("--any") ? " any-hit" : " closest-hit") << " rays in " << msSince(t0)
+      << " ms (GPU " << stats.gpuMs << " ms) -> " << hitsPath << "\n";
   return kExitOk;
 }
 

@@ -62,7 +62,8 @@ void append(std::string& bytes, const T& value) {
 // a count claim the file cannot back is refused before any allocation.
 std::uint64_t checkedCount(const std::filesystem::path& path, const std::string& bytes, const char (&magic)[4],
                            std::uint64_t recordBytes) {
-  if (bytes.size() < kRaysHeaderBytes) fail(path, "header", "truncated (" + std::to_string(bytes.size()) + " of 16 bytes)");
+  if (bytes.size() < kRaysHeaderBytes)
+    fail(path, "header", "truncated (" + std::to_string(bytes.size()) + " of 16 bytes)");
   if (std::memcmp(bytes.data(), magic, 4) != 0) {
     fail(path, "header", std::string("bad magic, expected \"") + std::string(magic, 4) + "\"");
   }
@@ -70,10 +71,10 @@ std::uint64_t checkedCount(const std::filesystem::path& path, const std::string&
   std::memcpy(&count, bytes.data() + 8, sizeof(count));
   const std::uint64_t payload = bytes.size() - kRaysHeaderBytes;
   if (count > payload / recordBytes || payload != count * recordBytes) {
-    fail(path, "header", "count " + std::to_string(count) + " does not match the file size (" +
-                             std::to_string(payload) + " bytes of records = " + std::to_string(payload / recordBytes) +
-                             " records of " + std::to_string(recordBytes) + " bytes" +
-                             (payload % recordBytes ? ", the last one truncated" : "") + ")");
+    fail(path, "header",
+         "count " + std::to_string(count) + " does not match the file size (" + std::to_string(payload) +
+             " bytes of records = " + std::to_string(payload / recordBytes) + " records of " +
+             std::to_string(recordBytes) + " bytes" + (payload % recordBytes ? ", the last one truncated" : "") + ")");
   }
   return count;
 }
@@ -88,7 +89,8 @@ std::vector<gpu_shared::HtRay> readBinaryRays(const std::filesystem::path& path)
   const std::uint64_t count = checkedCount(path, bytes, kRaysMagic, kRayRecordBytes);
   std::uint32_t version = 0;
   std::memcpy(&version, bytes.data() + 4, sizeof(version));
-  if (version != kRaysFileVersion) fail(path, "header", "unsupported version " + std::to_string(version) + " (expected 1)");
+  if (version != kRaysFileVersion)
+    fail(path, "header", "unsupported version " + std::to_string(version) + " (expected 1)");
   std::vector<gpu_shared::HtRay> rays(count);
   std::memcpy(rays.data(), bytes.data() + kRaysHeaderBytes, count * kRayRecordBytes);
   for (std::uint64_t i = 0; i < count; ++i) {
@@ -111,8 +113,8 @@ std::vector<float> parseFloats(const std::filesystem::path& path, std::size_t li
     float v = 0.0f;
     const auto [ptr, ec] = std::from_chars(field.data(), field.data() + field.size(), v);
     if (field.empty() || ec != std::errc() || ptr != field.data() + field.size()) {
-      fail(path, "line " + std::to_string(lineNo), "field " + std::to_string(values.size() + 1) + " '" + field +
-                                                        "' is not a number");
+      fail(path, "line " + std::to_string(lineNo),
+           "field " + std::to_string(values.size() + 1) + " '" + field + "' is not a number");
     }
     values.push_back(v);
     pos = end + 1;

@@ -76,7 +76,8 @@ gpu::RenderResult renderAndReport(std::ostream& out, gpu::Renderer& renderer, co
       << shape.height << ", " << shape.targets() << " targets, spp " << settings.spp << ", filter "
       << filterName(settings.filter) << ", depth " << settings.maxDepth << ", seed " << settings.seed
       << (settings.forceAllFeatures ? ", all features forced on" : "");
-  if (settings.refineSpp > 0) out << ", refine at spp " << settings.refineSpp << " from contrast " << settings.refineContrast;
+  if (settings.refineSpp > 0)
+    out << ", refine at spp " << settings.refineSpp << " from contrast " << settings.refineContrast;
   out << "\n";
   gpu::RenderResult frame = renderer.render(camera.camera, settings);
   if (settings.progress) std::fprintf(stderr, "\r");
@@ -113,8 +114,7 @@ int runRender(std::span<const std::string> args, std::ostream& out) {
   const OutputPaths paths = resolveOutputPaths(options, display.name);
   if (paths.png) frame_io::prepareOutputDirectory(*paths.png);  // fail before the render, not after it
   if (paths.exr) frame_io::prepareOutputDirectory(*paths.exr);
-  out << "display: " << display.name << " (" << displayModelName(display.model) << ", " << options.displaySpec
-      << ")\n";
+  out << "display: " << display.name << " (" << displayModelName(display.model) << ", " << options.displaySpec << ")\n";
 
   if (options.debugViews) return runViewPhaseDebug(out, options, display, paths, start);
 

@@ -20,12 +20,15 @@ constexpr std::uint32_t kMaxDevice = 255;
 const std::array<OptionSpec, 17> kSpecs = {{
     {"--display", "", "SPEC", "display: config.json, visual.json or builtin:NAME (default builtin:portrait)"},
     {"--scene", "", "SPEC", "scene: .gltf, .glb, .obj, .off or builtin:NAME (default builtin:showcase)"},
-    {"--spp", "", "N", "samples per subpixel (lenticular, integral) or pixel (other models), 1-4096 (default: the config's spp)"},
-    {"--refine-spp", "", "N", "adaptive refinement: trace targets of high contrast again at N spp, 0-4096 (default 0 = off)"},
+    {"--spp", "", "N",
+     "samples per subpixel (lenticular, integral) or pixel (other models), 1-4096 (default: the config's spp)"},
+    {"--refine-spp", "", "N",
+     "adaptive refinement: trace targets of high contrast again at N spp, 0-4096 (default 0 = off)"},
     {"--refine-contrast", "", "X", "sRGB step to a neighbour that marks a target for refinement, 0-1 (default 0.08)"},
     {"--filter", "", "NAME", "reconstruction filter over each footprint: box, tent or gaussian (default box)"},
     {"--quilt", "", "", "lenticular displays: render the vendor quilt views instead of per-subpixel rays"},
-    {"--layout", "", "NAME", "multi-view frames in -o: auto, quilt or views (default auto: quilt if the views form one)"},
+    {"--layout", "", "NAME",
+     "multi-view frames in -o: auto, quilt or views (default auto: quilt if the views form one)"},
     {"--debug", "", "views", "no tracing: colour each subpixel by its view phase (lenticular displays)"},
     {"--depth", "", "N", "specular bounces after the primary hit, 0-32 (default 4)"},
     {"--output", "-o", "FILE.png", "write the frame as 8-bit sRGB PNG here"},
@@ -47,8 +50,8 @@ std::filesystem::path checkedOutputPath(const ParsedArguments& parsed, const std
                                         const std::string& extension) {
   const std::filesystem::path path = *parsed.text(name);
   if (!hasExtension(path, extension)) {
-    throw UsageError(usageMessage(kCommand, "option '" + name + "' = '" + path.string() + "': expected a path ending in " +
-                                                extension));
+    throw UsageError(usageMessage(
+        kCommand, "option '" + name + "' = '" + path.string() + "': expected a path ending in " + extension));
   }
   return path;
 }
@@ -63,9 +66,11 @@ RenderOptions parseRenderOptions(std::span<const std::string> args) {
   options.spp = parsed.unsignedValue("--spp", 1, kMaxSpp);
   options.maxDepth = parsed.unsignedValue("--depth", 0, kMaxDepth);
   options.refineSpp = parsed.unsignedValue("--refine-spp", 0, kMaxSpp).value_or(0);
-  options.refineContrast = static_cast<float>(parsed.numberValue("--refine-contrast", 0.0, 1.0).value_or(options.refineContrast));
+  options.refineContrast =
+      static_cast<float>(parsed.numberValue("--refine-contrast", 0.0, 1.0).value_or(options.refineContrast));
   if (parsed.has("--refine-contrast") && options.refineSpp == 0) {
-    throw UsageError(usageMessage(kCommand, "option '--refine-contrast' needs '--refine-spp N' (N > 0) to take effect"));
+    throw UsageError(
+        usageMessage(kCommand, "option '--refine-contrast' needs '--refine-spp N' (N > 0) to take effect"));
   }
   if (parsed.has("--output")) options.png = checkedOutputPath(parsed, "--output", ".png");
   if (parsed.has("--exr")) options.exr = checkedOutputPath(parsed, "--exr", ".exr");
@@ -77,17 +82,23 @@ RenderOptions parseRenderOptions(std::span<const std::string> args) {
   if (parsed.has("--quilt")) options.cameraPath = gpu::CameraPath::Quilt;
   if (auto text = parsed.text("--layout")) {
     auto layout = frame_io::parseViewLayout(*text);
-    if (!layout) throw UsageError(usageMessage(kCommand, "option '--layout' = '" + *text + "': expected auto, quilt or views"));
+    if (!layout)
+      throw UsageError(usageMessage(kCommand, "option '--layout' = '" + *text + "': expected auto, quilt or views"));
     options.layout = *layout;
   }
   if (auto text = parsed.text("--filter")) {
-    if (*text == "box") options.filter = gpu::SampleFilter::Box;
-    else if (*text == "tent") options.filter = gpu::SampleFilter::Tent;
-    else if (*text == "gaussian") options.filter = gpu::SampleFilter::Gaussian;
-    else throw UsageError(usageMessage(kCommand, "option '--filter' = '" + *text + "': expected box, tent or gaussian"));
+    if (*text == "box")
+      options.filter = gpu::SampleFilter::Box;
+    else if (*text == "tent")
+      options.filter = gpu::SampleFilter::Tent;
+    else if (*text == "gaussian")
+      options.filter = gpu::SampleFilter::Gaussian;
+    else
+      throw UsageError(usageMessage(kCommand, "option '--filter' = '" + *text + "': expected box, tent or gaussian"));
   }
   if (auto text = parsed.text("--debug")) {
-    if (*text != "views") throw UsageError(usageMessage(kCommand, "option '--debug' = '" + *text + "': expected views"));
+    if (*text != "views")
+      throw UsageError(usageMessage(kCommand, "option '--debug' = '" + *text + "': expected views"));
     options.debugViews = true;
   }
   return options;

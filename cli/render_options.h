@@ -19,17 +19,17 @@ struct RenderOptions {
   std::optional<std::uint32_t> maxDepth;         // unset: RenderSettings default
   std::uint32_t refineSpp = 0;                   // --refine-spp: adaptive refinement off by default
   float refineContrast = gpu::RenderSettings{}.refineContrast;
-  std::optional<std::filesystem::path> png;      // -o
-  std::optional<std::filesystem::path> exr;      // --exr
-  std::filesystem::path outDir = "out";          // where default-named outputs go
-  int deviceIndex = -1;                          // -1: automatic choice
+  std::optional<std::filesystem::path> png;  // -o
+  std::optional<std::filesystem::path> exr;  // --exr
+  std::filesystem::path outDir = "out";      // where default-named outputs go
+  int deviceIndex = -1;                      // -1: automatic choice
   bool validation = false;
   std::uint32_t seed = 0;
   bool noSpecialize = false;
   gpu::CameraPath cameraPath = gpu::CameraPath::Native;  // --quilt: the lenticular display's quilt cameras
   frame_io::ViewLayout layout = frame_io::ViewLayout::Auto;
   gpu::SampleFilter filter = gpu::SampleFilter::Box;
-  bool debugViews = false;                       // --debug views: no tracing, subpixels coloured by view phase
+  bool debugViews = false;  // --debug views: no tracing, subpixels coloured by view phase
 };
 
 // Throws UsageError ("holotrace render: ...") for unknown options and bad values.

@@ -14,7 +14,9 @@ std::string fixed(double value, int decimals) {
   return s.str();
 }
 
-std::string label(const std::string& text) { return "  " + text + std::string(text.size() < 14 ? 14 - text.size() : 1, ' '); }
+std::string label(const std::string& text) {
+  return "  " + text + std::string(text.size() < 14 ? 14 - text.size() : 1, ' ');
+}
 
 double mraysPerSecond(std::uint64_t rays, double ms) { return ms > 0.0 ? double(rays) / (ms * 1e3) : 0.0; }
 
@@ -36,8 +38,8 @@ std::string featureList(const SceneFeatures& f) {
 }
 
 void printDevice(std::ostream& out, const gpu::DeviceInfo& d) {
-  out << "device: [" << d.index << "] " << d.name << " (" << d.type << ", Vulkan " << d.apiVersion << ", "
-      << d.driver << ")\n";
+  out << "device: [" << d.index << "] " << d.name << " (" << d.type << ", Vulkan " << d.apiVersion << ", " << d.driver
+      << ")\n";
 }
 
 void printScene(std::ostream& out, const Scene& scene, const SceneFeatures& features) {
@@ -56,7 +58,8 @@ void printBvh(std::ostream& out, const bvh::BuildReport& r) {
       << label("nodes") << r.nodeCount << " (" << r.leafCount << " leaves, avg " << fixed(r.avgLeafSize, 2)
       << " triangles/leaf)\n"
       << label("max depth") << r.maxDepth << "\n"
-      << label("triangles") << r.trianglesIn << " in, " << r.trianglesDropped << " dropped (degenerate or non-finite)\n";
+      << label("triangles") << r.trianglesIn << " in, " << r.trianglesDropped
+      << " dropped (degenerate or non-finite)\n";
 }
 
 void printFrame(std::ostream& out, const gpu::RenderResult& result) {
@@ -70,8 +73,9 @@ void printFrame(std::ostream& out, const gpu::RenderResult& result) {
   }
   out << label("stages total") << fixed(stageSum, 2) << " ms\n"
       << label("frame wall") << fixed(result.totalMs, 2) << " ms\n"
-      << label("rays") << result.raysTraced << " traced, " << fixed(mraysPerSecond(result.raysTraced, result.totalMs), 2)
-      << " Mrays/s (frame wall time), max " << result.maxTraversalSteps << " traversal steps/ray\n";
+      << label("rays") << result.raysTraced << " traced, "
+      << fixed(mraysPerSecond(result.raysTraced, result.totalMs), 2) << " Mrays/s (frame wall time), max "
+      << result.maxTraversalSteps << " traversal steps/ray\n";
   if (result.refinedTargets > 0) out << label("refined") << result.refinedTargets << " targets traced again\n";
 }
 

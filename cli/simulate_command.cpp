@@ -78,7 +78,8 @@ std::string simulateHelp() {
          "(\"auto\": the rectangle is 2 units high, the quilt cameras at z = 1/tan(fovyDeg/2)); projector array and\n"
          "integral = display units, screen / lens plane at z = 0. Without --eye: the middle of the view cone.\n"
          "A `render --debug views` phase image seen this way shows the view phase each screen point sends to the\n"
-         "eye: one flat grey = one view everywhere; ramps and jumps are crosstalk and view changes (docs/OPTICS.md).\n\n"
+         "eye: one flat grey = one view everywhere; ramps and jumps are crosstalk and view changes "
+         "(docs/OPTICS.md).\n\n"
          "Options:\n" +
          formatOptions(kSpecs) +
          "\nExamples:\n"

@@ -14,10 +14,11 @@ gpu::RenderResult renderViewPhaseDebug(const gpu_shared::LenticularParams& param
   result.height = static_cast<std::uint32_t>(params.panel.y);
   result.rgba.resize(std::size_t(result.width) * result.height * 4);
   for (std::uint32_t row = 0; row < result.height; ++row) {
-    const std::uint32_t y = result.height - 1 - row;  // the model counts y from the bottom (optics.md §0)
+    const std::uint32_t y = result.height - 1 - row;  // the model counts y from the bottom (docs/OPTICS.md §0)
     float* dst = result.rgba.data() + std::size_t(row) * result.width * 4;
     for (std::uint32_t x = 0; x < result.width; ++x, dst += 4) {
-      for (std::uint32_t c = 0; c < 3; ++c) dst[c] = gpu_shared::lenticular_view_phase(params, x, y, c, glm::vec2(0.5f));
+      for (std::uint32_t c = 0; c < 3; ++c)
+        dst[c] = gpu_shared::lenticular_view_phase(params, x, y, c, glm::vec2(0.5f));
       dst[3] = 1.0f;
     }
   }

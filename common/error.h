@@ -16,7 +16,10 @@ class ConfigError : public Error {
  public:
   ConfigError(std::string file, std::string field, std::string value, std::string expected)
       : Error(file + ": field '" + field + "' = " + value + ": " + expected),
-        file_(std::move(file)), field_(std::move(field)), value_(std::move(value)), expected_(std::move(expected)) {}
+        file_(std::move(file)),
+        field_(std::move(field)),
+        value_(std::move(value)),
+        expected_(std::move(expected)) {}
   const std::string& file() const { return file_; }
   const std::string& field() const { return field_; }
   const std::string& value() const { return value_; }
@@ -29,8 +32,7 @@ class ConfigError : public Error {
 // A scene file (glTF/GLB/OBJ) that cannot be loaded. what(): "<file>: <what is wrong> (<how to fix>)".
 class SceneError : public Error {
  public:
-  SceneError(std::string file, const std::string& problem)
-      : Error(file + ": " + problem), file_(std::move(file)) {}
+  SceneError(std::string file, const std::string& problem) : Error(file + ": " + problem), file_(std::move(file)) {}
   const std::string& file() const { return file_; }
 
  private:

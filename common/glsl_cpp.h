@@ -30,8 +30,8 @@
 #define HT_IN(T) const T&
 #define HT_INLINE inline
 #define HT_PRECISE
-#define HT_SHARED_BEGIN \
-  namespace ht::gpu_shared {  \
+#define HT_SHARED_BEGIN      \
+  namespace ht::gpu_shared { \
   using namespace glm;       \
   using uint = std::uint32_t;
 #define HT_SHARED_END }

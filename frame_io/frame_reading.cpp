@@ -16,8 +16,8 @@ std::string sizeText(std::uint32_t views, std::uint32_t width, std::uint32_t hei
 
 [[noreturn]] void throwMismatch(const std::filesystem::path& path, const ImageFile& image, std::uint32_t width,
                                 std::uint32_t height, std::uint32_t views) {
-  throw IoError("'" + path.string() + "' holds " + sizeText(image.views, image.width, image.height) + ", the display shows " +
-                sizeText(views, width, height) +
+  throw IoError("'" + path.string() + "' holds " + sizeText(image.views, image.width, image.height) +
+                ", the display shows " + sizeText(views, width, height) +
                 (views > 1 ? " (give a multiView EXR, the first of the per-view PNGs x_v" + viewNumber(0, views) +
                                  ".png, or the views stacked top to bottom)"
                            : " (render it for this display)"));
@@ -41,7 +41,8 @@ ReadFrame readFrameViews(const std::filesystem::path& path, std::uint32_t width,
     frame.rgba = std::move(first.rgba);  // one image, or a multiView EXR with every view
   } else if (first.views == 1 && first.width == width && std::uint64_t(first.height) == std::uint64_t(height) * views) {
     frame.rgba = std::move(first.rgba);  // stacked top to bottom: view after view already
-  } else if (first.views == 1 && first.width == width && first.height == height && !siblingView(path, 0, views).empty()) {
+  } else if (first.views == 1 && first.width == width && first.height == height &&
+             !siblingView(path, 0, views).empty()) {
     frame.rgba = std::move(first.rgba);
     for (std::uint32_t k = 1; k < views; ++k) {
       const std::filesystem::path next = siblingView(path, k, views);

@@ -61,9 +61,12 @@ QuiltFileLayout resolveQuiltLayout(const ImageHeader& header, const std::string&
                       "take_qs8x6a0.75.png), holotrace quilt metadata in the file, or --columns and --rows");
   }
   double aspect = displayAspect(display);
-  if (hints.aspect) aspect = *hints.aspect;
-  else if (tag && tag->aspect) aspect = *tag->aspect;
-  else if (meta && meta->aspect) aspect = *meta->aspect;
+  if (hints.aspect)
+    aspect = *hints.aspect;
+  else if (tag && tag->aspect)
+    aspect = *tag->aspect;
+  else if (meta && meta->aspect)
+    aspect = *meta->aspect;
   result.layout = makeQuiltLayout(columns, rows, header.width, header.height, aspect);
   return result;
 }

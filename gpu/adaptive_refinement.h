@@ -6,8 +6,8 @@
 // samples spent. Here a target (a subpixel of a lenticular / integral panel, or an RGB pixel of the other models)
 // is compared with the same channel(s) of its 4 neighbouring pixels in the same view. For a lenticular panel a
 // horizontal neighbour is one pixel away in space and about 3 / (subpixels per lens) away in view phase, so the test
-// covers the spatial and the angular extent of the subpixel's footprint (optics.md §1) at a slightly coarser scale:
-// conservative. Values are compared sRGB-encoded and clamped to [0, 1], the scale the display shows and the
+// covers the spatial and the angular extent of the subpixel's footprint (docs/OPTICS.md §1) at a slightly coarser
+// scale: conservative. Values are compared sRGB-encoded and clamped to [0, 1], the scale the display shows and the
 // quality benchmark measures (PSNR on sRGB): a fixed threshold means the same visible step in dark and bright areas.
 //
 // A target is refined when its contrast is >= the threshold, so threshold 0 refines every target (each then takes the

@@ -54,7 +54,8 @@ ComputePipeline::ComputePipeline(VulkanContext::Impl& vk, const PipelineLayout& 
   ci.layout = layout.handle();
   VkResult r = vkCreateComputePipelines(vk.device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
   vkDestroyShaderModule(vk.device, module, nullptr);
-  if (r != VK_SUCCESS) throw GpuError(std::string("cannot create the ") + shaderName(shader) + " pipeline: " + vkResultName(r));
+  if (r != VK_SUCCESS)
+    throw GpuError(std::string("cannot create the ") + shaderName(shader) + " pipeline: " + vkResultName(r));
 }
 
 ComputePipeline::~ComputePipeline() { vkDestroyPipeline(vk_.device, pipeline_, nullptr); }

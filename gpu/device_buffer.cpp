@@ -8,8 +8,8 @@ namespace ht::gpu {
 
 namespace {
 
-uint32_t findMemoryType(const VkPhysicalDeviceMemoryProperties& props, uint32_t typeBits, VkMemoryPropertyFlags required,
-                        VkMemoryPropertyFlags preferred) {
+uint32_t findMemoryType(const VkPhysicalDeviceMemoryProperties& props, uint32_t typeBits,
+                        VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred) {
   int fallback = -1;
   for (uint32_t i = 0; i < props.memoryTypeCount; ++i) {
     if (!(typeBits & (1u << i))) continue;
@@ -44,8 +44,8 @@ DeviceBuffer::DeviceBuffer(VulkanContext::Impl& vk, VkDeviceSize size, MemoryPla
   VkMemoryPropertyFlags required = place == MemoryPlace::HostReadback
                                        ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
                                        : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-  VkMemoryPropertyFlags preferred = place == MemoryPlace::HostReadback ? required | VK_MEMORY_PROPERTY_HOST_CACHED_BIT
-                                                                       : required;
+  VkMemoryPropertyFlags preferred =
+      place == MemoryPlace::HostReadback ? required | VK_MEMORY_PROPERTY_HOST_CACHED_BIT : required;
   VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
   flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};

@@ -22,7 +22,8 @@ VkDeviceSize texelSize(VkFormat format) {
 VkDescriptorType FrameDescriptors::bindingType(std::uint32_t binding) {
   using namespace gpu_shared;
   if (binding == HT_BINDING_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  if (binding >= HT_BINDING_STATE_FIRST && binding < HT_BINDING_SCENE_FIRST) return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+  if (binding >= HT_BINDING_STATE_FIRST && binding < HT_BINDING_SCENE_FIRST)
+    return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
   return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
 }
 
@@ -68,11 +69,13 @@ bool FrameDescriptors::setView(std::uint32_t binding, const DeviceBuffer& buffer
   return whole <= maxBytes;
 }
 
-bool FrameDescriptors::setUniformTexels(std::uint32_t binding, const DeviceBuffer& buffer, VkFormat format, bool fresh) {
+bool FrameDescriptors::setUniformTexels(std::uint32_t binding, const DeviceBuffer& buffer, VkFormat format,
+                                        bool fresh) {
   return setView(binding, buffer, format, fresh);
 }
 
-void FrameDescriptors::setStorageTexels(std::uint32_t binding, const DeviceBuffer& buffer, VkFormat format, bool fresh) {
+void FrameDescriptors::setStorageTexels(std::uint32_t binding, const DeviceBuffer& buffer, VkFormat format,
+                                        bool fresh) {
   if (!setView(binding, buffer, format, fresh)) {
     throw GpuError("a " + std::to_string(buffer.size() >> 20) + " MiB working buffer exceeds the device's " +
                    std::to_string(vk_.info.maxTexelBufferElements) +
@@ -109,7 +112,8 @@ void FrameDescriptors::flush() {
     writes.push_back(w);
     b.dirty = false;
   }
-  if (!writes.empty()) vkUpdateDescriptorSets(vk_.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+  if (!writes.empty())
+    vkUpdateDescriptorSets(vk_.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
 
 }  // namespace ht::gpu

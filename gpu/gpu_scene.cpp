@@ -28,7 +28,8 @@ std::vector<gpu_shared::GpuMaterial> packMaterials(const Scene& scene) {
     g.params = glm::vec4(m.metallic, m.roughness, m.transmission, m.ior);
     out.push_back(g);
   }
-  if (out.empty()) out.push_back({glm::vec4(0.8f, 0.8f, 0.8f, -1.0f), glm::vec4(0.0f), glm::vec4(0.0f, 1.0f, 0.0f, 1.5f)});
+  if (out.empty())
+    out.push_back({glm::vec4(0.8f, 0.8f, 0.8f, -1.0f), glm::vec4(0.0f), glm::vec4(0.0f, 1.0f, 0.0f, 1.5f)});
   return out;
 }
 

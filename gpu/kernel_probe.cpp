@@ -80,9 +80,10 @@ std::vector<glm::vec3> runOffsetRayProbe(VulkanContext& context, std::span<const
   OneShotCommands commands(vk);
   vkCmdBindPipeline(commands.cmd(), VK_PIPELINE_BIND_POINT_COMPUTE, probe.pipeline());
   vkCmdPushConstants(commands.cmd(), probe.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
-  vkCmdDispatch(commands.cmd(), static_cast<std::uint32_t>((inputs.size() + kProbeGroupSize - 1) / kProbeGroupSize),
-                1, 1);
-  VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+  vkCmdDispatch(commands.cmd(), static_cast<std::uint32_t>((inputs.size() + kProbeGroupSize - 1) / kProbeGroupSize), 1,
+                1);
+  VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                         VK_ACCESS_HOST_READ_BIT};
   vkCmdPipelineBarrier(commands.cmd(), VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost,
                        0, nullptr, 0, nullptr);
   commands.submitAndWait();

@@ -21,13 +21,15 @@ class PassRecorder {
   PassRecorder(VkCommandBuffer cmd, VkPipelineLayout layout, VkDescriptorSet bvhSet, VkQueryPool pool,
                std::uint32_t queryCapacity);
 
-  void dispatch(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, std::uint32_t groups, Stage stage);
+  void dispatch(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, std::uint32_t groups,
+                Stage stage);
   // A grid of groups.x x groups.y x groups.z workgroups.
   void dispatch(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, glm::uvec3 groups, Stage stage);
   void dispatchIndirect(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, VkBuffer args,
                         VkDeviceSize offset, Stage stage);
   // Adds the elapsed GPU time of every recorded pass to `ms` (by stage); call after the submit finished.
-  void collect(VkDevice device, float timestampPeriodNs, std::array<double, static_cast<size_t>(Stage::Count)>& ms) const;
+  void collect(VkDevice device, float timestampPeriodNs,
+               std::array<double, static_cast<size_t>(Stage::Count)>& ms) const;
 
  private:
   void begin(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, Stage stage);

@@ -1,4 +1,4 @@
-// renderer.cpp - the wavefront frame loop (bvh.md §7): batches of paths go through raygen, then per bounce
+// renderer.cpp - the wavefront frame loop (docs/BVH.md §7): batches of paths go through raygen, then per bounce
 // trace_closest -> shade -> [trace_any -> gather_direct], then resolve; the frame ends with interleave.
 // Batches are submitted one by one (bounded memory, progress reports); within a batch the GPU drives its own
 // queues through indirect dispatches.
@@ -6,18 +6,18 @@
 
 #include <algorithm>
 #include <array>
-#include <cstddef>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <map>
 #include <tuple>
 #include <type_traits>
 #include <utility>
 
-#include "gpu/frame_descriptors.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/device_buffer.h"
+#include "gpu/frame_descriptors.h"
 #include "gpu/gpu_scene.h"
 #include "gpu/pass_recorder.h"
 #include "gpu/pipeline_library.h"
@@ -57,7 +57,9 @@ std::vector<std::uint32_t> withConstant(std::vector<std::uint32_t> spec, std::ui
   return spec;
 }
 
-std::uint32_t groupsFor(std::uint64_t n) { return static_cast<std::uint32_t>((n + HT_WORKGROUP_SIZE - 1) / HT_WORKGROUP_SIZE); }
+std::uint32_t groupsFor(std::uint64_t n) {
+  return static_cast<std::uint32_t>((n + HT_WORKGROUP_SIZE - 1) / HT_WORKGROUP_SIZE);
+}
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -128,15 +130,20 @@ struct Renderer::Impl {
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
   FrameCamera camera;
-  DeviceBuffer refineBuffer;  // adaptive refinement: per-subgroup counts, staging, target list (refine_select.comp)
-  DeviceBuffer rayTableTexels;                     // the current ray table (2 texels per entry) or a 1-entry dummy
-  std::shared_ptr<const RayTable> boundRayTable;   // which table rayTableTexels holds
+  DeviceBuffer refineBuffer;    // adaptive refinement: per-subgroup counts, staging, target list (refine_select.comp)
+  DeviceBuffer rayTableTexels;  // the current ray table (2 texels per entry) or a 1-entry dummy
+  std::shared_ptr<const RayTable> boundRayTable;  // which table rayTableTexels holds
 
   bvh::BuildOptions buildOptions;
 
   Impl(VulkanContext::Impl& v, const Scene& s, const bvh::BuildOptions& o)
-      : vk(v), scene(v, s, o), layout(v.pipelines->layout()), descriptors(v, layout.setLayout()), frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
-        counters(v, sizeof(GpuCounters), MemoryPlace::HostReadback), buildOptions(o) {
+      : vk(v),
+        scene(v, s, o),
+        layout(v.pipelines->layout()),
+        descriptors(v, layout.setLayout()),
+        frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
+        counters(v, sizeof(GpuCounters), MemoryPlace::HostReadback),
+        buildOptions(o) {
     VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
     qi.queryCount = kQueryCapacity;
@@ -169,8 +176,8 @@ struct Renderer::Impl {
   std::vector<std::uint32_t> raygenSpec(const FrameShape& shape, bool refining = false) const {
     const auto* lenticular = std::get_if<gpu_shared::LenticularParams>(&camera);
     if (!lenticular) return {shape.model, 0u, 0u, refining};
-    return {shape.model, static_cast<std::uint32_t>(lenticular->flags.x), static_cast<std::uint32_t>(lenticular->flags.y),
-            refining};
+    return {shape.model, static_cast<std::uint32_t>(lenticular->flags.x),
+            static_cast<std::uint32_t>(lenticular->flags.y), refining};
   }
 
   // Specialisation of the kernels that continue paths (shade, gather_direct): their own constants, then
@@ -200,8 +207,10 @@ struct Renderer::Impl {
     }
     rayTableTexels = DeviceBuffer(vk, texels.size() * sizeof(glm::vec4), MemoryPlace::Device);
     rayTableTexels.upload(texels.data(), texels.size() * sizeof(glm::vec4));
-    if (!descriptors.setUniformTexels(gpu_shared::HT_BINDING_RAY_TABLE, rayTableTexels, VK_FORMAT_R32G32B32A32_SFLOAT, true)) {
-      throw GpuError("ray table of " + std::to_string(texels.size() / 2) + " entries exceeds the device's texel buffers");
+    if (!descriptors.setUniformTexels(gpu_shared::HT_BINDING_RAY_TABLE, rayTableTexels, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                      true)) {
+      throw GpuError("ray table of " + std::to_string(texels.size() / 2) +
+                     " entries exceeds the device's texel buffers");
     }
     descriptors.flush();
     boundRayTable = table;
@@ -232,15 +241,16 @@ struct Renderer::Impl {
     using namespace gpu_shared;
     bool nodes = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 0, scene.nodes, VK_FORMAT_R32G32B32A32_SFLOAT);
     descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 1, scene.nodes, VK_FORMAT_R32G32B32A32_UINT);
-    bool tris = descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 2, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_SFLOAT);
+    bool tris =
+        descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 2, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_SFLOAT);
     descriptors.setUniformTexels(HT_BINDING_BVH_FIRST + 3, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_UINT);
     bvhTexelsCover = nodes && tris;  // else the trace kernels read the BVH by device address
     descriptors.setUniformBuffer(HT_BINDING_FRAME, frame);
     const std::pair<const DeviceBuffer*, VkFormat> records[] = {
-        {&scene.vertices, VK_FORMAT_R32G32B32A32_SFLOAT}, {&scene.normals, VK_FORMAT_R32G32B32A32_SFLOAT},
-        {&scene.texcoords, VK_FORMAT_R32G32_SFLOAT},      {&scene.triangles, VK_FORMAT_R32G32B32A32_UINT},
+        {&scene.vertices, VK_FORMAT_R32G32B32A32_SFLOAT},  {&scene.normals, VK_FORMAT_R32G32B32A32_SFLOAT},
+        {&scene.texcoords, VK_FORMAT_R32G32_SFLOAT},       {&scene.triangles, VK_FORMAT_R32G32B32A32_UINT},
         {&scene.materials, VK_FORMAT_R32G32B32A32_SFLOAT}, {&scene.lights, VK_FORMAT_R32G32B32A32_SFLOAT},
-        {&scene.textures, VK_FORMAT_R32G32B32A32_UINT},   {&scene.texels, VK_FORMAT_R32G32B32A32_SFLOAT}};
+        {&scene.textures, VK_FORMAT_R32G32B32A32_UINT},    {&scene.texels, VK_FORMAT_R32G32B32A32_SFLOAT}};
     for (std::uint32_t k = 0; k < 8; ++k) {
       if (!descriptors.setUniformTexels(HT_BINDING_SCENE_FIRST + k, *records[k].first, records[k].second)) {
         throw GpuError("scene too large for the device's texel buffers (" +
@@ -255,13 +265,18 @@ struct Renderer::Impl {
     const std::uint32_t b = HT_BINDING_STATE_FIRST;
     const bool freshWork = boundWorkGeneration != work.generation;
     boundWorkGeneration = work.generation;
-    const std::pair<const DeviceBuffer*, VkFormat> state[] = {
-        {&work.rays[0], VK_FORMAT_R32G32B32A32_SFLOAT},    {&work.rays[1], VK_FORMAT_R32G32B32A32_SFLOAT},
-        {&work.queuePath[0], VK_FORMAT_R32_UINT},          {&work.queuePath[1], VK_FORMAT_R32_UINT},
-        {&work.hits, VK_FORMAT_R32G32B32A32_UINT},         {&work.radiance, VK_FORMAT_R32G32B32A32_SFLOAT},
-        {&work.throughput, VK_FORMAT_R32G32B32A32_SFLOAT}, {&work.shadowRays, VK_FORMAT_R32G32B32A32_SFLOAT},
-        {&work.shadowContrib, VK_FORMAT_R32G32B32A32_SFLOAT}, {&work.shadowQueue, VK_FORMAT_R32_UINT}};
-    for (std::uint32_t k = 0; k < 10; ++k) descriptors.setStorageTexels(b + k, *state[k].first, state[k].second, freshWork);
+    const std::pair<const DeviceBuffer*, VkFormat> state[] = {{&work.rays[0], VK_FORMAT_R32G32B32A32_SFLOAT},
+                                                              {&work.rays[1], VK_FORMAT_R32G32B32A32_SFLOAT},
+                                                              {&work.queuePath[0], VK_FORMAT_R32_UINT},
+                                                              {&work.queuePath[1], VK_FORMAT_R32_UINT},
+                                                              {&work.hits, VK_FORMAT_R32G32B32A32_UINT},
+                                                              {&work.radiance, VK_FORMAT_R32G32B32A32_SFLOAT},
+                                                              {&work.throughput, VK_FORMAT_R32G32B32A32_SFLOAT},
+                                                              {&work.shadowRays, VK_FORMAT_R32G32B32A32_SFLOAT},
+                                                              {&work.shadowContrib, VK_FORMAT_R32G32B32A32_SFLOAT},
+                                                              {&work.shadowQueue, VK_FORMAT_R32_UINT}};
+    for (std::uint32_t k = 0; k < 10; ++k)
+      descriptors.setStorageTexels(b + k, *state[k].first, state[k].second, freshWork);
     const bool freshOutputs = boundOutputGeneration != outputs.generation;
     boundOutputGeneration = outputs.generation;
     descriptors.setStorageTexels(b + 10, outputs.subpixels, VK_FORMAT_R32_SFLOAT, freshOutputs);
@@ -275,8 +290,10 @@ struct Renderer::Impl {
     f.flags = glm::uvec4(scene.hasNormals ? 1u : 0u, scene.hasTexcoords ? 1u : 0u, 0u, 0u);
   }
 
-  PassConstants passConstants(std::uint32_t first, std::uint32_t count, std::uint32_t depth, std::uint32_t queue) const {
-    return PassConstants{frame.address(), scene.nodes.address(), scene.bvhTriangles.address(), first, count, depth, queue};
+  PassConstants passConstants(std::uint32_t first, std::uint32_t count, std::uint32_t depth,
+                              std::uint32_t queue) const {
+    return PassConstants{
+        frame.address(), scene.nodes.address(), scene.bvhTriangles.address(), first, count, depth, queue};
   }
 
   void beginCommands() {
@@ -307,7 +324,8 @@ struct Renderer::Impl {
   }
 
   // Writes the camera block and the frame-wide values of a frame of `shape` covering views [viewFirst, +viewCount).
-  void fillFrame(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount, const RenderSettings& settings);
+  void fillFrame(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
+                 const RenderSettings& settings);
   RenderResult render(const RenderSettings& settings);
   void renderChunk(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
                    const RenderSettings& settings, StageTimes& stageMs, RenderResult& result);
@@ -318,7 +336,8 @@ struct Renderer::Impl {
   void tracePaths(const FrameShape& shape, std::uint32_t spp, std::uint64_t totalPaths, std::uint64_t perBatch,
                   bool refining, const RenderSettings& settings, StageTimes& stageMs,
                   const std::function<void(double)>& progress);
-  std::uint64_t selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast, StageTimes& stageMs);
+  std::uint64_t selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast,
+                                     StageTimes& stageMs);
   std::vector<gpu_shared::HtRay> generateRays(const RenderSettings& settings, std::uint64_t firstTarget,
                                               std::uint32_t targetCount, TraceStats* stats);
   std::vector<gpu_shared::HtHit> traceBatch(std::span<const gpu_shared::HtRay> rays, bool occlusion, TraceStats* stats);
@@ -327,8 +346,10 @@ struct Renderer::Impl {
 namespace {
 
 void checkSettings(const RenderSettings& settings) {
-  if (settings.spp < 1 || settings.spp > kMaxSpp) throw GpuError("spp " + std::to_string(settings.spp) + " out of range [1, 4096]");
-  if (settings.maxDepth > kMaxDepth) throw GpuError("depth " + std::to_string(settings.maxDepth) + " out of range [0, 32]");
+  if (settings.spp < 1 || settings.spp > kMaxSpp)
+    throw GpuError("spp " + std::to_string(settings.spp) + " out of range [1, 4096]");
+  if (settings.maxDepth > kMaxDepth)
+    throw GpuError("depth " + std::to_string(settings.maxDepth) + " out of range [0, 32]");
   if (static_cast<std::uint32_t>(settings.filter) > 2) throw GpuError("unknown sample filter");
   if (settings.refineSpp > kMaxSpp) {
     throw GpuError("refinement spp " + std::to_string(settings.refineSpp) + " out of range [0, 4096]");
@@ -362,7 +383,8 @@ FrameShape frameShape(const FrameCamera& camera) {
   static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_LENTICULAR, FrameCamera>, LenticularParams>);
   static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_PINHOLE, FrameCamera>, PinholeParams>);
   static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_QUILT, FrameCamera>, QuiltParams>);
-  static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_PROJECTOR_ARRAY, FrameCamera>, ProjectorArrayParams>);
+  static_assert(
+      std::is_same_v<std::variant_alternative_t<HT_MODEL_PROJECTOR_ARRAY, FrameCamera>, ProjectorArrayParams>);
   static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_INTEGRAL, FrameCamera>, IntegralParams>);
   static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_CAPTURE_GRID, FrameCamera>, CaptureGridParams>);
   static_assert(std::is_same_v<std::variant_alternative_t<HT_MODEL_OBLIQUE, FrameCamera>, ObliqueParams>);
@@ -391,7 +413,8 @@ FrameShape frameShape(const FrameCamera& camera) {
       const auto& p = std::get<ProjectorArrayParams>(camera);
       std::tie(shape.width, shape.height) = size(p.projector[0][0].w, p.projector[0][1].w);
       shape.views = static_cast<std::uint32_t>(p.observer.w);
-      if (shape.views > HT_MAX_PROJECTORS) throw GpuError("projector array of " + std::to_string(shape.views) + " projectors exceeds 128");
+      if (shape.views > HT_MAX_PROJECTORS)
+        throw GpuError("projector array of " + std::to_string(shape.views) + " projectors exceeds 128");
       break;
     }
     case HT_MODEL_INTEGRAL: {
@@ -430,24 +453,36 @@ void Renderer::Impl::fillFrame(const FrameShape& shape, std::uint32_t viewFirst,
   FrameBlock& f = frameBlock();
   std::memset(&f, 0, sizeof(f));
   fillFrameBasics(f);
-  const std::uint64_t chunkTargets = static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
+  const std::uint64_t chunkTargets =
+      static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
   f.dims = glm::uvec4(shape.width, shape.height, settings.spp, static_cast<std::uint32_t>(chunkTargets));
   f.views = glm::uvec4(viewCount, viewFirst, static_cast<std::uint32_t>(settings.filter), 0u);
-  f.scene = glm::uvec4(scene.lightCount(), scene.textureCount(), gpu_shared::HT_TRAVERSAL_STEP_LIMIT, settings.maxDepth);
+  f.scene =
+      glm::uvec4(scene.lightCount(), scene.textureCount(), gpu_shared::HT_TRAVERSAL_STEP_LIMIT, settings.maxDepth);
   f.frame = glm::uvec4(settings.seed, 0u, 0u, 0u);
   f.background = glm::vec4(scene.background(), 0.0f);
   f.ambient = glm::vec4(scene.ambient(), 0.0f);
-  std::visit([&f](const auto& p) {
-    using T = std::decay_t<decltype(p)>;
-    if constexpr (std::is_same_v<T, gpu_shared::LenticularParams>) f.lenticular = p;
-    else if constexpr (std::is_same_v<T, gpu_shared::PinholeParams>) f.pinhole = p;
-    else if constexpr (std::is_same_v<T, gpu_shared::QuiltParams>) f.quilt = p;
-    else if constexpr (std::is_same_v<T, gpu_shared::ProjectorArrayParams>) f.projectors = p;
-    else if constexpr (std::is_same_v<T, gpu_shared::IntegralParams>) f.integral = p;
-    else if constexpr (std::is_same_v<T, gpu_shared::CaptureGridParams>) f.captureGrid = p;
-    else if constexpr (std::is_same_v<T, gpu_shared::ObliqueParams>) f.oblique = p;
-    else f.rayTable = p.params;
-  }, camera);
+  std::visit(
+      [&f](const auto& p) {
+        using T = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<T, gpu_shared::LenticularParams>)
+          f.lenticular = p;
+        else if constexpr (std::is_same_v<T, gpu_shared::PinholeParams>)
+          f.pinhole = p;
+        else if constexpr (std::is_same_v<T, gpu_shared::QuiltParams>)
+          f.quilt = p;
+        else if constexpr (std::is_same_v<T, gpu_shared::ProjectorArrayParams>)
+          f.projectors = p;
+        else if constexpr (std::is_same_v<T, gpu_shared::IntegralParams>)
+          f.integral = p;
+        else if constexpr (std::is_same_v<T, gpu_shared::CaptureGridParams>)
+          f.captureGrid = p;
+        else if constexpr (std::is_same_v<T, gpu_shared::ObliqueParams>)
+          f.oblique = p;
+        else
+          f.rayTable = p.params;
+      },
+      camera);
   bindRayTable();
 }
 
@@ -462,7 +497,8 @@ RenderResult Renderer::Impl::render(const RenderSettings& settings) {
   result.views = shape.views;
   const std::uint64_t viewPixels = static_cast<std::uint64_t>(shape.width) * shape.height;
   result.rgba.resize(static_cast<size_t>(viewPixels * shape.views * 4));
-  const auto chunkViews = static_cast<std::uint32_t>(std::clamp<std::uint64_t>(kMaxChunkPixels / viewPixels, 1, shape.views));
+  const auto chunkViews =
+      static_cast<std::uint32_t>(std::clamp<std::uint64_t>(kMaxChunkPixels / viewPixels, 1, shape.views));
   std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};
   double readbackMs = 0.0;
   for (std::uint32_t first = 0; first < shape.views; first += chunkViews) {
@@ -492,10 +528,12 @@ RenderResult Renderer::Impl::render(const RenderSettings& settings) {
 
 void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirst, std::uint32_t viewCount,
                                  const RenderSettings& settings, StageTimes& stageMs, RenderResult& result) {
-  const std::uint64_t targets = static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
+  const std::uint64_t targets =
+      static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
   // Batch size: whole targets, bounded by the path-state memory budget.
   const std::uint32_t maxSpp = std::max(settings.spp, settings.refineSpp);
-  std::uint64_t perBatch = std::min<std::uint64_t>(kMaxPathsPerBatch, kWorkMemoryBudget / WorkBuffers::bytesPerPath(scene.lightCount()));
+  std::uint64_t perBatch =
+      std::min<std::uint64_t>(kMaxPathsPerBatch, kWorkMemoryBudget / WorkBuffers::bytesPerPath(scene.lightCount()));
   perBatch = std::max<std::uint64_t>(maxSpp, perBatch / maxSpp * maxSpp);
   perBatch = std::min(perBatch, targets * maxSpp);
   work.ensure(vk, static_cast<std::uint32_t>(perBatch), scene.lightCount());
@@ -515,7 +553,8 @@ void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirs
       FrameBlock& f = frameBlock();
       f.dims.z = settings.refineSpp;
       f.refineInfo.w = settings.spp;  // != 0: trace the listed targets, and keep the base samples in their mean
-      const std::uint64_t refineBatch = std::min(perBatch / settings.refineSpp * settings.refineSpp, refined * settings.refineSpp);
+      const std::uint64_t refineBatch =
+          std::min(perBatch / settings.refineSpp * settings.refineSpp, refined * settings.refineSpp);
       tracePaths(shape, settings.refineSpp, refined * settings.refineSpp, refineBatch, true, settings, stageMs,
                  [&](double done) {
                    if (settings.progress) settings.progress(share + done * (1.0 - share));
@@ -525,8 +564,8 @@ void Renderer::Impl::renderChunk(const FrameShape& shape, std::uint32_t viewFirs
   const ComputePipeline& interleave = pipeline(ShaderId::Interleave);
   beginCommands();
   PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
-  rec.dispatch(interleave, passConstants(0, 0, 0, 0), groupsFor(static_cast<std::uint64_t>(shape.width) * shape.height * viewCount),
-               Stage::Interleave);
+  rec.dispatch(interleave, passConstants(0, 0, 0, 0),
+               groupsFor(static_cast<std::uint64_t>(shape.width) * shape.height * viewCount), Stage::Interleave);
   submitAndWait();
   rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
   const GpuCounters& c = counterBlock();
@@ -541,7 +580,8 @@ void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std:
   const SceneFeatures& feat = scene.features();
   const bool all = settings.forceAllFeatures;
   const bool lights = scene.lightCount() > 0 && (feat.lights || all);
-  const bool mirror = feat.mirrors || all, glass = feat.glass || all, textures = (feat.textures && scene.textureCount() > 0) || all;
+  const bool mirror = feat.mirrors || all, glass = feat.glass || all,
+             textures = (feat.textures && scene.textureCount() > 0) || all;
   const std::uint32_t depthPasses = (mirror || glass) ? settings.maxDepth + 1 : 1;
 
   const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(shape, refining));
@@ -562,7 +602,8 @@ void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std:
       vkCmdFillBuffer(cmd, work.shadowContrib.handle(), 0, VK_WHOLE_SIZE, 0);
       VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
                         VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
-      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0, nullptr, 0, nullptr);
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0,
+                           nullptr, 0, nullptr);
       clear = false;
     }
     PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
@@ -582,9 +623,12 @@ void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std:
       }
       rec.dispatch(afterShade, pc, 1, Stage::Queues);
       if (lights) {
-        rec.dispatchIndirect(traceAny, pc, args, offsetof(GpuCounters, dispatch) + 2 * sizeof(glm::uvec4), Stage::Shadow);
-        if (depth == 0) rec.dispatch(gather, pc, groupsFor(count), Stage::Shadow);
-        else rec.dispatchIndirect(gather, pc, args, queueArgs, Stage::Shadow);
+        rec.dispatchIndirect(traceAny, pc, args, offsetof(GpuCounters, dispatch) + 2 * sizeof(glm::uvec4),
+                             Stage::Shadow);
+        if (depth == 0)
+          rec.dispatch(gather, pc, groupsFor(count), Stage::Shadow);
+        else
+          rec.dispatchIndirect(gather, pc, args, queueArgs, Stage::Shadow);
       }
       rec.dispatch(endDepth, pc, 1, Stage::Queues);
     }
@@ -601,8 +645,9 @@ void Renderer::Impl::tracePaths(const FrameShape& shape, std::uint32_t spp, std:
 // the device runs the workgroups in.
 std::uint64_t Renderer::Impl::selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast,
                                                    StageTimes& stageMs) {
-  const glm::uvec3 grid(groupsFor(shape.width), shape.height,
-                        static_cast<std::uint32_t>(targets / (std::uint64_t{shape.width} * shape.height * shape.targetsPerPixel)));
+  const glm::uvec3 grid(
+      groupsFor(shape.width), shape.height,
+      static_cast<std::uint32_t>(targets / (std::uint64_t{shape.width} * shape.height * shape.targetsPerPixel)));
   const std::uint32_t subgroup = std::clamp(vk.info.subgroupSize, 1u, HT_WORKGROUP_SIZE);
   const std::uint64_t slots = std::uint64_t{grid.x} * grid.y * grid.z * ((HT_WORKGROUP_SIZE + subgroup - 1) / subgroup);
   const std::uint32_t stride = subgroup * shape.targetsPerPixel;  // staging per slot: a subgroup of pixels' targets
@@ -640,7 +685,7 @@ std::uint64_t Renderer::Impl::selectRefinedTargets(const FrameShape& shape, std:
 }
 
 std::vector<gpu_shared::HtRay> Renderer::Impl::generateRays(const RenderSettings& settings, std::uint64_t firstTarget,
-                                                           std::uint32_t targetCount, TraceStats* stats) {
+                                                            std::uint32_t targetCount, TraceStats* stats) {
   checkSettings(settings);
   const FrameShape shape = frameShape(camera);
   checkShape(shape, settings.spp);
@@ -672,9 +717,10 @@ std::vector<gpu_shared::HtRay> Renderer::Impl::generateRays(const RenderSettings
 }
 
 std::vector<gpu_shared::HtHit> Renderer::Impl::traceBatch(std::span<const gpu_shared::HtRay> rays, bool occlusion,
-                                                         TraceStats* stats) {
+                                                          TraceStats* stats) {
   std::vector<gpu_shared::HtHit> hits(rays.size());
-  const auto chunk = static_cast<std::uint32_t>(std::min<std::uint64_t>(kMaxPathsPerBatch * 4ull, std::max<size_t>(rays.size(), 1)));
+  const auto chunk =
+      static_cast<std::uint32_t>(std::min<std::uint64_t>(kMaxPathsPerBatch * 4ull, std::max<size_t>(rays.size(), 1)));
   work.ensure(vk, chunk, 1);
   if (outputs.generation == 0) outputs.ensure(vk, 1, 1);  // the trace kernels write no outputs; views need a buffer
   const ComputePipeline& trace =

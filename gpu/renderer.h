@@ -48,7 +48,7 @@ struct FrameShape {
 FrameShape frameShape(const FrameCamera& camera);
 
 struct RenderSettings {
-  std::uint32_t spp = 4;          // samples per target (subpixel or pixel)
+  std::uint32_t spp = 4;  // samples per target (subpixel or pixel)
   SampleFilter filter = SampleFilter::Box;
   std::uint32_t maxDepth = 4;     // specular bounces (mirror/glass) after the primary hit
   bool forceAllFeatures = false;  // disable scene specialisation (benchmark of the skipping)
@@ -69,17 +69,17 @@ struct StageTiming {
 struct RenderResult {
   std::uint32_t width = 0, height = 0;  // of one view
   std::uint32_t views = 1;
-  std::vector<float> rgba;            // linear RGBA float, view after view, row 0 = the view's TOP, 4 floats per pixel
+  std::vector<float> rgba;  // linear RGBA float, view after view, row 0 = the view's TOP, 4 floats per pixel
   std::vector<StageTiming> stages;
-  double totalMs = 0.0;               // host wall time of the frame
-  std::uint64_t raysTraced = 0;       // closest-hit + any-hit rays
+  double totalMs = 0.0;          // host wall time of the frame
+  std::uint64_t raysTraced = 0;  // closest-hit + any-hit rays
   std::uint32_t maxTraversalSteps = 0;
-  std::uint32_t nonFiniteSamples = 0; // targets whose value was NaN/Inf and was written as 0 (should be 0)
-  std::uint64_t refinedTargets = 0;   // targets traced again by adaptive refinement (RenderSettings::refineSpp)
+  std::uint32_t nonFiniteSamples = 0;  // targets whose value was NaN/Inf and was written as 0 (should be 0)
+  std::uint64_t refinedTargets = 0;    // targets traced again by adaptive refinement (RenderSettings::refineSpp)
 };
 
 struct TraceStats {
-  double gpuMs = 0.0;                 // timestamp time of the trace dispatches only
+  double gpuMs = 0.0;  // timestamp time of the trace dispatches only
   std::uint32_t maxSteps = 0;
 };
 

@@ -30,7 +30,8 @@ const char* vkResultName(VkResult result) {
     case VK_ERROR_LAYER_NOT_PRESENT: return "VK_ERROR_LAYER_NOT_PRESENT";
     case VK_ERROR_EXTENSION_NOT_PRESENT: return "VK_ERROR_EXTENSION_NOT_PRESENT";
     case VK_ERROR_FEATURE_NOT_PRESENT: return "VK_ERROR_FEATURE_NOT_PRESENT";
-    case VK_ERROR_INCOMPATIBLE_DRIVER: return "VK_ERROR_INCOMPATIBLE_DRIVER (no Vulkan driver found: install mesa-vulkan-drivers)";
+    case VK_ERROR_INCOMPATIBLE_DRIVER:
+      return "VK_ERROR_INCOMPATIBLE_DRIVER (no Vulkan driver found: install mesa-vulkan-drivers)";
     case VK_ERROR_TOO_MANY_OBJECTS: return "VK_ERROR_TOO_MANY_OBJECTS";
     default: return "VkResult error";
   }
@@ -52,12 +53,13 @@ bool hasLayer(const char* name) {
   vkEnumerateInstanceLayerProperties(&count, nullptr);
   std::vector<VkLayerProperties> layers(count);
   vkEnumerateInstanceLayerProperties(&count, layers.data());
-  return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+  return std::any_of(layers.begin(), layers.end(),
+                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                   VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                                   void* user) {
+                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
   auto* impl = static_cast<VulkanContext::Impl*>(user);
   if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
     impl->validationMessages.fetch_add(1);
@@ -74,7 +76,8 @@ VkInstance createInstance(bool validation, VulkanContext::Impl* impl, VkDebugUti
   std::vector<const char*> layers, extensions;
   if (validation) {
     if (!hasLayer(kValidationLayer)) {
-      throw GpuError("--validation: layer VK_LAYER_KHRONOS_validation is not installed (apt-get install vulkan-validationlayers)");
+      throw GpuError(
+          "--validation: layer VK_LAYER_KHRONOS_validation is not installed (apt-get install vulkan-validationlayers)");
     }
     layers.push_back(kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
@@ -89,11 +92,13 @@ VkInstance createInstance(bool validation, VulkanContext::Impl* impl, VkDebugUti
   HT_VK(vkCreateInstance(&ci, nullptr, &instance));
   if (validation && impl) {
     VkDebugUtilsMessengerCreateInfoEXT mi{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-    mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    mi.messageSeverity =
+        VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
     mi.pfnUserCallback = onValidationMessage;
     mi.pUserData = impl;
-    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
     if (create) HT_VK(create(instance, &mi, nullptr, messenger));
   }
   return instance;
@@ -139,8 +144,9 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
   info.index = index;
   info.name = p.deviceName;
   info.type = typeName(p.deviceType);
-  info.apiVersion = std::to_string(VK_API_VERSION_MAJOR(p.apiVersion)) + "." + std::to_string(VK_API_VERSION_MINOR(p.apiVersion)) +
-                    "." + std::to_string(VK_API_VERSION_PATCH(p.apiVersion));
+  info.apiVersion = std::to_string(VK_API_VERSION_MAJOR(p.apiVersion)) + "." +
+                    std::to_string(VK_API_VERSION_MINOR(p.apiVersion)) + "." +
+                    std::to_string(VK_API_VERSION_PATCH(p.apiVersion));
   info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
   info.maxStorageBufferRange = p.limits.maxStorageBufferRange;
   info.maxMemoryAllocationSize = m3.maxMemoryAllocationSize;
@@ -150,14 +156,21 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
   info.timestampPeriodNs = p.limits.timestampPeriod;
   info.shaderFloat64 = features.features.shaderFloat64 == VK_TRUE;
   info.bufferDeviceAddress = f12.bufferDeviceAddress == VK_TRUE;
-  const VkSubgroupFeatureFlags neededSubgroup = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
-  if (p.apiVersion < VK_API_VERSION_1_2) info.unusableReason = "Vulkan 1.2 required";
-  else if (!info.bufferDeviceAddress) info.unusableReason = "bufferDeviceAddress not supported";
-  else if (!features.features.shaderInt64) info.unusableReason = "shaderInt64 not supported";
-  else if (!info.shaderFloat64) info.unusableReason = "shaderFloat64 not supported (watertight fallback needs it)";
-  else if ((subgroup.supportedOperations & neededSubgroup) != neededSubgroup || !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT))
+  const VkSubgroupFeatureFlags neededSubgroup =
+      VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+  if (p.apiVersion < VK_API_VERSION_1_2)
+    info.unusableReason = "Vulkan 1.2 required";
+  else if (!info.bufferDeviceAddress)
+    info.unusableReason = "bufferDeviceAddress not supported";
+  else if (!features.features.shaderInt64)
+    info.unusableReason = "shaderInt64 not supported";
+  else if (!info.shaderFloat64)
+    info.unusableReason = "shaderFloat64 not supported (watertight fallback needs it)";
+  else if ((subgroup.supportedOperations & neededSubgroup) != neededSubgroup ||
+           !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT))
     info.unusableReason = "subgroup basic/ballot/arithmetic in compute not supported";
-  else if (p.limits.timestampComputeAndGraphics != VK_TRUE) info.unusableReason = "timestamps on compute queues not supported";
+  else if (p.limits.timestampComputeAndGraphics != VK_TRUE)
+    info.unusableReason = "timestamps on compute queues not supported";
   info.usable = info.unusableReason.empty();
   return info;
 }
@@ -172,10 +185,13 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
 // leak of ours is still reported. Names are gathered first: dlopen must not run inside dl_iterate_phdr.
 void keepLoadedLibrariesMapped() {
   std::vector<std::string> names;
-  dl_iterate_phdr([](dl_phdr_info* info, size_t, void* out) {
-    if (info->dlpi_name && info->dlpi_name[0]) static_cast<std::vector<std::string>*>(out)->emplace_back(info->dlpi_name);
-    return 0;
-  }, &names);
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void* out) {
+        if (info->dlpi_name && info->dlpi_name[0])
+          static_cast<std::vector<std::string>*>(out)->emplace_back(info->dlpi_name);
+        return 0;
+      },
+      &names);
   for (const std::string& name : names) dlopen(name.c_str(), RTLD_LAZY | RTLD_NOLOAD | RTLD_NODELETE);
 }
 #endif
@@ -196,7 +212,8 @@ int chooseDevice(const std::vector<DeviceInfo>& infos) {
   int best = -1;
   for (const DeviceInfo& d : infos) {
     if (!d.usable) continue;
-    if (best < 0 || typeRank(d.type) < typeRank(infos[static_cast<size_t>(best)].type)) best = static_cast<int>(d.index);
+    if (best < 0 || typeRank(d.type) < typeRank(infos[static_cast<size_t>(best)].type))
+      best = static_cast<int>(d.index);
   }
   return best;
 }
@@ -227,7 +244,8 @@ VulkanContext::VulkanContext(const Options& options) : impl_(std::make_unique<Im
   Impl& v = *impl_;
   v.instance = createInstance(options.validation, &v, &v.messenger);
   auto devices = physicalDevices(v.instance);
-  if (devices.empty()) throw GpuError("no Vulkan device found (install mesa-vulkan-drivers for the lavapipe CPU driver)");
+  if (devices.empty())
+    throw GpuError("no Vulkan device found (install mesa-vulkan-drivers for the lavapipe CPU driver)");
   std::vector<DeviceInfo> infos;
   for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
   int chosen = options.deviceIndex;
@@ -242,7 +260,8 @@ VulkanContext::VulkanContext(const Options& options) : impl_(std::make_unique<Im
     }
   } else {
     chosen = chooseDevice(infos);
-    if (chosen < 0) throw GpuError("no usable Vulkan device: " + infos.front().name + ": " + infos.front().unusableReason);
+    if (chosen < 0)
+      throw GpuError("no usable Vulkan device: " + infos.front().name + ": " + infos.front().unusableReason);
   }
   v.physical = devices[static_cast<size_t>(chosen)];
   v.info = infos[static_cast<size_t>(chosen)];
@@ -284,7 +303,8 @@ VulkanContext::~VulkanContext() {
     vkDestroyDevice(v.device, nullptr);
   }
   if (v.messenger) {
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(v.instance, "vkDestroyDebugUtilsMessengerEXT"));
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(v.instance, "vkDestroyDebugUtilsMessengerEXT"));
     if (destroy) destroy(v.instance, v.messenger, nullptr);
   }
   if (v.instance) vkDestroyInstance(v.instance, nullptr);

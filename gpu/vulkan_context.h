@@ -10,11 +10,11 @@
 namespace ht::gpu {
 
 struct DeviceInfo {
-  std::uint32_t index = 0;            // position in vkEnumeratePhysicalDevices order (what --device takes)
+  std::uint32_t index = 0;  // position in vkEnumeratePhysicalDevices order (what --device takes)
   std::string name;
-  std::string type;                   // "discrete", "integrated", "virtual", "cpu", "other"
-  std::string apiVersion;             // "1.3.230"
-  std::string driver;                 // driver name + info
+  std::string type;        // "discrete", "integrated", "virtual", "cpu", "other"
+  std::string apiVersion;  // "1.3.230"
+  std::string driver;      // driver name + info
   std::uint64_t maxStorageBufferRange = 0;
   std::uint64_t maxMemoryAllocationSize = 0;
   std::uint32_t maxComputeWorkGroupInvocations = 0;
@@ -23,7 +23,7 @@ struct DeviceInfo {
   float timestampPeriodNs = 0.0f;
   bool shaderFloat64 = false;
   bool bufferDeviceAddress = false;
-  bool usable = false;                // has everything holotrace needs
+  bool usable = false;  // has everything holotrace needs
   std::string unusableReason;
 };
 

@@ -1,9 +1,9 @@
 // wavefront_types.h - data shared by the host (C++) and every wavefront pass (GLSL): the per-frame block of
 // buffer device addresses and parameters, scene records (materials, lights, texture directory) and the
 // layout of the queues. All buffers are reached through VK_KHR_buffer_device_address, so no buffer is bound
-// through a descriptor and lavapipe's 128 MiB maxStorageBufferRange (toolchain.md §4, P10) does not apply.
+// through a descriptor and lavapipe's 128 MiB maxStorageBufferRange (docs/TOOLCHAIN.md §4, P10) does not apply.
 //
-// Pass order per batch of paths (bvh.md §7, "proposed holotrace passes"):
+// Pass order per batch of paths (docs/BVH.md §7, "proposed holotrace passes"):
 //   raygen -> [trace_closest -> shade -> (prepare -> trace_any -> gather_direct)? -> prepare]* -> resolve
 // and once per frame: interleave. Queues are compacted with atomic counters; a `prepare` invocation turns a
 // counter into vkCmdDispatchIndirect arguments, so an empty queue dispatches zero workgroups.
@@ -65,38 +65,38 @@ struct GpuLight {
 };
 
 struct GpuTexture {
-  uvec4 info;      // x = first texel index, y = width, z = height, w unused
+  uvec4 info;  // x = first texel index, y = width, z = height, w unused
 };
 
 // Counters written by the passes; the host reads the whole block back after a frame.
 struct GpuCounters {
-  uint queueCount[2];      // entries in ray queue 0 / 1 (ping-pong)
-  uint shadowCount;        // entries in the shadow queue
-  uint overflowCount;      // rays that hit the traversal step limit (must stay 0)
-  uint maxSteps;           // largest traversal step count seen
-  uint raysTraced;         // closest + any rays traced in this frame
-  uint nanCount;           // non-finite radiance values clamped to 0 (must stay 0)
-  uint subgroupSize;       // written by refine_select: the subgroup size its dispatch ran with
-  uvec4 dispatch[3];       // indirect dispatch args: [0] queue 0, [1] queue 1, [2] shadow queue (xyz, w unused)
+  uint queueCount[2];  // entries in ray queue 0 / 1 (ping-pong)
+  uint shadowCount;    // entries in the shadow queue
+  uint overflowCount;  // rays that hit the traversal step limit (must stay 0)
+  uint maxSteps;       // largest traversal step count seen
+  uint raysTraced;     // closest + any rays traced in this frame
+  uint nanCount;       // non-finite radiance values clamped to 0 (must stay 0)
+  uint subgroupSize;   // written by refine_select: the subgroup size its dispatch ran with
+  uvec4 dispatch[3];   // indirect dispatch args: [0] queue 0, [1] queue 1, [2] shadow queue (xyz, w unused)
 };
 
 // One block per frame, in a uniform buffer (binding HT_BINDING_FRAME). Every member is 16-byte aligned, so the
 // std140 layout GLSL uses equals the C++ layout. Per-path state and scene records are texel buffers (see
 // gpu/shaders/common.glsl for why); only the atomic counters and the BVH fallback are reached by address.
 struct FrameBlock {
-  uint64_t counters;       // GpuCounters (device address)
-  uint64_t refine;         // adaptive refinement: slot counts, staging, the refined targets (device address)
-  uvec4 dims;              // x = image width, y = image height (one view), z = spp, w = number of targets
-  uvec4 views;             // x = views in this frame, y = index of its first view, z = filter (HT_FILTER_*), w unused
-  uvec4 scene;             // x = light count, y = texture count, z = step limit, w = max depth
-  uvec4 frame;             // x = seed; yzw unused (per-dispatch values travel in PassConstants)
-  uvec4 refineInfo;        // adaptive refinement (refine_select.comp): x = contrast threshold (float bits), y = first
-                           // entry of the target list in `refine`, z = subgroup size the slots assume,
-                           // w = the base pass's spp while the listed targets are traced (resolve.comp averages
-                           // its samples with theirs), 0 otherwise
-  uvec4 flags;             // x = scene has vertex normals, y = scene has texcoords
-  vec4 background;         // rgb radiance of escaped rays
-  vec4 ambient;            // rgb ambient irradiance on diffuse surfaces
+  uint64_t counters;  // GpuCounters (device address)
+  uint64_t refine;    // adaptive refinement: slot counts, staging, the refined targets (device address)
+  uvec4 dims;         // x = image width, y = image height (one view), z = spp, w = number of targets
+  uvec4 views;        // x = views in this frame, y = index of its first view, z = filter (HT_FILTER_*), w unused
+  uvec4 scene;        // x = light count, y = texture count, z = step limit, w = max depth
+  uvec4 frame;        // x = seed; yzw unused (per-dispatch values travel in PassConstants)
+  uvec4 refineInfo;   // adaptive refinement (refine_select.comp): x = contrast threshold (float bits), y = first
+                      // entry of the target list in `refine`, z = subgroup size the slots assume,
+                      // w = the base pass's spp while the listed targets are traced (resolve.comp averages
+                      // its samples with theirs), 0 otherwise
+  uvec4 flags;        // x = scene has vertex normals, y = scene has texcoords
+  vec4 background;    // rgb radiance of escaped rays
+  vec4 ambient;       // rgb ambient irradiance on diffuse surfaces
   LenticularParams lenticular;
   PinholeParams pinhole;
   QuiltParams quilt;
@@ -108,24 +108,24 @@ struct FrameBlock {
 };
 
 // Descriptor set 0 (gpu/shaders/common.glsl, gpu/shaders/bvh_access.glsl).
-HT_CONST uint HT_BINDING_BVH_FIRST = 0u;       // 0-3: BVH node / triangle texel views
-HT_CONST uint HT_BINDING_FRAME = 4u;           // uniform buffer: FrameBlock
-HT_CONST uint HT_BINDING_STATE_FIRST = 5u;     // 5-16: per-path state, storage texel buffers
-HT_CONST uint HT_BINDING_SCENE_FIRST = 17u;    // 17-24: scene records, uniform texel buffers
-HT_CONST uint HT_BINDING_RAY_TABLE = 25u;      // uniform texel buffer: ray-table entries (origin, direction)
-HT_CONST uint HT_BINDING_SUBPIXEL_TEXELS = 26u; // uniform texel buffer: read-only view of the subpixel buffer
+HT_CONST uint HT_BINDING_BVH_FIRST = 0u;         // 0-3: BVH node / triangle texel views
+HT_CONST uint HT_BINDING_FRAME = 4u;             // uniform buffer: FrameBlock
+HT_CONST uint HT_BINDING_STATE_FIRST = 5u;       // 5-16: per-path state, storage texel buffers
+HT_CONST uint HT_BINDING_SCENE_FIRST = 17u;      // 17-24: scene records, uniform texel buffers
+HT_CONST uint HT_BINDING_RAY_TABLE = 25u;        // uniform texel buffer: ray-table entries (origin, direction)
+HT_CONST uint HT_BINDING_SUBPIXEL_TEXELS = 26u;  // uniform texel buffer: read-only view of the subpixel buffer
 HT_CONST uint HT_BINDING_COUNT = 27u;
 
 // Push constants of every pass (40 B of the 128 B guaranteed). The BVH addresses sit here, not in the
 // FrameBlock, so the traversal loop reads them without an extra dependent load per node fetch.
 struct PassConstants {
-  uint64_t frame;          // address of the FrameBlock
-  uint64_t nodes;          // == FrameBlock.nodes
-  uint64_t bvhTriangles;   // == FrameBlock.bvhTriangles
-  uint batchFirst;         // first path index of this batch (a multiple of spp)
-  uint batchCount;         // paths in this batch
-  uint depth;              // bounce number of the current queue (0 = primary rays)
-  uint queue;              // input ray queue (0/1); output queue = 1 - queue
+  uint64_t frame;         // address of the FrameBlock
+  uint64_t nodes;         // == FrameBlock.nodes
+  uint64_t bvhTriangles;  // == FrameBlock.bvhTriangles
+  uint batchFirst;        // first path index of this batch (a multiple of spp)
+  uint batchCount;        // paths in this batch
+  uint depth;             // bounce number of the current queue (0 = primary rays)
+  uint queue;             // input ray queue (0/1); output queue = 1 - queue
 };
 
 HT_SHARED_END

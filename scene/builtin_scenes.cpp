@@ -79,14 +79,16 @@ Scene makeShowcaseScene() {
     makeBox(s, {0.38f, -0.55f, -0.5f}, glm::vec3(0.25f), addMaterial(s, diffuse("red", {0.8f, 0.12f, 0.1f})));
   });
   addNode(s, "green-sphere", [&] {
-    makeIcosphere(s, {0.38f, -0.05f, -0.5f}, 0.25f, kSphereSubdivisions, addMaterial(s, diffuse("green", {0.15f, 0.7f, 0.2f})));
+    makeIcosphere(s, {0.38f, -0.05f, -0.5f}, 0.25f, kSphereSubdivisions,
+                  addMaterial(s, diffuse("green", {0.15f, 0.7f, 0.2f})));
   });
   // In front of it (z > 0): a glass sphere and a small glowing sphere.
   addNode(s, "glass-sphere", [&] {
     makeIcosphere(s, {0.28f, -0.45f, 0.45f}, 0.35f, kSphereSubdivisions, addMaterial(s, glass("glass", 1.5f)));
   });
   addNode(s, "glow-sphere", [&] {
-    makeIcosphere(s, {-0.38f, -0.65f, 0.55f}, 0.15f, kSphereSubdivisions, addMaterial(s, emitter("glow", {3.0f, 1.8f, 0.5f})));
+    makeIcosphere(s, {-0.38f, -0.65f, 0.55f}, 0.15f, kSphereSubdivisions,
+                  addMaterial(s, emitter("glow", {3.0f, 1.8f, 0.5f})));
   });
 
   Light point;  // above and in front, so shadows fall onto the floor and the back wall
@@ -109,16 +111,19 @@ Scene makePlainScene() {
   Scene s;
   s.name = "builtin:plain";
   addNode(s, "room", [&] {
-    addRoom(s, addMaterial(s, diffuse("floor", {0.6f, 0.6f, 0.55f})), addMaterial(s, diffuse("wall", {0.45f, 0.5f, 0.6f})));
+    addRoom(s, addMaterial(s, diffuse("floor", {0.6f, 0.6f, 0.55f})),
+            addMaterial(s, diffuse("wall", {0.45f, 0.5f, 0.6f})));
   });
   addNode(s, "orange-sphere", [&] {
-    makeIcosphere(s, {-0.3f, -0.4f, -0.45f}, 0.4f, kSphereSubdivisions, addMaterial(s, diffuse("orange", {0.9f, 0.45f, 0.1f})));
+    makeIcosphere(s, {-0.3f, -0.4f, -0.45f}, 0.4f, kSphereSubdivisions,
+                  addMaterial(s, diffuse("orange", {0.9f, 0.45f, 0.1f})));
   });
   addNode(s, "teal-box", [&] {
     makeBox(s, {0.38f, -0.55f, -0.4f}, glm::vec3(0.25f), addMaterial(s, diffuse("teal", {0.1f, 0.6f, 0.6f})));
   });
   addNode(s, "violet-sphere", [&] {
-    makeIcosphere(s, {0.25f, -0.5f, 0.5f}, 0.3f, kSphereSubdivisions, addMaterial(s, diffuse("violet", {0.55f, 0.3f, 0.8f})));
+    makeIcosphere(s, {0.25f, -0.5f, 0.5f}, 0.3f, kSphereSubdivisions,
+                  addMaterial(s, diffuse("violet", {0.55f, 0.3f, 0.8f})));
   });
   addNode(s, "yellow-box", [&] {
     makeBox(s, {-0.35f, -0.65f, 0.6f}, glm::vec3(0.15f), addMaterial(s, diffuse("yellow", {0.9f, 0.85f, 0.2f})));
@@ -129,9 +134,8 @@ Scene makePlainScene() {
 Scene makeSphereScene() {
   Scene s;
   s.name = "builtin:sphere";
-  addNode(s, "sphere", [&] {
-    makeIcosphere(s, glm::vec3(0.0f), 1.0f, 5, addMaterial(s, diffuse("sphere", glm::vec3(0.8f))));
-  });
+  addNode(s, "sphere",
+          [&] { makeIcosphere(s, glm::vec3(0.0f), 1.0f, 5, addMaterial(s, diffuse("sphere", glm::vec3(0.8f)))); });
   return s;
 }
 
@@ -152,7 +156,8 @@ Scene makeMirrorTestScene() {
     makeQuad(s, glm::vec3(0.0f), {1.0f, 0.0f, 0.0f}, {0.0f, 3.25f, -3.25f}, addMaterial(s, mirror("mirror")));
   });
   addNode(s, "emitter", [&] {
-    makeIcosphere(s, {0.0f, 2.5f, 0.0f}, 0.75f, kSphereSubdivisions, addMaterial(s, emitter("magenta", {1.0f, 0.1f, 0.8f})));
+    makeIcosphere(s, {0.0f, 2.5f, 0.0f}, 0.75f, kSphereSubdivisions,
+                  addMaterial(s, emitter("magenta", {1.0f, 0.1f, 0.8f})));
   });
   return s;
 }

@@ -14,8 +14,7 @@ std::string readSceneFile(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status))
-    throw SceneError(path, "file not found (check the path and the working directory)");
+  if (ec || !fs::exists(status)) throw SceneError(path, "file not found (check the path and the working directory)");
   if (!fs::is_regular_file(status)) throw SceneError(path, "not a regular file (pass a scene file, not a directory)");
   const std::uintmax_t size = fs::file_size(path, ec);
   if (ec) throw SceneError(path, "cannot determine the file size (" + ec.message() + ")");

@@ -1,4 +1,5 @@
-// gltf_accessor.cpp - accessor validation and decoding (glTF 2.0 spec, "Binary Data Storage": accessors, bufferViews, buffers).
+// gltf_accessor.cpp - accessor validation and decoding (glTF 2.0 spec, "Binary Data Storage": accessors, bufferViews,
+// buffers).
 #include "scene/gltf_accessor.h"
 
 #include <algorithm>
@@ -45,25 +46,33 @@ std::string typeName(int type) {
 }
 
 // Decodes one component to float. Normalized integers follow the glTF 2.0 spec's decoding equations (section
-// "Animations", repeated in the KHR_mesh_quantization README): u8 c/255, i8 max(c/127, -1), u16 c/65535, i16 max(c/32767, -1).
+// "Animations", repeated in the KHR_mesh_quantization README): u8 c/255, i8 max(c/127, -1), u16 c/65535, i16
+// max(c/32767, -1).
 float decodeComponent(const unsigned char* p, int componentType, bool normalized) {
   switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p, 4); return v; }
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0f : float(p[0]);
     case TINYGLTF_COMPONENT_TYPE_BYTE: {
       const auto c = static_cast<signed char>(p[0]);
       return normalized ? std::max(c / 127.0f, -1.0f) : float(c);
     }
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      std::uint16_t c; std::memcpy(&c, p, 2);
+      std::uint16_t c;
+      std::memcpy(&c, p, 2);
       return normalized ? c / 65535.0f : float(c);
     }
     case TINYGLTF_COMPONENT_TYPE_SHORT: {
-      std::int16_t c; std::memcpy(&c, p, 2);
+      std::int16_t c;
+      std::memcpy(&c, p, 2);
       return normalized ? std::max(c / 32767.0f, -1.0f) : float(c);
     }
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-      std::uint32_t c; std::memcpy(&c, p, 4);
+      std::uint32_t c;
+      std::memcpy(&c, p, 4);
       return float(c);
     }
     default: return 0.0f;  // unreachable: component types are validated first
@@ -73,8 +82,16 @@ float decodeComponent(const unsigned char* p, int componentType, bool normalized
 std::uint32_t decodeIndex(const unsigned char* p, int componentType) {
   switch (componentType) {
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t c; std::memcpy(&c, p, 2); return c; }
-    default: { std::uint32_t c; std::memcpy(&c, p, 4); return c; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      std::uint16_t c;
+      std::memcpy(&c, p, 2);
+      return c;
+    }
+    default: {
+      std::uint32_t c;
+      std::memcpy(&c, p, 4);
+      return c;
+    }
   }
 }
 
@@ -112,21 +129,23 @@ ElementSpan checkedSpan(const tinygltf::Model& model, int viewIndex, std::size_t
     throw SceneError(use.file, who + ": bufferView " + std::to_string(viewIndex) + " spans bytes [" +
                                    std::to_string(view.byteOffset) + ", " + std::to_string(view.byteOffset) + "+" +
                                    std::to_string(view.byteLength) + ") but buffer " + std::to_string(view.buffer) +
-                                   " has " + std::to_string(bufferBytes) + " bytes (the buffer is too short or the file truncated)");
+                                   " has " + std::to_string(bufferBytes) +
+                                   " bytes (the buffer is too short or the file truncated)");
   const std::size_t stride = (allowStride && view.byteStride != 0) ? view.byteStride : elementBytes;
   if (stride < elementBytes)
     throw SceneError(use.file, who + ": byteStride " + std::to_string(stride) + " is smaller than the element size " +
-                                   std::to_string(elementBytes) + " (fix bufferView " + std::to_string(viewIndex) + ")");
+                                   std::to_string(elementBytes) + " (fix bufferView " + std::to_string(viewIndex) +
+                                   ")");
   // Last element ends at byteOffset + stride * (count - 1) + elementBytes; test without overflow.
   const std::size_t available = view.byteLength;
-  const bool fits = count == 0 ||
-                    (byteOffset <= available && elementBytes <= available - byteOffset &&
-                     (count - 1) <= (available - byteOffset - elementBytes) / stride);
+  const bool fits = count == 0 || (byteOffset <= available && elementBytes <= available - byteOffset &&
+                                   (count - 1) <= (available - byteOffset - elementBytes) / stride);
   if (!fits)
     throw SceneError(use.file, who + ": " + std::to_string(count) + " elements of " + std::to_string(elementBytes) +
-                                   " bytes (stride " + std::to_string(stride) + ") at offset " + std::to_string(byteOffset) +
-                                   " do not fit in bufferView " + std::to_string(viewIndex) + " of " +
-                                   std::to_string(available) + " bytes (the buffer is too short for its accessor)");
+                                   " bytes (stride " + std::to_string(stride) + ") at offset " +
+                                   std::to_string(byteOffset) + " do not fit in bufferView " +
+                                   std::to_string(viewIndex) + " of " + std::to_string(available) +
+                                   " bytes (the buffer is too short for its accessor)");
   const unsigned char* bufferData = model.buffers[static_cast<std::size_t>(view.buffer)].data.data();
   return {bufferData + view.byteOffset + byteOffset, stride};
 }
@@ -147,18 +166,20 @@ void applySparse(const tinygltf::Model& model, const tinygltf::Accessor& a, int 
   if (sparse.indices.byteOffset < 0 || sparse.values.byteOffset < 0)
     throw SceneError(use.file, use.what + ": negative sparse byteOffset (fix the file)");
   const std::size_t compBytes = componentBytes(a.componentType);
-  const ElementSpan idx = checkedSpan(model, sparse.indices.bufferView, static_cast<std::size_t>(sparse.indices.byteOffset),
-                                      n, componentBytes(indexType), false, use, "sparse indices");
-  const ElementSpan val = checkedSpan(model, sparse.values.bufferView, static_cast<std::size_t>(sparse.values.byteOffset),
-                                      n, compBytes * static_cast<std::size_t>(components), false, use, "sparse values");
+  const ElementSpan idx =
+      checkedSpan(model, sparse.indices.bufferView, static_cast<std::size_t>(sparse.indices.byteOffset), n,
+                  componentBytes(indexType), false, use, "sparse indices");
+  const ElementSpan val =
+      checkedSpan(model, sparse.values.bufferView, static_cast<std::size_t>(sparse.values.byteOffset), n,
+                  compBytes * static_cast<std::size_t>(components), false, use, "sparse values");
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t target = decodeIndex(idx.base + i * idx.stride, indexType);
     if (target >= a.count)
       throw SceneError(use.file, use.what + ": sparse index " + std::to_string(target) + " >= accessor count " +
                                      std::to_string(a.count) + " (fix the file)");
     for (int c = 0; c < components; ++c)
-      values[target * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] =
-          decodeComponent(val.base + i * val.stride + static_cast<std::size_t>(c) * compBytes, a.componentType, normalized);
+      values[target * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] = decodeComponent(
+          val.base + i * val.stride + static_cast<std::size_t>(c) * compBytes, a.componentType, normalized);
   }
 }
 
@@ -184,7 +205,8 @@ std::vector<float> readFloatAccessor(const tinygltf::Model& model, int index, in
   // stored bytes bound it.
   ElementSpan span;
   if (a.bufferView >= 0)
-    span = checkedSpan(model, a.bufferView, a.byteOffset, a.count, elementBytes, true, use, "accessor " + std::to_string(index));
+    span = checkedSpan(model, a.bufferView, a.byteOffset, a.count, elementBytes, true, use,
+                       "accessor " + std::to_string(index));
   else if (a.count > kMaxZeroFilledElements)
     throw SceneError(use.file, use.what + ": accessor " + std::to_string(index) + " has no bufferView and count " +
                                    std::to_string(a.count) + " (more than " + std::to_string(kMaxZeroFilledElements) +
@@ -193,8 +215,8 @@ std::vector<float> readFloatAccessor(const tinygltf::Model& model, int index, in
   if (span.base)
     for (std::size_t i = 0; i < a.count; ++i)
       for (int c = 0; c < components; ++c)
-        values[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] =
-            decodeComponent(span.base + i * span.stride + static_cast<std::size_t>(c) * compBytes, a.componentType, normalized);
+        values[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] = decodeComponent(
+            span.base + i * span.stride + static_cast<std::size_t>(c) * compBytes, a.componentType, normalized);
   if (a.sparse.isSparse) applySparse(model, a, components, normalized, values, use);
   return values;
 }
@@ -208,9 +230,11 @@ std::vector<std::uint32_t> readIndexAccessor(const tinygltf::Model& model, int i
   if (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
       ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
     throw SceneError(use.file, use.what + ": index accessor " + std::to_string(index) + " has componentType " +
-                                   std::to_string(ct) + "; indices must be unsigned byte, short or int (5121, 5123, 5125)");
+                                   std::to_string(ct) +
+                                   "; indices must be unsigned byte, short or int (5121, 5123, 5125)");
   if (a.sparse.isSparse)
-    throw SceneError(use.file, use.what + ": sparse index accessors are not supported (re-export without sparse indices)");
+    throw SceneError(use.file,
+                     use.what + ": sparse index accessors are not supported (re-export without sparse indices)");
   const ElementSpan span = checkedSpan(model, a.bufferView, a.byteOffset, a.count, componentBytes(ct), true, use,
                                        "index accessor " + std::to_string(index));
   std::vector<std::uint32_t> indices(a.count);

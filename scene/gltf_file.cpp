@@ -1,5 +1,5 @@
 // gltf_file.cpp - GLB container checks, JSON pre-checks, confined file access and checked image decoding
-// around tinygltf 2.7.0 (Debian 12; known issues listed in docs/service.md §6).
+// around tinygltf 2.7.0 (Debian 12; known issues listed in docs/SERVICE.md §6).
 #include "scene/gltf_file.h"
 
 #include <algorithm>
@@ -40,8 +40,8 @@ std::uint32_t readLe32(const std::string& bytes, std::size_t offset) {
 bool hasGlbMagic(const std::string& bytes) { return bytes.size() >= 4 && readLe32(bytes, 0) == kGlbMagic; }
 
 struct GlbLayout {
-  std::size_t length = 0;      // bytes of the GLB (header's total length)
-  std::string_view json;       // JSON chunk content
+  std::size_t length = 0;  // bytes of the GLB (header's total length)
+  std::string_view json;   // JSON chunk content
 };
 
 GlbLayout checkGlbLayout(const std::string& path, const std::string& bytes, std::vector<std::string>& warnings) {
@@ -94,13 +94,15 @@ std::string joined(const std::vector<std::string>& names) {
 
 [[noreturn]] void refuseRequiredExtension(const std::string& path, const std::string& name) {
   if (name == "KHR_draco_mesh_compression")
-    throw SceneError(path, "requires KHR_draco_mesh_compression: Draco-compressed meshes are not supported "
-                           "(decompress the file first, e.g. with glTF-Transform: read it with the draco3d decoder "
-                           "registered, dispose KHR_draco_mesh_compression and write it again; or re-export "
-                           "without Draco compression)");
+    throw SceneError(path,
+                     "requires KHR_draco_mesh_compression: Draco-compressed meshes are not supported "
+                     "(decompress the file first, e.g. with glTF-Transform: read it with the draco3d decoder "
+                     "registered, dispose KHR_draco_mesh_compression and write it again; or re-export "
+                     "without Draco compression)");
   if (name == "EXT_meshopt_compression" || name == "KHR_meshopt_compression")
-    throw SceneError(path, "requires " + name + ": meshoptimizer-compressed buffers are not supported "
-                           "(re-export without meshopt compression, e.g. glTF-Transform without --meshopt)");
+    throw SceneError(path, "requires " + name +
+                               ": meshoptimizer-compressed buffers are not supported "
+                               "(re-export without meshopt compression, e.g. glTF-Transform without --meshopt)");
   throw SceneError(path, "requires the glTF extension " + name + ", which holotrace does not support (supported: " +
                              joined(supportedGltfExtensions()) + "; re-export the file without it)");
 }
@@ -188,7 +190,8 @@ bool readFileInRoot(std::vector<unsigned char>* out, std::string* err, const std
   std::error_code ec;
   const std::uintmax_t size = fs::file_size(file, ec);
   if (ec || size > limits::kMaxFileBytes) {
-    if (err) *err += "'" + file + "' is unreadable or larger than " + std::to_string(limits::kMaxFileBytes) + " bytes\n";
+    if (err)
+      *err += "'" + file + "' is unreadable or larger than " + std::to_string(limits::kMaxFileBytes) + " bytes\n";
     return false;
   }
   std::ifstream in(file, std::ios::binary);
@@ -232,9 +235,15 @@ ImageSize jpegSize(const unsigned char* b, std::size_t n) {
   while (pos + 4 <= n) {
     if (b[pos] != 0xFF) return {};
     const unsigned char marker = b[pos + 1];
-    if (marker == 0xFF) { ++pos; continue; }                                           // fill byte
-    if ((marker >= 0xD0 && marker <= 0xD7) || marker == 0x01) { pos += 2; continue; }  // no length field
-    if (marker == 0xDA || marker == 0xD9) return {};                                   // scan/end before a frame
+    if (marker == 0xFF) {
+      ++pos;
+      continue;
+    }  // fill byte
+    if ((marker >= 0xD0 && marker <= 0xD7) || marker == 0x01) {
+      pos += 2;
+      continue;
+    }                                                 // no length field
+    if (marker == 0xDA || marker == 0xD9) return {};  // scan/end before a frame
     const std::size_t length = be16(b + pos + 2);
     const bool sof = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
     if (sof) {
@@ -284,18 +293,20 @@ void decodeBufferViewImages(const std::string& path, tinygltf::Model& model, std
     if (image.bufferView < 0 || !image.image.empty()) continue;
     const std::string what = "image " + std::to_string(i);
     if (static_cast<std::size_t>(image.bufferView) >= model.bufferViews.size())
-      throw SceneError(path, what + " refers to missing bufferView " + std::to_string(image.bufferView) + " (fix the file)");
+      throw SceneError(path,
+                       what + " refers to missing bufferView " + std::to_string(image.bufferView) + " (fix the file)");
     const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(image.bufferView)];
     if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size())
-      throw SceneError(path, what + ": its bufferView refers to missing buffer " + std::to_string(view.buffer) + " (fix the file)");
+      throw SceneError(
+          path, what + ": its bufferView refers to missing buffer " + std::to_string(view.buffer) + " (fix the file)");
     const std::vector<unsigned char>& data = model.buffers[static_cast<std::size_t>(view.buffer)].data;
     if (view.byteLength == 0 || view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
       throw SceneError(path, what + ": bufferView bytes [" + std::to_string(view.byteOffset) + ", +" +
                                  std::to_string(view.byteLength) + ") exceed its buffer of " +
                                  std::to_string(data.size()) + " bytes (the file is truncated or corrupt)");
     std::string err, warn;
-    const bool ok = decodeImageChecked(&image, static_cast<int>(i), &err, &warn, data.data() + view.byteOffset,
-                                       view.byteLength);
+    const bool ok =
+        decodeImageChecked(&image, static_cast<int>(i), &err, &warn, data.data() + view.byteOffset, view.byteLength);
     if (!warn.empty()) warnings.push_back(warn);
     if (!err.empty() && err.back() == '\n') err.pop_back();
     if (!ok) throw SceneError(path, err.empty() ? what + " cannot be decoded (re-export it as PNG or JPEG)" : err);
@@ -316,7 +327,8 @@ GltfDocument readGltfDocument(const std::string& path) {
   GltfDocument doc;
   const bool glb = hasGlbMagic(bytes);
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".glb" && !glb)
     throw SceneError(path, "not a GLB file: the 'glTF' magic is missing (rename a JSON file to .gltf, or re-export)");
 
@@ -338,11 +350,11 @@ GltfDocument readGltfDocument(const std::string& path) {
 
   std::string err, warn;
   const std::string baseDir = root.root.string();
-  const bool ok = glb ? loader.LoadBinaryFromMemory(&doc.model, &err, &warn,
-                                                    reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                    static_cast<unsigned int>(length), baseDir)
-                      : loader.LoadASCIIFromString(&doc.model, &err, &warn, bytes.data(),
-                                                   static_cast<unsigned int>(length), baseDir);
+  const bool ok =
+      glb ? loader.LoadBinaryFromMemory(&doc.model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                        static_cast<unsigned int>(length), baseDir)
+          : loader.LoadASCIIFromString(&doc.model, &err, &warn, bytes.data(), static_cast<unsigned int>(length),
+                                       baseDir);
   if (!warn.empty()) doc.warnings.push_back(warn);
   if (!ok) {
     if (!err.empty() && err.back() == '\n') err.pop_back();

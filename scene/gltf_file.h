@@ -3,7 +3,7 @@
 // Before tinygltf sees the bytes: the GLB container is validated (header, chunk lengths), the JSON is parsed
 // once to refuse non-glTF-2.0 files and unsupported `extensionsRequired` with a clear message, file access
 // is confined to the scene's folder with a size cap (no `wordexp`, no `..` escapes), and images are checked
-// to be PNG/JPEG no larger than limits::kMaxImageDimension before they are decoded (docs/service.md §6).
+// to be PNG/JPEG no larger than limits::kMaxImageDimension before they are decoded (docs/SERVICE.md §6).
 #pragma once
 #include <string>
 #include <vector>

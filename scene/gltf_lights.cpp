@@ -16,10 +16,14 @@ float finite(double v, const std::string& file, const std::string& what) {
 
 Light convertLight(const tinygltf::Light& in, const std::string& file, const std::string& what) {
   Light out;
-  if (in.type == "point") out.type = Light::Type::Point;
-  else if (in.type == "spot") out.type = Light::Type::Spot;
-  else if (in.type == "directional") out.type = Light::Type::Directional;
-  else throw SceneError(file, what + " has type '" + in.type + "' (expected point, spot or directional)");
+  if (in.type == "point")
+    out.type = Light::Type::Point;
+  else if (in.type == "spot")
+    out.type = Light::Type::Spot;
+  else if (in.type == "directional")
+    out.type = Light::Type::Directional;
+  else
+    throw SceneError(file, what + " has type '" + in.type + "' (expected point, spot or directional)");
   if (!in.color.empty()) {
     if (in.color.size() != 3) throw SceneError(file, what + " color needs 3 numbers (fix the light)");
     out.color = {finite(in.color[0], file, what + " color"), finite(in.color[1], file, what + " color"),
@@ -34,7 +38,8 @@ Light convertLight(const tinygltf::Light& in, const std::string& file, const std
 
 }  // namespace
 
-bool appendNodeLight(const tinygltf::Model& model, const NodeInstance& instance, Scene& scene, const std::string& file) {
+bool appendNodeLight(const tinygltf::Model& model, const NodeInstance& instance, Scene& scene,
+                     const std::string& file) {
   const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(instance.node)];
   const auto ext = node.extensions.find("KHR_lights_punctual");
   if (ext == node.extensions.end()) return false;

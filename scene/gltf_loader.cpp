@@ -24,7 +24,7 @@ struct PrimitiveGeometry {
   std::vector<glm::vec2> texcoords;  // empty: none
   std::vector<glm::uvec3> triangles;
   std::uint32_t material = 0;
-  std::uint32_t node = 0;            // index into Scene::nodes of the node instance it belongs to
+  std::uint32_t node = 0;  // index into Scene::nodes of the node instance it belongs to
 };
 
 struct LoadContext {
@@ -32,7 +32,7 @@ struct LoadContext {
   const std::string& file;
   SceneLoadReport& report;
   Scene& scene;
-  int defaultMaterial = -1;  // created on first use by a primitive without material
+  int defaultMaterial = -1;                   // created on first use by a primitive without material
   std::unordered_set<std::string> nodeNames;  // Scene::nodes names so far (kept unique; files may repeat names)
 };
 
@@ -76,10 +76,13 @@ void checkSizeBudget(const LoadContext& ctx, const std::vector<NodeInstance>& in
       const AccessorUse use{ctx.file, primitiveName(node.mesh, p) + " POSITION"};
       const int position = attribute(prim, "POSITION");
       if (position < 0)
-        throw SceneError(ctx.file, primitiveName(node.mesh, p) + " has no POSITION attribute (every primitive needs one)");
+        throw SceneError(ctx.file,
+                         primitiveName(node.mesh, p) + " has no POSITION attribute (every primitive needs one)");
       const std::size_t nv = checkedAccessorCount(ctx.model, position, use);
-      const std::size_t refs = prim.indices >= 0
-          ? checkedAccessorCount(ctx.model, prim.indices, {ctx.file, primitiveName(node.mesh, p) + " indices"}) : nv;
+      const std::size_t refs =
+          prim.indices >= 0
+              ? checkedAccessorCount(ctx.model, prim.indices, {ctx.file, primitiveName(node.mesh, p) + " indices"})
+              : nv;
       triangles += triangleCount(prim.mode, refs);
       vertices += nv;
       if (triangles > limits::kMaxTriangles || vertices > 3 * limits::kMaxTriangles)
@@ -99,9 +102,12 @@ std::vector<glm::uvec3> assembleTriangles(int mode, const std::vector<std::uint3
   const std::size_t n = triangleCount(mode, v.size());
   tris.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (mode == TINYGLTF_MODE_TRIANGLES) tris.push_back({v[3 * i], v[3 * i + 1], v[3 * i + 2]});
-    else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) tris.push_back({v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
-    else tris.push_back({v[i + 1], v[i + 2], v[0]});
+    if (mode == TINYGLTF_MODE_TRIANGLES)
+      tris.push_back({v[3 * i], v[3 * i + 1], v[3 * i + 2]});
+    else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+      tris.push_back({v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]});
+    else
+      tris.push_back({v[i + 1], v[i + 2], v[0]});
   }
   return tris;
 }
@@ -150,7 +156,8 @@ std::vector<Vec> toVectors(const std::vector<float>& flat) {
 void checkAttributeCount(const LoadContext& ctx, std::size_t count, std::size_t vertexCount, const std::string& what) {
   if (count != vertexCount)
     throw SceneError(ctx.file, what + " has " + std::to_string(count) + " elements but POSITION has " +
-                                   std::to_string(vertexCount) + " (all attributes of a primitive need the same count)");
+                                   std::to_string(vertexCount) +
+                                   " (all attributes of a primitive need the same count)");
 }
 
 // Positions by the world matrix; normals by its inverse transpose (normals are covectors: n' = M^-T n keeps
@@ -175,8 +182,8 @@ void transformToWorld(PrimitiveGeometry& g, const glm::dmat4& world, SceneLoadRe
 PrimitiveGeometry readPrimitive(LoadContext& ctx, const tinygltf::Primitive& prim, const glm::dmat4& world,
                                 const std::string& what) {
   PrimitiveGeometry g;
-  g.positions = toVectors<glm::vec3>(readFloatAccessor(ctx.model, attribute(prim, "POSITION"), TINYGLTF_TYPE_VEC3,
-                                                       {ctx.file, what + " POSITION"}));
+  g.positions = toVectors<glm::vec3>(
+      readFloatAccessor(ctx.model, attribute(prim, "POSITION"), TINYGLTF_TYPE_VEC3, {ctx.file, what + " POSITION"}));
   const std::size_t nv = g.positions.size();
   if (const int a = attribute(prim, "NORMAL"); a >= 0) {
     g.normals = toVectors<glm::vec3>(readFloatAccessor(ctx.model, a, TINYGLTF_TYPE_VEC3, {ctx.file, what + " NORMAL"}));
@@ -309,8 +316,9 @@ Scene loadGltf(const std::string& path, SceneLoadReport* reportOut) {
   if (report.skippedPrimitives > 0)
     report.warnings.push_back(std::to_string(report.skippedPrimitives) + " point/line primitives skipped");
   if (scene.triangles.empty())
-    throw SceneError(path, "the scene has no triangles (nothing to render; check that the default scene contains "
-                           "meshes with triangle primitives)");
+    throw SceneError(path,
+                     "the scene has no triangles (nothing to render; check that the default scene contains "
+                     "meshes with triangle primitives)");
   if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
 
   report.triangles = scene.triangles.size();

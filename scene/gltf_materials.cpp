@@ -19,8 +19,7 @@ struct MaterialContext {
 };
 
 float finiteFactor(double value, const std::string& file, const std::string& what) {
-  if (!std::isfinite(value))
-    throw SceneError(file, what + " is not a finite number (fix the material)");
+  if (!std::isfinite(value)) throw SceneError(file, what + " is not a finite number (fix the material)");
   return static_cast<float>(value);
 }
 
@@ -34,13 +33,12 @@ glm::vec3 colorFactor(const std::vector<double>& v, std::size_t expectedSize, gl
 }
 
 // A number inside a material extension object, e.g. KHR_materials_ior.ior; `fallback` when absent.
-float extensionNumber(const tinygltf::Material& m, const std::string& extension, const std::string& key,
-                      float fallback, const std::string& file, const std::string& what) {
+float extensionNumber(const tinygltf::Material& m, const std::string& extension, const std::string& key, float fallback,
+                      const std::string& file, const std::string& what) {
   const auto ext = m.extensions.find(extension);
   if (ext == m.extensions.end() || !ext->second.IsObject() || !ext->second.Has(key)) return fallback;
   const tinygltf::Value& v = ext->second.Get(key);
-  if (!v.IsNumber())
-    throw SceneError(file, what + " " + extension + "." + key + " is not a number (fix the material)");
+  if (!v.IsNumber()) throw SceneError(file, what + " " + extension + "." + key + " is not a number (fix the material)");
   return finiteFactor(v.GetNumberAsDouble(), file, what + " " + extension + "." + key);
 }
 
@@ -87,7 +85,8 @@ Material convertMaterial(MaterialContext& ctx, const tinygltf::Material& m, std:
   out.metallic = finiteFactor(pbr.metallicFactor, ctx.file, what + " metallicFactor");
   out.roughness = finiteFactor(pbr.roughnessFactor, ctx.file, what + " roughnessFactor");
   // Emitted radiance = emissiveFactor * emissiveStrength (KHR_materials_emissive_strength README).
-  const float strength = extensionNumber(m, "KHR_materials_emissive_strength", "emissiveStrength", 1.0f, ctx.file, what);
+  const float strength =
+      extensionNumber(m, "KHR_materials_emissive_strength", "emissiveStrength", 1.0f, ctx.file, what);
   out.emissive = colorFactor(m.emissiveFactor, 3, glm::vec3(0.0f), ctx.file, what + " emissiveFactor") * strength;
   out.transmission = extensionNumber(m, "KHR_materials_transmission", "transmissionFactor", 0.0f, ctx.file, what);
   out.ior = extensionNumber(m, "KHR_materials_ior", "ior", 1.5f, ctx.file, what);
@@ -100,8 +99,9 @@ Material convertMaterial(MaterialContext& ctx, const tinygltf::Material& m, std:
 
 Texture decodeSrgbTexture(const tinygltf::Image& image, const std::string& file, const std::string& what) {
   if (image.image.empty() || image.width <= 0 || image.height <= 0)
-    throw SceneError(file, what + (image.uri.empty() ? std::string() : " ('" + image.uri + "')") +
-                               " has no decoded pixels (the image file is missing or unreadable; put it next to the .gltf)");
+    throw SceneError(file,
+                     what + (image.uri.empty() ? std::string() : " ('" + image.uri + "')") +
+                         " has no decoded pixels (the image file is missing or unreadable; put it next to the .gltf)");
   const int comps = image.component;
   const int bits = image.bits;
   if (comps < 1 || comps > 4 || (bits != 8 && bits != 16))

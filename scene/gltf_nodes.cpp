@@ -24,8 +24,9 @@ void checkSize(const std::vector<double>& v, std::size_t n, const std::string& f
 
 void checkNodeIndex(int index, const tinygltf::Model& model, const std::string& file, const std::string& referrer) {
   if (index < 0 || static_cast<std::size_t>(index) >= model.nodes.size())
-    throw SceneError(file, referrer + " refers to node " + std::to_string(index) + ", which does not exist (the file has " +
-                               std::to_string(model.nodes.size()) + " nodes; fix the reference)");
+    throw SceneError(file, referrer + " refers to node " + std::to_string(index) +
+                               ", which does not exist (the file has " + std::to_string(model.nodes.size()) +
+                               " nodes; fix the reference)");
 }
 
 // Root nodes of the scene to render: default scene, else scene 0, else all nodes that are nobody's child.
@@ -71,8 +72,10 @@ glm::dmat4 localTransform(const tinygltf::Node& node, const std::string& file, i
                       finiteValue(node.translation[2], file, what + " translation"), 1.0);
   if (!node.rotation.empty()) {
     // glTF stores the unit quaternion as (x, y, z, w); glm::dquat's constructor takes (w, x, y, z).
-    glm::dquat q(finiteValue(node.rotation[3], file, what + " rotation"), finiteValue(node.rotation[0], file, what + " rotation"),
-                 finiteValue(node.rotation[1], file, what + " rotation"), finiteValue(node.rotation[2], file, what + " rotation"));
+    glm::dquat q(finiteValue(node.rotation[3], file, what + " rotation"),
+                 finiteValue(node.rotation[0], file, what + " rotation"),
+                 finiteValue(node.rotation[1], file, what + " rotation"),
+                 finiteValue(node.rotation[2], file, what + " rotation"));
     const double len = glm::length(q);
     if (!(len > 0.0)) throw SceneError(file, what + " rotation is the zero quaternion (use [0, 0, 0, 1] for none)");
     r = glm::mat4_cast(q / len);
@@ -81,7 +84,8 @@ glm::dmat4 localTransform(const tinygltf::Node& node, const std::string& file, i
     s = glm::scale(glm::dmat4(1.0), glm::dvec3(finiteValue(node.scale[0], file, what + " scale"),
                                                finiteValue(node.scale[1], file, what + " scale"),
                                                finiteValue(node.scale[2], file, what + " scale")));
-  return t * r * s;  // glTF 2.0 spec, Transformations: TRS is converted to matrices "postmultiplied in the T * R * S order"
+  return t * r *
+         s;  // glTF 2.0 spec, Transformations: TRS is converted to matrices "postmultiplied in the T * R * S order"
 }
 
 std::vector<NodeInstance> flattenSceneNodes(const tinygltf::Model& model, const std::string& file) {

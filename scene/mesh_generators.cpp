@@ -41,12 +41,12 @@ struct UnitMesh {
 UnitMesh icosahedron() {
   const float phi = (1.0f + std::sqrt(5.0f)) * 0.5f;
   UnitMesh m;
-  m.vertices = {{-1, phi, 0}, {1, phi, 0}, {-1, -phi, 0}, {1, -phi, 0}, {0, -1, phi}, {0, 1, phi},
-                {0, -1, -phi}, {0, 1, -phi}, {phi, 0, -1}, {phi, 0, 1}, {-phi, 0, -1}, {-phi, 0, 1}};
+  m.vertices = {{-1, phi, 0},  {1, phi, 0},  {-1, -phi, 0}, {1, -phi, 0}, {0, -1, phi},  {0, 1, phi},
+                {0, -1, -phi}, {0, 1, -phi}, {phi, 0, -1},  {phi, 0, 1},  {-phi, 0, -1}, {-phi, 0, 1}};
   for (glm::vec3& v : m.vertices) v = glm::normalize(v);
-  m.faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+  m.faces = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
              {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-             {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+             {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   return m;
 }
 
@@ -121,9 +121,12 @@ TriangleRange makeBox(Scene& scene, glm::vec3 center, glm::vec3 halfExtent, std:
   const glm::vec3 ex(h.x, 0, 0), ey(0, h.y, 0), ez(0, 0, h.z);
   // Each face: centre offset and two half-edges whose cross product points outward.
   const std::array<std::array<glm::vec3, 3>, 6> faces{{
-      {ex, -ez, ey}, {-ex, ez, ey},   // +x, -x
-      {ey, ex, -ez}, {-ey, ex, ez},   // +y, -y
-      {ez, ex, ey},  {-ez, -ex, ey},  // +z, -z
+      {ex, -ez, ey},
+      {-ex, ez, ey},  // +x, -x
+      {ey, ex, -ez},
+      {-ey, ex, ez},  // +y, -y
+      {ez, ex, ey},
+      {-ez, -ex, ey},  // +z, -z
   }};
   const TriangleRange range{scene.triangles.size(), 12};
   for (const auto& f : faces) makeQuad(scene, center + f[0], f[1], f[2], material);
@@ -132,8 +135,7 @@ TriangleRange makeBox(Scene& scene, glm::vec3 center, glm::vec3 halfExtent, std:
 
 int addCheckerTexture(Scene& scene, std::string name, std::uint32_t size, std::uint32_t cells, glm::vec3 colorA,
                       glm::vec3 colorB) {
-  if (size == 0 || cells == 0 || cells > size)
-    throw std::invalid_argument("addCheckerTexture: need 0 < cells <= size");
+  if (size == 0 || cells == 0 || cells > size) throw std::invalid_argument("addCheckerTexture: need 0 < cells <= size");
   Texture t;
   t.name = std::move(name);
   t.width = t.height = size;

@@ -25,8 +25,7 @@ std::uint32_t addMaterial(Scene& scene, Material material);
 
 // Unit-direction icosphere: the icosahedron subdivided `subdivisions` times (each step splits every
 // triangle into 4), vertices pushed onto the sphere. 20 * 4^subdivisions triangles; subdivisions in [0, 7].
-TriangleRange makeIcosphere(Scene& scene, glm::vec3 center, float radius, int subdivisions,
-                            std::uint32_t material);
+TriangleRange makeIcosphere(Scene& scene, glm::vec3 center, float radius, int subdivisions, std::uint32_t material);
 
 // Axis-aligned box with the given centre and half extents; 12 triangles, flat normals, uv 0..1 per face.
 TriangleRange makeBox(Scene& scene, glm::vec3 center, glm::vec3 halfExtent, std::uint32_t material);

@@ -90,8 +90,8 @@ void countNonFinite(const Scene& scene, SceneLoadReport* report) {
 // Fan triangulation (v0, vi, vi+1) of one polygon; appends to the scene with material 0.
 void appendFan(Scene& scene, const std::vector<std::uint32_t>& polygon, const std::string& file, std::size_t line) {
   if (scene.triangles.size() + polygon.size() - 2 > limits::kMaxTriangles)
-    throw SceneError(file, at(line) + "more than " + std::to_string(limits::kMaxTriangles) +
-                               " triangles (simplify the mesh)");
+    throw SceneError(
+        file, at(line) + "more than " + std::to_string(limits::kMaxTriangles) + " triangles (simplify the mesh)");
   for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
     scene.triangles.push_back({polygon[0], polygon[i], polygon[i + 1]});
     scene.triangleMaterial.push_back(0);
@@ -111,7 +111,8 @@ std::uint32_t objVertexRef(std::string_view token, std::size_t definedVertices, 
   if (b < e && *b == '+') ++b;
   const auto r = std::from_chars(b, e, index);
   if (r.ec != std::errc() || (r.ptr != e && *r.ptr != '/'))
-    throw SceneError(file, at(line) + "bad face vertex '" + std::string(token) + "' (expected v, v/vt, v//vn or v/vt/vn)");
+    throw SceneError(file,
+                     at(line) + "bad face vertex '" + std::string(token) + "' (expected v, v/vt, v//vn or v/vt/vn)");
   const long long resolved = index > 0 ? index - 1 : static_cast<long long>(definedVertices) + index;
   if (index == 0 || resolved < 0 || resolved >= static_cast<long long>(definedVertices))
     throw SceneError(file, at(line) + "face vertex " + std::to_string(index) + " does not refer to one of the " +
@@ -132,7 +133,8 @@ void parseObjFace(Scene& scene, LineCursor& line, std::vector<std::uint32_t>& po
   polygon.clear();
   while (!line.atEnd()) polygon.push_back(objVertexRef(line.word(), scene.positions.size(), file, lineNumber));
   if (polygon.size() < 3)
-    throw SceneError(file, at(lineNumber) + "face has " + std::to_string(polygon.size()) + " vertices (need at least 3)");
+    throw SceneError(file,
+                     at(lineNumber) + "face has " + std::to_string(polygon.size()) + " vertices (need at least 3)");
   appendFan(scene, polygon, file, lineNumber);
 }
 
@@ -236,8 +238,10 @@ Scene parseObj(std::string_view text, const std::string& file, SceneLoadReport* 
   forEachLine(text, [&](std::size_t lineNumber, LineCursor& line) {
     if (line.atEnd()) return true;
     const std::string_view keyword = line.word();
-    if (keyword == "v") parseObjVertex(scene, line, file, lineNumber);
-    else if (keyword == "f") parseObjFace(scene, line, polygon, file, lineNumber);
+    if (keyword == "v")
+      parseObjVertex(scene, line, file, lineNumber);
+    else if (keyword == "f")
+      parseObjFace(scene, line, polygon, file, lineNumber);
     // vt, vn, usemtl, mtllib, o, g, s, l, p and unknown statements: not needed for positions-only meshes.
     return true;
   });
@@ -256,12 +260,8 @@ Scene parseOff(std::string_view text, const std::string& file, SceneLoadReport* 
   return std::move(parser.scene);
 }
 
-Scene loadObj(const std::string& path, SceneLoadReport* report) {
-  return parseObj(readSceneFile(path), path, report);
-}
+Scene loadObj(const std::string& path, SceneLoadReport* report) { return parseObj(readSceneFile(path), path, report); }
 
-Scene loadOff(const std::string& path, SceneLoadReport* report) {
-  return parseOff(readSceneFile(path), path, report);
-}
+Scene loadOff(const std::string& path, SceneLoadReport* report) { return parseOff(readSceneFile(path), path, report); }
 
 }  // namespace ht

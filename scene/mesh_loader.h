@@ -1,5 +1,5 @@
 // mesh_loader.h - Wavefront OBJ and OFF triangle meshes (positions only), e.g. the glmark2 bunny and the
-// CGAL .off meshes of docs/toolchain.md §7.
+// CGAL .off meshes of docs/TOOLCHAIN.md §7.
 //
 // The result has world = file coordinates, one default diffuse material, no normals (renderers use face
 // normals) and no texcoords. Polygons are fan-triangulated (v0, vi, vi+1). Failures throw SceneError naming

@@ -13,7 +13,10 @@ namespace ht {
 struct Bounds3 {
   glm::vec3 lo{std::numeric_limits<float>::infinity()};
   glm::vec3 hi{-std::numeric_limits<float>::infinity()};
-  void extend(const glm::vec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+  void extend(const glm::vec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
   bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
   glm::vec3 center() const { return 0.5f * (lo + hi); }
   glm::vec3 extent() const { return hi - lo; }
@@ -24,13 +27,13 @@ enum class MaterialKind : std::uint32_t { Diffuse = 0, Mirror = 1, Glass = 2 };
 
 struct Material {
   std::string name;
-  glm::vec3 baseColor{0.8f};        // linear RGB (glTF baseColorFactor.rgb)
-  int baseColorTexture = -1;        // index into Scene::textures, -1 = none
-  glm::vec3 emissive{0.0f};         // linear RGB radiance (emissiveFactor * KHR_materials_emissive_strength)
-  float metallic = 0.0f;            // glTF metallicFactor
-  float roughness = 1.0f;           // glTF roughnessFactor
-  float transmission = 0.0f;        // KHR_materials_transmission
-  float ior = 1.5f;                 // KHR_materials_ior
+  glm::vec3 baseColor{0.8f};  // linear RGB (glTF baseColorFactor.rgb)
+  int baseColorTexture = -1;  // index into Scene::textures, -1 = none
+  glm::vec3 emissive{0.0f};   // linear RGB radiance (emissiveFactor * KHR_materials_emissive_strength)
+  float metallic = 0.0f;      // glTF metallicFactor
+  float roughness = 1.0f;     // glTF roughnessFactor
+  float transmission = 0.0f;  // KHR_materials_transmission
+  float ior = 1.5f;           // KHR_materials_ior
   // Mirror: metallic >= 0.5 and roughness <= 0.25. Glass: transmission >= 0.5. Everything else: Diffuse.
   MaterialKind kind() const {
     if (transmission >= 0.5f) return MaterialKind::Glass;
@@ -42,28 +45,28 @@ struct Material {
 struct Texture {
   std::string name;
   std::uint32_t width = 0, height = 0;
-  std::vector<glm::vec4> texels;    // linear RGBA (sRGB decoded), row 0 = image top = glTF uv v = 0
+  std::vector<glm::vec4> texels;  // linear RGBA (sRGB decoded), row 0 = image top = glTF uv v = 0
 };
 
 struct Light {  // KHR_lights_punctual
   enum class Type : std::uint32_t { Point = 0, Spot = 1, Directional = 2 };
   Type type = Type::Point;
-  glm::vec3 position{0.0f};         // world space (Point, Spot)
+  glm::vec3 position{0.0f};                // world space (Point, Spot)
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // world-space direction the light travels (Spot, Directional), unit
-  glm::vec3 color{1.0f};            // linear RGB
-  float intensity = 1.0f;           // candela (Point, Spot) or lux (Directional), as in glTF
-  float range = 0.0f;               // 0 = infinite
+  glm::vec3 color{1.0f};                   // linear RGB
+  float intensity = 1.0f;                  // candela (Point, Spot) or lux (Directional), as in glTF
+  float range = 0.0f;                      // 0 = infinite
   float innerConeAngle = 0.0f, outerConeAngle = 0.785398f;  // radians (Spot)
 };
 
 // A named piece of the soup that can be moved after loading (holotraced UpdateScene): a glTF node instance's
 // primitives, or one object of a built-in scene. Its vertices belong to it alone (loaders copy per instance).
 struct SceneNode {
-  std::string name;                      // glTF node name ("node<i>" if unnamed), built-in object name
+  std::string name;  // glTF node name ("node<i>" if unnamed), built-in object name
   std::uint32_t firstVertex = 0, vertexCount = 0;
   std::uint32_t firstTriangle = 0, triangleCount = 0;
-  glm::dmat4 world{1.0};                 // the world matrix the vertices are currently transformed by (identity for
-                                         // built-in objects, whose vertices are generated in world space)
+  glm::dmat4 world{1.0};  // the world matrix the vertices are currently transformed by (identity for
+                          // built-in objects, whose vertices are generated in world space)
 };
 
 struct SceneFeatures {
@@ -71,16 +74,16 @@ struct SceneFeatures {
 };
 
 struct Scene {
-  std::string name;                       // file path or "builtin:NAME"
-  std::vector<glm::vec3> positions;       // world space
-  std::vector<glm::vec3> normals;         // per vertex, world space, unit; empty = use face normals
-  std::vector<glm::vec2> texcoords;       // per vertex; empty = none
-  std::vector<glm::uvec3> triangles;      // vertex indices
+  std::string name;                             // file path or "builtin:NAME"
+  std::vector<glm::vec3> positions;             // world space
+  std::vector<glm::vec3> normals;               // per vertex, world space, unit; empty = use face normals
+  std::vector<glm::vec2> texcoords;             // per vertex; empty = none
+  std::vector<glm::uvec3> triangles;            // vertex indices
   std::vector<std::uint32_t> triangleMaterial;  // per triangle, index into materials
-  std::vector<Material> materials;        // never empty after loading (a default material is added)
+  std::vector<Material> materials;              // never empty after loading (a default material is added)
   std::vector<Texture> textures;
   std::vector<Light> lights;
-  std::vector<SceneNode> nodes;           // movable pieces; may be empty (OBJ/OFF meshes)
+  std::vector<SceneNode> nodes;               // movable pieces; may be empty (OBJ/OFF meshes)
   glm::vec3 background{0.05f, 0.06f, 0.08f};  // radiance of rays that leave the scene (linear RGB)
   glm::vec3 ambient{0.15f};                   // constant ambient irradiance term applied to diffuse surfaces
 

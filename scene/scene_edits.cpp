@@ -32,10 +32,11 @@ void setNodeWorldMatrix(Scene& scene, std::string_view name, const glm::dmat4& w
   if (!index) {
     std::string names;
     for (const SceneNode& n : scene.nodes) names += (names.empty() ? "" : ", ") + n.name;
-    throw SceneError(scene.name, "no node named '" + std::string(name) + "' (nodes: " +
-                                     (names.empty() ? "none" : names) + ")");
+    throw SceneError(scene.name,
+                     "no node named '" + std::string(name) + "' (nodes: " + (names.empty() ? "none" : names) + ")");
   }
-  if (!isFinite(world)) throw SceneError(scene.name, "node '" + std::string(name) + "': the matrix has non-finite entries");
+  if (!isFinite(world))
+    throw SceneError(scene.name, "node '" + std::string(name) + "': the matrix has non-finite entries");
   const double det = glm::determinant(glm::dmat3(world));
   if (!(std::fabs(det) > 1e-12)) {
     throw SceneError(scene.name, "node '" + std::string(name) + "': the matrix's 3x3 part is singular (determinant " +
@@ -62,8 +63,8 @@ void setNodeWorldMatrix(Scene& scene, std::string_view name, const glm::dmat4& w
 void editLight(Scene& scene, std::size_t index, const LightEdit& edit) {
   const std::string what = "light " + std::to_string(index);
   if (index >= scene.lights.size()) {
-    throw SceneError(scene.name, what + " does not exist (the scene has " + std::to_string(scene.lights.size()) +
-                                     " light(s))");
+    throw SceneError(scene.name,
+                     what + " does not exist (the scene has " + std::to_string(scene.lights.size()) + " light(s))");
   }
   if ((edit.position && !isFinite(*edit.position)) || (edit.direction && !isFinite(*edit.direction)) ||
       (edit.color && !isFinite(*edit.color)) || (edit.intensity && !std::isfinite(*edit.intensity)))

@@ -22,7 +22,9 @@ PKGS=(
   libcgal-demo gnuplot-nox
   # libFuzzer targets of the parsers (tests/fuzz, scripts/fuzz.sh): clang 14 and its runtime (libFuzzer, ASan)
   clang libclang-rt-14-dev
-  # holotraced and its protocol (gRPC 1.51 + protobuf 3.21, docs/service.md §4); protobuf-compiler-grpc also brings
+  # the format check of the C++ sources (tests/repo/check_format.py, ctest RepoFormat; .clang-format)
+  clang-format
+  # holotraced and its protocol (gRPC 1.51 + protobuf 3.21, docs/SERVICE.md §4); protobuf-compiler-grpc also brings
   # grpc_python_plugin, which generates the Python client's stubs at build time
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   # the Python client (clients/python) and its tests/examples: Debian's Python 3 with gRPC, protobuf and numpy

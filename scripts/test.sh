@@ -9,7 +9,7 @@ start=$(date +%s)
 
 bash scripts/install-deps.sh
 
-# Pin lavapipe (mesa-vulkan-drivers also installs intel/radeon ICDs, docs/toolchain.md P9) and make the
+# Pin lavapipe (mesa-vulkan-drivers also installs intel/radeon ICDs, docs/TOOLCHAIN.md P9) and make the
 # first-dispatch JIT cost deterministic (P7), unless the caller chose otherwise.
 export VK_ICD_FILENAMES="${VK_ICD_FILENAMES:-/usr/share/vulkan/icd.d/lvp_icd.x86_64.json}"
 export MESA_SHADER_CACHE_DISABLE="${MESA_SHADER_CACHE_DISABLE:-true}"

@@ -49,9 +49,7 @@ namespace {
 
 DaemonConfig withWorkDir(DaemonConfig config, bool& owns) {
   owns = config.workDir.empty();
-  if (owns) {
-    config.workDir = std::filesystem::temp_directory_path() / ("holotraced-" + std::to_string(::getpid()));
-  }
+  if (owns) { config.workDir = std::filesystem::temp_directory_path() / ("holotraced-" + std::to_string(::getpid())); }
   std::filesystem::create_directories(config.workDir);
   ::chmod(config.workDir.c_str(), 0700);
   return config;
@@ -78,7 +76,7 @@ Daemon::~Daemon() {
 }
 
 void Daemon::start() {
-  grpc::EnableDefaultHealthCheckService(true);  // grpc.health.v1 (docs/service.md §4 "Health")
+  grpc::EnableDefaultHealthCheckService(true);  // grpc.health.v1 (docs/SERVICE.md §4 "Health")
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
   for (const std::string& address : parts_->config.listen) {
@@ -86,7 +84,7 @@ void Daemon::start() {
     builder.AddListeningPort(address, grpc::InsecureServerCredentials());
   }
   builder.SetMaxReceiveMessageSize(static_cast<int>(parts_->config.limits.maxMessageBytes));
-  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 60'000);  // notice dead peers (docs/service.md §4)
+  builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIME_MS, 60'000);  // notice dead peers (docs/SERVICE.md §4)
   builder.AddChannelArgument(GRPC_ARG_KEEPALIVE_TIMEOUT_MS, 20'000);
   builder.RegisterService(&parts_->service);
   parts_->server = builder.BuildAndStart();

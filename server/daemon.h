@@ -12,7 +12,7 @@ namespace ht::server {
 class Daemon {
  public:
   Daemon(DaemonConfig config, std::ostream& log);  // opens the device and roots; throws ht::Error
-  ~Daemon();                                      // shutdown() if still running
+  ~Daemon();                                       // shutdown() if still running
   Daemon(const Daemon&) = delete;
   Daemon& operator=(const Daemon&) = delete;
 

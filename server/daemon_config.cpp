@@ -25,8 +25,8 @@ template <typename T>
 void readLimit(const json& limits, const char* key, T& value, const std::string& source) {
   if (!limits.contains(key)) return;
   const json& v = limits[key];
-  if (!v.is_number() || v.get<double>() <= 0) throw ConfigError(source, std::string("limits.") + key, v.dump(),
-                                                                "a positive number");
+  if (!v.is_number() || v.get<double>() <= 0)
+    throw ConfigError(source, std::string("limits.") + key, v.dump(), "a positive number");
   value = v.get<T>();
 }
 
@@ -51,8 +51,8 @@ Limits parseLimits(const json& doc, const std::string& source) {
 
 std::string defaultListenAddress() {
   const char* runtime = std::getenv("XDG_RUNTIME_DIR");
-  const std::filesystem::path dir = runtime && *runtime ? std::filesystem::path(runtime) / "holotrace"
-                                                        : std::filesystem::path("/run/holotrace");
+  const std::filesystem::path dir =
+      runtime && *runtime ? std::filesystem::path(runtime) / "holotrace" : std::filesystem::path("/run/holotrace");
   return "unix:" + (dir / "holotraced.sock").string();
 }
 

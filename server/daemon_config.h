@@ -1,5 +1,5 @@
 // daemon_config.h - holotraced's configuration file (JSON, docs/SERVICE.md "Configuration"). Every limit has a
-// default and is enforced before anything is allocated (docs/service.md §6 "Limits at the API edge").
+// default and is enforced before anything is allocated (docs/SERVICE.md §6 "Limits at the API edge").
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -28,7 +28,7 @@ struct DaemonConfig {
   std::vector<std::string> listen;    // gRPC addresses: "unix:/path" or "127.0.0.1:PORT"
   int deviceIndex = -1;               // Vulkan device, -1 = automatic
   Limits limits;
-  std::string sourcePath;             // file the config came from (for errors)
+  std::string sourcePath;  // file the config came from (for errors)
 };
 
 // The default socket: $XDG_RUNTIME_DIR/holotrace/holotraced.sock, else /run/holotrace/holotraced.sock.

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "camera_models/embedded_display_configs.h"
-#include "frame_io/ray_table_exr.h"
 #include "common/error.h"
+#include "frame_io/ray_table_exr.h"
 
 namespace ht::server {
 namespace {
@@ -24,9 +24,7 @@ void addBuiltins(std::map<std::string, std::shared_ptr<const RegisteredDisplay>>
     try {
       map[id] = std::make_shared<const RegisteredDisplay>(
           RegisteredDisplay{id, builtinDisplay(embedded.name), std::string(embedded.json), nullptr});
-    } catch (const Error& e) {
-      log << "holotraced: builtin display skipped: " << e.what() << "\n";
-    }
+    } catch (const Error& e) { log << "holotraced: builtin display skipped: " << e.what() << "\n"; }
   }
 }
 
@@ -48,9 +46,7 @@ std::size_t DisplayRegistry::reload(std::ostream& log) {
           display.rayTable = std::make_shared<const RayTable>(frame_io::loadDisplayRayTable(display.config));
         }
         (*map)[id] = std::make_shared<const RegisteredDisplay>(std::move(display));
-      } catch (const Error& e) {
-        log << "holotraced: display config skipped: " << e.what() << "\n";
-      }
+      } catch (const Error& e) { log << "holotraced: display config skipped: " << e.what() << "\n"; }
     }
   }
   const std::size_t count = map->size();

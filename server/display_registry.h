@@ -19,7 +19,7 @@ namespace ht::server {
 struct RegisteredDisplay {
   std::string id;
   DisplayConfig config;
-  std::string sourceText;  // the config file (or embedded config) verbatim
+  std::string sourceText;                    // the config file (or embedded config) verbatim
   std::shared_ptr<const RayTable> rayTable;  // model "ray-table": its table, read when the display is registered
 };
 

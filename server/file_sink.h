@@ -1,7 +1,7 @@
 // file_sink.h - writes complete files beneath the output root, never elsewhere and never partially: the root is
 // opened once; each file is created as a hidden temp name with openat2(RESOLVE_BENEATH | RESOLVE_NO_SYMLINKS)
 // (fallback: openat + O_NOFOLLOW on kernels without openat2, ENOSYS), written, fsynced and renamed into place
-// (docs/service.md §6 "Output confinement"; Linux include/uapi/linux/openat2.h).
+// (docs/SERVICE.md §6 "Output confinement"; Linux include/uapi/linux/openat2.h).
 #pragma once
 #include <sys/types.h>
 #include <unistd.h>
@@ -44,7 +44,7 @@ class FileSink {
 
  private:
   int openTemp(const std::string& tempName);
-  int writeAll(int fd, std::span<const std::uint8_t> bytes);  // 0 or the errno
+  int writeAll(int fd, std::span<const std::uint8_t> bytes);                    // 0 or the errno
   int writeTemp(const std::string& temp, std::span<const std::uint8_t> bytes);  // 0 or the errno; fd closed
   FileOps ops_;
   int rootFd_ = -1;

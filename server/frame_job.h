@@ -16,7 +16,7 @@ namespace ht::server {
 struct FrameJob {
   std::shared_ptr<const SceneSession> session;
   std::shared_ptr<const RegisteredDisplay> display;
-  std::uint32_t spp = 0;  // 0 = display default
+  std::uint32_t spp = 0;        // 0 = display default
   std::uint32_t refineSpp = 0;  // adaptive refinement (gpu::RenderSettings::refineSpp); 0 = off
   float refineContrast = gpu::RenderSettings{}.refineContrast;
   std::uint32_t seed = 0;

@@ -111,14 +111,14 @@ grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v
 
 // Frames on a fixed clock (frame k due at start + k/fps). A frame is rendered only when the previous one has been
 // written, so a slow client is never queued old frames: it gets the newest, and dropped_frames counts the ticks
-// it missed (latest-frame-wins, docs/service.md §4 "Backpressure").
+// it missed (latest-frame-wins, docs/SERVICE.md §4 "Backpressure").
 grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const v1::StreamRequest* request,
                                             grpc::ServerWriter<v1::FramePart>* writer) {
   return guarded([&] {
     const double fps = request->frames_per_second();
     if (!(fps > 0.0) || fps > state_.config.limits.maxFramesPerSecond) {
-      throw BadRequest("frames_per_second", "must be in (0, " +
-                                                std::to_string(state_.config.limits.maxFramesPerSecond) + "]");
+      throw BadRequest("frames_per_second",
+                       "must be in (0, " + std::to_string(state_.config.limits.maxFramesPerSecond) + "]");
     }
     FrameJob job = checkRenderRequest(state_, request->render());
     StreamSlot slot(state_);
@@ -155,8 +155,8 @@ grpc::Status HolotraceService::Capture(grpc::ServerContext* context, const v1::C
     FrameJob job = checkRenderRequest(state_, request->render());
     const gpu::DisplayCamera camera = jobCamera(job);
     if (!frame_io::layoutAllowed({job.display->config, camera.quilt}, camera.shape.views, layout)) {
-      throw BadRequest("layout", "the views of display '" + job.display->id +
-                                     "' do not form a quilt; use CAPTURE_LAYOUT_VIEWS");
+      throw BadRequest("layout",
+                       "the views of display '" + job.display->id + "' do not form a quilt; use CAPTURE_LAYOUT_VIEWS");
     }
     StreamSlot slot(state_);
     const std::string client = clientKey(*context);

@@ -1,5 +1,5 @@
 // frame_sender.h - one frame on a server stream: a FrameHeader message, then FrameChunk messages of at most
-// kChunkBytes (docs/service.md §4: 1-4 MiB chunks instead of one large message).
+// kChunkBytes (docs/SERVICE.md §4: 1-4 MiB chunks instead of one large message).
 #pragma once
 #include <grpcpp/support/sync_stream.h>
 

@@ -1,5 +1,5 @@
 // holotrace_service.h - the holotrace.v1.Holotrace RPC handlers (synchronous gRPC API: each streaming call runs on
-// its own gRPC thread and blocks in Write(), which HTTP/2 flow control holds back for a slow client, docs/service.md
+// its own gRPC thread and blocks in Write(), which HTTP/2 flow control holds back for a slow client, docs/SERVICE.md
 // §4 "Backpressure"; frames are only rendered when the stream can take them, so a slow client gets the newest frame).
 #pragma once
 #include "holotrace/v1/holotrace.grpc.pb.h"

@@ -30,7 +30,8 @@ void checkListenAddress(const std::string& configFile, const std::string& addres
     return;
   }
   if (!isLoopback(address)) {
-    throw ConfigError(configFile, "listen", address, "unix:/path or a loopback TCP address (127.0.0.1:PORT, [::1]:PORT)");
+    throw ConfigError(configFile, "listen", address,
+                      "unix:/path or a loopback TCP address (127.0.0.1:PORT, [::1]:PORT)");
   }
 }
 

@@ -1,4 +1,4 @@
-// path_rules.h - client-supplied names and paths, checked before any file system call (docs/service.md §6
+// path_rules.h - client-supplied names and paths, checked before any file system call (docs/SERVICE.md §6
 // "Output confinement"). Violations throw AccessDenied (-> PERMISSION_DENIED) or BadRequest (-> INVALID_ARGUMENT).
 #pragma once
 #include <filesystem>

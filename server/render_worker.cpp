@@ -20,8 +20,8 @@ std::future<void> RenderWorker::submit(const std::string& client, Job job, bool 
   if (stopping_) throw ShuttingDown("holotraced is shutting down");
   std::uint32_t& inFlight = inFlight_[client];
   if (inFlight >= maxInFlight_) {
-    throw LimitExceeded("client has " + std::to_string(inFlight) + " frames in flight (limits.max_frames_in_flight = " +
-                        std::to_string(maxInFlight_) + ")");
+    throw LimitExceeded("client has " + std::to_string(inFlight) +
+                        " frames in flight (limits.max_frames_in_flight = " + std::to_string(maxInFlight_) + ")");
   }
   ++inFlight;
   std::deque<Task>& queue = queues_[client];
@@ -41,8 +41,10 @@ bool RenderWorker::takeNext(Task& task, std::string& client) {
   std::deque<Task>& queue = queues_[client];
   task = std::move(queue.front());
   queue.pop_front();
-  if (!queue.empty()) roundRobin_.push_back(client);  // its next job waits behind the other clients
-  else queues_.erase(client);
+  if (!queue.empty())
+    roundRobin_.push_back(client);  // its next job waits behind the other clients
+  else
+    queues_.erase(client);
   return true;
 }
 
@@ -63,9 +65,7 @@ void RenderWorker::run() {
     try {
       task.job(context_);
       task.done.set_value();
-    } catch (...) {
-      task.done.set_exception(std::current_exception());
-    }
+    } catch (...) { task.done.set_exception(std::current_exception()); }
     finish(client, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
            task.countsAsFrame);
   }

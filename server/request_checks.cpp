@@ -32,16 +32,16 @@ FrameJob checkRenderRequest(ServiceState& state, const holotrace::v1::RenderRequ
   if (request.display_id().empty()) throw BadRequest("render.display_id", "is empty");
   if (request.scene_id().empty()) throw BadRequest("render.scene_id", "is empty");
   if (request.spp() > limits.maxSpp) {
-    throw BadRequest("render.spp", std::to_string(request.spp()) + " exceeds limits.max_spp = " +
-                                       std::to_string(limits.maxSpp));
+    throw BadRequest("render.spp",
+                     std::to_string(request.spp()) + " exceeds limits.max_spp = " + std::to_string(limits.maxSpp));
   }
   if (request.refine_spp() > limits.maxSpp) {
-    throw BadRequest("render.refine_spp", std::to_string(request.refine_spp()) + " exceeds limits.max_spp = " +
-                                              std::to_string(limits.maxSpp));
+    throw BadRequest("render.refine_spp", std::to_string(request.refine_spp()) +
+                                              " exceeds limits.max_spp = " + std::to_string(limits.maxSpp));
   }
   if (!(request.refine_contrast() >= 0.0f && request.refine_contrast() <= 1.0f)) {
-    throw BadRequest("render.refine_contrast", std::to_string(request.refine_contrast()) +
-                                                   " is not in [0, 1] (0 = the default 0.08)");
+    throw BadRequest("render.refine_contrast",
+                     std::to_string(request.refine_contrast()) + " is not in [0, 1] (0 = the default 0.08)");
   }
   checkPixelFormat(request.format());
   FrameJob job;
@@ -55,9 +55,7 @@ FrameJob checkRenderRequest(ServiceState& state, const holotrace::v1::RenderRequ
   gpu::FrameShape shape;
   try {
     shape = displayFrameShape(*job.display, job.path);
-  } catch (const ConfigError& e) {
-    throw BadRequest("quilt", e.expected());
-  }
+  } catch (const ConfigError& e) { throw BadRequest("quilt", e.expected()); }
   const std::uint64_t pixels = std::uint64_t(shape.width) * shape.height * shape.views;
   if (pixels > limits.maxPanelPixels) {
     throw LimitExceeded("display '" + request.display_id() + "' is " + std::to_string(shape.views) + " x " +

@@ -45,11 +45,12 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
                         " triangles (limits.max_triangles = " + std::to_string(maxTriangles_) + ")");
   }
   worker_
-      .submit(client,
-              [&content](gpu::VulkanContext& context) {
-                content->renderer = std::make_shared<gpu::Renderer>(context, content->scene);
-              },
-              false)
+      .submit(
+          client,
+          [&content](gpu::VulkanContext& context) {
+            content->renderer = std::make_shared<gpu::Renderer>(context, content->scene);
+          },
+          false)
       .get();
   return content;
 }
@@ -77,7 +78,8 @@ std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client
   }
   std::lock_guard lock(mutex_);
   auto session = std::make_shared<SceneSession>();
-  session->id = "s" + std::to_string(nextSession_++) + "-" + (bytes.empty() ? std::string("builtin") : key.substr(0, 16));
+  session->id =
+      "s" + std::to_string(nextSession_++) + "-" + (bytes.empty() ? std::string("builtin") : key.substr(0, 16));
   session->content = content;
   session->reused = reused;
   sessions_[session->id] = session;
@@ -104,7 +106,7 @@ void SceneLibrary::updateCamera(const std::string& id, const CameraPlacement& pl
 }
 
 SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, const std::string& id, bool movesGeometry,
-                                                const std::function<void(Scene&)>& edit) {
+                                                 const std::function<void(Scene&)>& edit) {
   std::lock_guard editing(buildMutex_);  // one BVH build at a time, and edits of one session in order
   const std::shared_ptr<const SceneSession> session = find(id);
   if (session->content->quilt) throw BadRequest("scene_id", "'" + id + "' is a quilt image: it has no nodes or lights");
@@ -113,13 +115,17 @@ SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, cons
   const bool newRenderer = content->editedBy != id;
   const auto start = std::chrono::steady_clock::now();
   worker_
-      .submit(client,
-              [&](gpu::VulkanContext& context) {
-                if (newRenderer) content->renderer = std::make_shared<gpu::Renderer>(context, content->scene);
-                else if (movesGeometry) content->renderer->replaceScene(content->scene);
-                else content->renderer->updateLights(content->scene);
-              },
-              false)
+      .submit(
+          client,
+          [&](gpu::VulkanContext& context) {
+            if (newRenderer)
+              content->renderer = std::make_shared<gpu::Renderer>(context, content->scene);
+            else if (movesGeometry)
+              content->renderer->replaceScene(content->scene);
+            else
+              content->renderer->updateLights(content->scene);
+          },
+          false)
       .get();
   EditResult result;
   result.updateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

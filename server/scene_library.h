@@ -3,8 +3,8 @@
 // that shares that content (and its Renderer) with other sessions loading the same bytes.
 #pragma once
 #include <cstdint>
-#include <functional>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -35,7 +35,7 @@ struct SceneContent {
 struct SceneSession {
   std::string id;
   std::shared_ptr<SceneContent> content;
-  CameraPlacement cameraOverride;  // target / size set by UpdateScene (unset = display's own)
+  CameraPlacement cameraOverride;                          // target / size set by UpdateScene (unset = display's own)
   std::optional<double> observerDistance, observerHeight;  // tracked HPO observer (UpdateScene)
   bool reused = false;
 };

@@ -21,8 +21,8 @@ std::vector<std::uint8_t> readCapped(const std::filesystem::path& file, std::uin
   const auto size = std::filesystem::file_size(file, ec);
   if (ec) throw BadRequest("path", "cannot read '" + file.filename().string() + "': " + ec.message());
   if (size > maxBytes) {
-    throw LimitExceeded("scene file is " + std::to_string(size) + " bytes (limits.max_scene_bytes = " +
-                        std::to_string(maxBytes) + ")");
+    throw LimitExceeded("scene file is " + std::to_string(size) +
+                        " bytes (limits.max_scene_bytes = " + std::to_string(maxBytes) + ")");
   }
   std::ifstream in(file, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -73,8 +73,8 @@ std::vector<NodeEdit> readNodeEdits(const v1::UpdateSceneRequest& request) {
     const std::string field = "nodes[" + std::to_string(i) + "]";
     if (n.node().empty()) throw BadRequest(field + ".node", "name a node (SceneHandle.nodes lists them)");
     if (n.world_size() != 16) {
-      throw BadRequest(field + ".world", "expected 16 values (a 4x4 matrix, column-major), got " +
-                                             std::to_string(n.world_size()));
+      throw BadRequest(field + ".world",
+                       "expected 16 values (a 4x4 matrix, column-major), got " + std::to_string(n.world_size()));
     }
     NodeEdit edit{n.node(), glm::dmat4(1.0)};
     for (int k = 0; k < 16; ++k) edit.world[k / 4][k % 4] = n.world(k);  // finiteness: setNodeWorldMatrix
@@ -160,13 +160,16 @@ grpc::Status HolotraceService::UploadScene(grpc::ServerContext* context,
     }
     if (context->IsCancelled()) throw ClientGone("upload cancelled");
     if (bytes.size() != total) throw BadRequest("data", "fewer bytes than info.total_bytes");
-    // The loaders read files: the bytes go to a private file named by their hash (docs/service.md §6).
+    // The loaders read files: the bytes go to a private file named by their hash (docs/SERVICE.md §6).
     const std::string name = "upload-" + contentHash(bytes) + ext;
     state_.uploadSink.writeFile(name, bytes);
     const auto path = state_.config.workDir / name;
     struct Remove {
       std::filesystem::path p;
-      ~Remove() { std::error_code ec; std::filesystem::remove(p, ec); }
+      ~Remove() {
+        std::error_code ec;
+        std::filesystem::remove(p, ec);
+      }
     } remove{path};
     fillHandle(*state_.scenes.open(clientKey(*context), path.string(), bytes), *response);
     return grpc::Status::OK;

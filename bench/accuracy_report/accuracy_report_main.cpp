@@ -37,7 +37,7 @@ moves.
 - **holotrace CPU**: `bvh/cpu_traversal.h`, the same C++/GLSL source as the kernel, run on the host.
 - **holotrace GPU**: `gpu::Renderer::traceClosest` (Vulkan compute; lavapipe here).
 - **Embree 3 robust**: Embree 3.13.5 with `RTC_SCENE_FLAG_ROBUST` (the anchor). Embree verify's watertight test
-  (tutorials/verify/verify.cpp, bvh.md §6) tolerates a miss rate of 0.002 % on random interior rays; holotrace
+  (tutorials/verify/verify.cpp, docs/BVH.md §6) tolerates a miss rate of 0.002 % on random interior rays; holotrace
   tolerates none.
 - **naive MT**: textbook Möller-Trumbore (JGT 1997) behind a padded BVH2, with the paper's |det| < 1e-6 rejection
   and without any epsilon: the control, what a tracer without Woop's watertight test does.
@@ -70,7 +70,7 @@ are dropped at build: the mesh must stay closed anyway), scale 2 at Embree verif
 - **Embree robust mode leaks rays aimed exactly at vertices** (per-kind table) although it is watertight for
   random directions; every holotrace/Embree disagreement is classified edge-or-vertex, none interior.
 - **The naive Möller-Trumbore control** leaks 1-5 % of vertex/edge rays at every scale, and with the paper's
-  1e-6 determinant epsilon it misses everything at scales <= 1e-2 (the scale dependence of bvh.md §5.4).
+  1e-6 determinant epsilon it misses everything at scales <= 1e-2 (the scale dependence of docs/BVH.md §5.4).
 
 )";
 
@@ -97,13 +97,16 @@ int run(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   std::ostringstream md;
   md << kIntro;
-  md << "## Watertightness (" << raysPerMesh << " rays per mesh)\n\n" << ht::accuracy::report::watertightSection(context, raysPerMesh);
-  md << "\n## Embree differential (" << diffRays << " rays per case)\n\nt agreement: |t_ours - t_embree| <= "
+  md << "## Watertightness (" << raysPerMesh << " rays per mesh)\n\n"
+     << ht::accuracy::report::watertightSection(context, raysPerMesh);
+  md << "\n## Embree differential (" << diffRays
+     << " rays per case)\n\nt agreement: |t_ours - t_embree| <= "
         "64 eps (t + (|o| + max|v|) / |d|) (tests/accuracy/kit/hit_agreement.h). Causes: edge-or-vertex = the hit's "
         "smallest barycentric < 1e-4; silhouette-graze = |cos(ray, normal)| < 1e-3; interior = neither (must be 0).\n\n"
      << ht::accuracy::report::differentialSection(context, diffRays);
   const double minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / 60.0;
-  md << "\n" << ht::accuracy::report::ciTestsSection() << "## How this file was made\n\n"
+  md << "\n"
+     << ht::accuracy::report::ciTestsSection() << "## How this file was made\n\n"
      << "Device: " << context.device().name << ". Run on " << today() << " in " << static_cast<int>(minutes * 10) / 10.0
      << " minutes:\n\n```\nscripts/accuracy-report.sh --rays-per-mesh " << raysPerMesh << " --differential-rays "
      << diffRays << "\n```\n";

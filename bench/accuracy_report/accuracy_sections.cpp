@@ -86,8 +86,8 @@ std::string agreementRows(const std::string& label, const TestMesh& mesh, std::s
     std::snprintf(pct, sizeof(pct), "%.5f %%", a.agreementPercent());
     rows += "| " + label + " | " + side + " | " + std::to_string(a.rays) + " | " + pct + " | " +
             std::to_string(a.hitMissDisagreements) + " | " + std::to_string(a.tDisagreements) + " | " +
-            std::to_string(a.byCause[0]) + " | " + std::to_string(a.byCause[1]) + " | " +
-            std::to_string(a.interior()) + " |\n";
+            std::to_string(a.byCause[0]) + " | " + std::to_string(a.byCause[1]) + " | " + std::to_string(a.interior()) +
+            " |\n";
     for (const Disagreement& d : a.listed) listing += "- " + label + " " + side + ": " + describe(d) + "\n";
   }
   return rows;
@@ -100,8 +100,7 @@ std::string watertightSection(gpu::VulkanContext& context, uint64_t raysPerMesh)
   const uint64_t configsKinds = placementList.size() * kKinds;  // rounded up: at least raysPerMesh per mesh
   const uint64_t perConfigKind = std::max<uint64_t>(1, (raysPerMesh + configsKinds - 1) / configsKinds);
   std::ostringstream md;
-  md << "### Per mesh and placement\n\n| mesh | placement " << kLeakHeader
-     << "|---|---|---|---|---|---|---|---|\n";
+  md << "### Per mesh and placement\n\n| mesh | placement " << kLeakHeader << "|---|---|---|---|---|---|---|---|\n";
   LeakCounts byKind[kKinds];
   LeakCounts all;
   for (const TestMesh& local : closedMeshes()) {
@@ -122,8 +121,7 @@ std::string watertightSection(gpu::VulkanContext& context, uint64_t raysPerMesh)
     }
   }
   md << leakRow("**all** | **all**", all);
-  md << "\n### Per ray kind (all meshes and placements)\n\n| kind " << kLeakHeader
-     << "|---|---|---|---|---|---|---|\n";
+  md << "\n### Per ray kind (all meshes and placements)\n\n| kind " << kLeakHeader << "|---|---|---|---|---|---|---|\n";
   for (uint32_t k = 0; k < kKinds; ++k) md << leakRow(rayKindName(static_cast<RayKind>(k)), byKind[k]);
   md << "\nCPU traversal step-limit overflows: " << all.cpuOverflows << ".\n";
   return md.str();

@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // interleave: packs the resolved subpixels into RGB pixels, view by view, flipping rows so that row 0 of each
-// output view is its top (targets count y from the bottom, optics.md §0). The view phase of each subpixel, incl. BGR
+// output view is its top (targets count y from the bottom, docs/OPTICS.md §0). The view phase of each subpixel, incl. BGR
 // panels (flipSubp) and Gen3 cells, was already applied when its rays were generated.
 #include "gpu/shaders/common.glsl"
 

@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // prepare: a single invocation that maintains queue counters between passes, so no pass needs a host
-// round trip and an empty queue becomes an indirect dispatch of zero workgroups (bvh.md §7).
+// round trip and an empty queue becomes an indirect dispatch of zero workgroups (docs/BVH.md §7).
 //   MODE 0 (after shade):  indirect arguments for the shadow queue and the next ray queue.
 //   MODE 1 (end of depth): the consumed queue and the shadow queue are emptied for the next depth.
 #include "gpu/shaders/common.glsl"

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // raygen: one invocation per path (target x sample; listed target x sample while refining). Writes the primary ray
 // of path i into entry i of ray queue 0; the depth-0 kernels know its radiance 0 and throughput 1 (common.glsl
-// queue_path). Targets count pixels x, then rows y (from the bottom, optics.md §0), then views; subpixel models
+// queue_path). Targets count pixels x, then rows y (from the bottom, docs/OPTICS.md §0), then views; subpixel models
 // (lenticular, integral) have 3 targets per pixel (target = 3*pixel + c).
 // The MODEL specialisation constant removes every other model's code.
 #include "gpu/shaders/common.glsl"

@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // trace_closest: one closest-hit traversal per invocation (one ray per invocation per dispatch: lavapipe ends
-// every loop of an invocation after 65,535 iterations in total, toolchain.md §0). Rays past the step limit are
+// every loop of an invocation after 65,535 iterations in total, docs/TOOLCHAIN.md §0). Rays past the step limit are
 // counted in overflowCount, which the host turns into an error.
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_arithmetic : require

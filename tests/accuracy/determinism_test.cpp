@@ -1,6 +1,7 @@
 // Determinism of the lenticular panel path: the same frame rendered twice on the same device is bit-identical
 // (docs/PIPELINE.md "Determinism"; tests/gpu checks the pinhole path). The scene has a light (shadow rays and
-// the ordered gather), a mirror (the ping-pong bounce queues filled by atomics) and spp = 1 (10 s at spp = 2 on lavapipe, too long for CI).
+// the ordered gather), a mirror (the ping-pong bounce queues filled by atomics) and spp = 1 (10 s at spp = 2 on
+// lavapipe, too long for CI).
 #include <gtest/gtest.h>
 
 #include <cstring>

@@ -57,11 +57,14 @@ void expectAgreement(const TestMesh& mesh, std::span<const HtRay> rays, const st
   const auto cpu = cpuHits(mesh, rays);
   for (const auto& [name, ours] : {std::pair{"cpu", &cpu}, std::pair{"gpu", &gpu}}) {
     const Agreement a = compareHits(mesh.positions, mesh.triangles, rays, *ours, anchor);
-    std::printf("%s %s %s: %llu rays, hit/miss disagreements %llu (%.5f %% agree), t %llu; edge/vertex %llu graze "
-                "%llu interior %llu\n", mesh.name.c_str(), what.c_str(), name, (unsigned long long)a.rays,
-                (unsigned long long)a.hitMissDisagreements, a.agreementPercent(), (unsigned long long)a.tDisagreements,
-                (unsigned long long)a.byCause[0], (unsigned long long)a.byCause[1], (unsigned long long)a.interior());
-    for (size_t i = 0; i < std::min<size_t>(a.listed.size(), 10); ++i) std::printf("  %s\n", describe(a.listed[i]).c_str());
+    std::printf(
+        "%s %s %s: %llu rays, hit/miss disagreements %llu (%.5f %% agree), t %llu; edge/vertex %llu graze "
+        "%llu interior %llu\n",
+        mesh.name.c_str(), what.c_str(), name, (unsigned long long)a.rays, (unsigned long long)a.hitMissDisagreements,
+        a.agreementPercent(), (unsigned long long)a.tDisagreements, (unsigned long long)a.byCause[0],
+        (unsigned long long)a.byCause[1], (unsigned long long)a.interior());
+    for (size_t i = 0; i < std::min<size_t>(a.listed.size(), 10); ++i)
+      std::printf("  %s\n", describe(a.listed[i]).c_str());
     EXPECT_GE(a.agreementPercent(), minAgreementPercent) << mesh.name << " " << what << " " << name;
     EXPECT_EQ(a.interior(), 0u) << mesh.name << " " << what << " " << name;
   }

@@ -32,12 +32,12 @@ TEST(HostileInput, DegenerateTrianglesAreDroppedCountedAndLeaveNoHole) {
   TestMesh mesh = clean;
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   const glm::vec3 p(0.1f, 0.2f, 0.3f), q(0.4f, -0.2f, 0.1f);
-  addTriangle(mesh, p, p, q);                          // repeated vertex: zero area
+  addTriangle(mesh, p, p, q);                                            // repeated vertex: zero area
   addTriangle(mesh, glm::vec3(0.5f), glm::vec3(1.0f), glm::vec3(2.0f));  // collinear: cross product exactly 0
-  addTriangle(mesh, p, q, glm::vec3(nan, 0.0f, 0.0f)); // NaN vertex
-  addTriangle(mesh, p, q, glm::vec3(0.0f, inf, 0.0f)); // Inf vertex
+  addTriangle(mesh, p, q, glm::vec3(nan, 0.0f, 0.0f));                   // NaN vertex
+  addTriangle(mesh, p, q, glm::vec3(0.0f, inf, 0.0f));                   // Inf vertex
   addTriangle(mesh, p, q, glm::vec3(-inf, 0.0f, 0.0f));
-  addTriangle(mesh, p, p, p);                          // a point
+  addTriangle(mesh, p, p, p);  // a point
   constexpr uint64_t kDegenerate = 6;
   // A needle (length 0.6, width 1e-7) has non-zero area: it is kept, and a ray across it must find it. (pbrt-v3's
   // float bound t > deltaT alone rejected this hit at t = 0.5; bvh/watertight_triangle.h rechecks in double.)

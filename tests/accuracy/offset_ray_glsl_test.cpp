@@ -50,10 +50,18 @@ std::vector<OffsetRayProbeInput> probeInputs(std::uint32_t randomCount) {
   for (std::uint32_t i = 0; i < randomCount; ++i)
     in.push_back({glm::vec3(randomMagnitude(rng), randomMagnitude(rng), randomMagnitude(rng)), randomUnit(rng)});
   // Edge values on every component, each with a few random normals.
-  const float edges[] = {0.0f, -0.0f, gpu_shared::HT_OFFSET_ORIGIN, -gpu_shared::HT_OFFSET_ORIGIN,
-                         std::nextafter(gpu_shared::HT_OFFSET_ORIGIN, 0.0f), std::nextafter(-gpu_shared::HT_OFFSET_ORIGIN, 0.0f),
-                         std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::min(),
-                         std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(), 1e-30f, -1e30f};
+  const float edges[] = {0.0f,
+                         -0.0f,
+                         gpu_shared::HT_OFFSET_ORIGIN,
+                         -gpu_shared::HT_OFFSET_ORIGIN,
+                         std::nextafter(gpu_shared::HT_OFFSET_ORIGIN, 0.0f),
+                         std::nextafter(-gpu_shared::HT_OFFSET_ORIGIN, 0.0f),
+                         std::numeric_limits<float>::denorm_min(),
+                         -std::numeric_limits<float>::min(),
+                         std::numeric_limits<float>::max(),
+                         -std::numeric_limits<float>::max(),
+                         1e-30f,
+                         -1e30f};
   for (float e : edges)
     for (int k = 0; k < 8; ++k) in.push_back({glm::vec3(e, -e, e), randomUnit(rng)});
   // Denormal points with zero normal components: p + 0 must stay the same denormal (a device that flushes denormals
@@ -93,10 +101,11 @@ TEST(OffsetRayGlsl, GpuAndCppAgreeInEveryBit) {
       fmaSensitive += std::bit_cast<std::uint32_t>(fusedComponent(inputs[i].p[c], inputs[i].n[c])) != want ? 1 : 0;
     }
   }
-  std::printf("offset_ray GLSL vs C++: %zu inputs (%zu components, %llu in the |p| < 1/32 branch), %llu bit mismatches; "
-              "components where fma(1/65536, n, p) != p + n/65536: %llu\n",
-              inputs.size(), 3 * inputs.size(), (unsigned long long)nearZeroBranch, (unsigned long long)mismatches,
-              (unsigned long long)fmaSensitive);
+  std::printf(
+      "offset_ray GLSL vs C++: %zu inputs (%zu components, %llu in the |p| < 1/32 branch), %llu bit mismatches; "
+      "components where fma(1/65536, n, p) != p + n/65536: %llu\n",
+      inputs.size(), 3 * inputs.size(), (unsigned long long)nearZeroBranch, (unsigned long long)mismatches,
+      (unsigned long long)fmaSensitive);
   EXPECT_EQ(mismatches, 0u);
   // The exact-product argument above: contraction cannot change ht_offset_ray's result.
   EXPECT_EQ(fmaSensitive, 0u);

@@ -31,8 +31,7 @@ std::atomic<std::size_t> gLargest{0};
 void* allocate(std::size_t size) {
   if (gWatching.load(std::memory_order_relaxed)) {
     std::size_t seen = gLargest.load(std::memory_order_relaxed);
-    while (size > seen && !gLargest.compare_exchange_weak(seen, size)) {
-    }
+    while (size > seen && !gLargest.compare_exchange_weak(seen, size)) {}
   }
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
   throw std::bad_alloc();
@@ -62,9 +61,9 @@ class LargestAllocation {
 };
 
 std::filesystem::path scratchDir() {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("holotrace-oversized-" + std::to_string(::getpid()) + "-" +
-                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("holotrace-oversized-" + std::to_string(::getpid()) + "-" +
+                                                ::testing::UnitTest::GetInstance()->current_test_info()->name());
   std::filesystem::create_directories(dir);
   return dir;
 }
@@ -101,13 +100,17 @@ std::string sceneErrorOf(const std::string& path, std::size_t& largestAllocation
 // are spliced in so each test can claim its own counts.
 std::string gltfWithClaims(const std::string& attributes, const std::string& indices, const std::string& accessors) {
   // base64 of 9 floats (0 0 0, 1 0 0, 0 1 0) followed by u16 0 1 2 and two padding bytes (42 bytes + 2).
-  const std::string data =
-      "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA=";
+  const std::string data = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA=";
   return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
-         R"("meshes":[{"primitives":[{"attributes":{)" + attributes + "}" + indices + R"(}]}],)"
-         R"("buffers":[{"byteLength":44,"uri":"data:application/octet-stream;base64,)" + data + R"("}],)"
+         R"("meshes":[{"primitives":[{"attributes":{)" +
+         attributes + "}" + indices +
+         R"(}]}],)"
+         R"("buffers":[{"byteLength":44,"uri":"data:application/octet-stream;base64,)" +
+         data +
+         R"("}],)"
          R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],)"
-         R"("accessors":[)" + accessors + "]}";
+         R"("accessors":[)" +
+         accessors + "]}";
 }
 
 const std::string kPositionsOk = R"({"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"})";
@@ -141,8 +144,9 @@ TEST_F(OversizedInput, ObjFaceIndexFarBeyondTheVerticesIsRefused) {
 TEST_F(OversizedInput, GltfPositionCountOfThreeBillionIsRefusedBeforeReadingGeometry) {
   // Non-indexed TRIANGLES: 3e9 positions claim 1e9 triangles; the bufferView holds 36 bytes.
   std::size_t largest = 0;
-  const auto path = writeFile("billion.gltf", gltfWithClaims(R"("POSITION":0)", "",
-      R"({"bufferView":0,"componentType":5126,"count":3000000000,"type":"VEC3"})"));
+  const auto path = writeFile(
+      "billion.gltf", gltfWithClaims(R"("POSITION":0)", "",
+                                     R"({"bufferView":0,"componentType":5126,"count":3000000000,"type":"VEC3"})"));
   const std::string what = sceneErrorOf(path.string(), largest);
   EXPECT_NE(what.find("more than " + std::to_string(limits::kMaxTriangles) + " triangles"), std::string::npos) << what;
   EXPECT_LT(largest, kSmallAllocation);
@@ -150,8 +154,10 @@ TEST_F(OversizedInput, GltfPositionCountOfThreeBillionIsRefusedBeforeReadingGeom
 
 TEST_F(OversizedInput, GltfIndexCountOfThreeBillionIsRefusedBeforeReadingGeometry) {
   std::size_t largest = 0;
-  const auto path = writeFile("indices.gltf", gltfWithClaims(R"("POSITION":0)", R"(,"indices":1)",
-      kPositionsOk + R"(,{"bufferView":1,"componentType":5123,"count":3000000000,"type":"SCALAR"})"));
+  const auto path = writeFile(
+      "indices.gltf",
+      gltfWithClaims(R"("POSITION":0)", R"(,"indices":1)",
+                     kPositionsOk + R"(,{"bufferView":1,"componentType":5123,"count":3000000000,"type":"SCALAR"})"));
   const std::string what = sceneErrorOf(path.string(), largest);
   EXPECT_NE(what.find("more than " + std::to_string(limits::kMaxTriangles) + " triangles"), std::string::npos) << what;
   EXPECT_LT(largest, kSmallAllocation);
@@ -163,7 +169,8 @@ TEST_F(OversizedInput, GltfAttributeCountOfABillionIsRefusedWithOrWithoutABuffer
   for (const std::string normal : {R"({"bufferView":0,"componentType":5126,"count":1000000000,"type":"VEC3"})",
                                    R"({"componentType":5126,"count":1000000000,"type":"VEC3"})"}) {
     std::size_t largest = 0;
-    const auto path = writeFile("normals.gltf", gltfWithClaims(R"("POSITION":0,"NORMAL":1)", "", kPositionsOk + "," + normal));
+    const auto path =
+        writeFile("normals.gltf", gltfWithClaims(R"("POSITION":0,"NORMAL":1)", "", kPositionsOk + "," + normal));
     const std::string what = sceneErrorOf(path.string(), largest);
     EXPECT_NE(what.find("accessor 1"), std::string::npos) << what;
     EXPECT_LT(largest, kSmallAllocation) << normal;

@@ -8,15 +8,15 @@
 #include <limits>
 #include <sstream>
 
-#include "tests/common/temp_directory.h"
 #include "bvh/cpu_traversal.h"
 #include "cli/cli_app.h"
-#include "cli/rays_file.h"
 #include "cli/raycast_command.h"
+#include "cli/rays_file.h"
 #include "common/error.h"
 #include "interior_rays.h"
 #include "scene/scene.h"
 #include "test_meshes.h"
+#include "tests/common/temp_directory.h"
 
 namespace ht::cli {
 namespace {
@@ -47,9 +47,7 @@ std::string readBytes(const std::filesystem::path& path) {
 std::string readError(const std::filesystem::path& path) {
   try {
     readRaysFile(path);
-  } catch (const IoError& e) {
-    return e.what();
-  }
+  } catch (const IoError& e) { return e.what(); }
   return "";
 }
 
@@ -128,8 +126,9 @@ TEST(RaycastCommand, HitsEqualTheCpuReference) {
   }
   writeRaysFile(dir.path() / "rays.bin", rays);
   std::ostringstream out;
-  const std::vector<std::string> args = {"--scene", "builtin:sphere", "--rays", (dir.path() / "rays.bin").string(),
-                                         "-o", (dir.path() / "hits.bin").string()};
+  const std::vector<std::string> args = {"--scene", "builtin:sphere",
+                                         "--rays",  (dir.path() / "rays.bin").string(),
+                                         "-o",      (dir.path() / "hits.bin").string()};
   ASSERT_EQ(runRaycast(args, out), kExitOk) << out.str();
   const auto hits = readHitsFile(dir.path() / "hits.bin");
   const bvh::GpuBvh bvh = bvh::buildGpuBvh(scene.positions, scene.triangles, bvh::BuildOptions{});
@@ -151,8 +150,8 @@ TEST(RaycastCommand, MissingOptionsAndBadFilesAreErrors) {
   const std::vector<std::string> noRays = {"--scene", "builtin:sphere", "-o", (dir.path() / "h.bin").string()};
   EXPECT_THROW(runRaycast(noRays, out), UsageError);
   writeBytes(dir.path() / "bad.bin", "HTRY");
-  const std::vector<std::string> bad = {"--scene", "builtin:sphere", "--rays", (dir.path() / "bad.bin").string(),
-                                        "-o", (dir.path() / "h.bin").string()};
+  const std::vector<std::string> bad = {
+      "--scene", "builtin:sphere", "--rays", (dir.path() / "bad.bin").string(), "-o", (dir.path() / "h.bin").string()};
   EXPECT_THROW(runRaycast(bad, out), IoError);
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "h.bin"));
 }

@@ -18,8 +18,8 @@
 
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <span>
 #include <string>
@@ -51,7 +51,9 @@ struct Frame {
 };
 
 // Tilted square plane through the local origin: (x, 0, z), |x|, |z| <= 1, rotated about a generic axis.
-glm::dmat3 planeRotation() { return glm::dmat3(glm::rotate(glm::dmat4(1.0), 0.6, glm::normalize(glm::dvec3(1, 2, 3)))); }
+glm::dmat3 planeRotation() {
+  return glm::dmat3(glm::rotate(glm::dmat4(1.0), 0.6, glm::normalize(glm::dvec3(1, 2, 3))));
+}
 
 TestMesh tiltedPlane(int quads) {
   TestMesh mesh;
@@ -250,13 +252,14 @@ std::vector<ScalePlacement> scalePlacements() {
 }
 
 void report(const char* side, const std::string& mesh, const std::string& place, const Counts& c) {
-  std::printf("%-3s %-11s %-16s samples %llu lit %llu acne %llu | shadowed %llu leaks %llu | grazing %llu | "
-              "mirror %llu hits %llu self %llu | control (no offset): acne %llu mirror self %llu\n",
-              side, mesh.c_str(), place.c_str(), (unsigned long long)c.samples, (unsigned long long)c.shouldBeLit,
-              (unsigned long long)c.acne, (unsigned long long)c.shouldBeShadowed, (unsigned long long)c.leaks,
-              (unsigned long long)c.grazing, (unsigned long long)c.mirrorRays, (unsigned long long)c.mirrorHits,
-              (unsigned long long)c.mirrorSelfHits, (unsigned long long)c.controlAcne,
-              (unsigned long long)c.controlMirrorSelfHits);
+  std::printf(
+      "%-3s %-11s %-16s samples %llu lit %llu acne %llu | shadowed %llu leaks %llu | grazing %llu | "
+      "mirror %llu hits %llu self %llu | control (no offset): acne %llu mirror self %llu\n",
+      side, mesh.c_str(), place.c_str(), (unsigned long long)c.samples, (unsigned long long)c.shouldBeLit,
+      (unsigned long long)c.acne, (unsigned long long)c.shouldBeShadowed, (unsigned long long)c.leaks,
+      (unsigned long long)c.grazing, (unsigned long long)c.mirrorRays, (unsigned long long)c.mirrorHits,
+      (unsigned long long)c.mirrorSelfHits, (unsigned long long)c.controlAcne,
+      (unsigned long long)c.controlMirrorSelfHits);
 }
 
 void expectClean(const Counts& c, const std::string& where) {
@@ -290,9 +293,11 @@ TEST(SelfIntersection, OffsetRaysNeitherShowAcneNorReHitTheirSurface) {
       }
     }
   }
-  std::printf("total: %llu lit and %llu shadowed samples checked; control without offset: %llu acne, %llu mirror "
-              "self-hits\n", (unsigned long long)lit, (unsigned long long)shadowed, (unsigned long long)controlAcne,
-              (unsigned long long)controlSelfHits);
+  std::printf(
+      "total: %llu lit and %llu shadowed samples checked; control without offset: %llu acne, %llu mirror "
+      "self-hits\n",
+      (unsigned long long)lit, (unsigned long long)shadowed, (unsigned long long)controlAcne,
+      (unsigned long long)controlSelfHits);
   EXPECT_GT(controlAcne + controlSelfHits, 0u) << "spawning at the hit point itself should self-intersect somewhere";
 }
 

@@ -1,6 +1,6 @@
 // Watertightness: rays starting inside closed icospheres and tori never miss, on the CPU reference and the
 // GPU kernel, with the mesh at the origin, translated up to 1e6 and to Embree verify's centre, and scaled
-// 1e-4 … 1e4 (bvh.md §6). The anchors (robust Embree, naive Möller-Trumbore controls) and all six meshes
+// 1e-4 … 1e4 (docs/BVH.md §6). The anchors (robust Embree, naive Möller-Trumbore controls) and all six meshes
 // run in bench/accuracy_report; here only the control's ability to leak is checked.
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ class Watertight : public ::testing::TestWithParam<Placement> {};
 
 TEST_P(Watertight, RaysFromInsideClosedMeshesNeverMiss) {
   const Placement& placement = GetParam();
-  // 200k rays per mesh and placement in Release (bvh.md §6: Embree verify tolerates 0.002 % misses; we
+  // 200k rays per mesh and placement in Release (docs/BVH.md §6: Embree verify tolerates 0.002 % misses; we
   // tolerate none). CI takes the finest icosphere and torus; bench/accuracy_report runs all closedMeshes().
   const uint32_t count = test::scaledCount(200000);
   for (const TestMesh& local : {icosphere(5), torus(192, 96)}) {
@@ -27,9 +27,8 @@ TEST_P(Watertight, RaysFromInsideClosedMeshesNeverMiss) {
     const auto rays = mixedInteriorRays(mesh, count, 7);
     const LeakCounts c = countLeaks(mesh, rays, LeakOptions{&test::sharedContext(), false});
     std::printf("%-16s %-14s rays %llu misses: cpu %llu gpu %llu (triangles dropped at build %llu)\n",
-                mesh.name.c_str(), placement.name.c_str(), (unsigned long long)c.rays,
-                (unsigned long long)c.cpuMisses, (unsigned long long)c.gpuMisses,
-                (unsigned long long)c.trianglesDropped);
+                mesh.name.c_str(), placement.name.c_str(), (unsigned long long)c.rays, (unsigned long long)c.cpuMisses,
+                (unsigned long long)c.gpuMisses, (unsigned long long)c.trianglesDropped);
     EXPECT_EQ(c.cpuMisses, 0u) << mesh.name << " at " << placement.name;
     EXPECT_EQ(c.cpuOverflows, 0u) << mesh.name << " at " << placement.name;
     EXPECT_EQ(c.gpuMisses, 0u) << mesh.name << " at " << placement.name;
@@ -39,7 +38,8 @@ TEST_P(Watertight, RaysFromInsideClosedMeshesNeverMiss) {
 INSTANTIATE_TEST_SUITE_P(Placements, Watertight, ::testing::ValuesIn(placements()),
                          [](const ::testing::TestParamInfo<Placement>& info) {
                            std::string name;
-                           for (char ch : info.param.name) name += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+                           for (char ch : info.param.name)
+                             name += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
                            return name;
                          });
 

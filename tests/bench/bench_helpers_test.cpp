@@ -55,16 +55,16 @@ QualityPoint point(const char* path, std::uint32_t spp, double ms, double psnr, 
 // -> (4 s, 47); (1.8 s, 44) and (2 s, 44) are dominated.
 TEST(QualityComparison, DirectAndAdaptiveCurvesAgainstAQuiltPoint) {
   DisplayQuality d;
-  d.points = {point("direct", 1, 1000, 40), point("direct", 2, 2000, 44), point("adaptive", 1, 1800, 44, 4),
-              point("adaptive", 1, 1500, 45, 8), point("direct", 4, 4000, 47),
-              point("quilt", 1, std::sqrt(2.0) * 1000, 41)};
+  d.points = {point("direct", 1, 1000, 40),      point("direct", 2, 2000, 44),
+              point("adaptive", 1, 1800, 44, 4), point("adaptive", 1, 1500, 45, 8),
+              point("direct", 4, 4000, 47),      point("quilt", 1, std::sqrt(2.0) * 1000, 41)};
   const auto comparisons = d.compare();
   ASSERT_EQ(comparisons.size(), 1u);
   const EqualComparison& c = comparisons[0];
   ASSERT_TRUE(c.directGainDb && c.speedup && c.adaptiveGainDb && c.adaptiveSpeedup);
-  EXPECT_NEAR(*c.directGainDb, 42.0 - 41.0, 1e-9);  // half way in log2 time
+  EXPECT_NEAR(*c.directGainDb, 42.0 - 41.0, 1e-9);                  // half way in log2 time
   EXPECT_NEAR(*c.speedup, std::sqrt(2.0) / std::exp2(0.25), 1e-9);  // 41 dB a quarter of the way
-  const double w = 0.5 / std::log2(1.5);  // sqrt 2 s between 1 s and 1.5 s in log2 time
+  const double w = 0.5 / std::log2(1.5);                            // sqrt 2 s between 1 s and 1.5 s in log2 time
   EXPECT_NEAR(*c.adaptiveGainDb, 40.0 + 5.0 * w - 41.0, 1e-9);
   EXPECT_NEAR(*c.adaptiveSpeedup, std::sqrt(2.0) / std::exp2(std::log2(1.5) * 0.2), 1e-9);
   d.points.back() = point("quilt", 1, 3000, 46);  // between 1.5 s and 4 s: the adaptive curve, then direct spp 4

@@ -122,19 +122,18 @@ TEST(BvhBuilder, DropsDegenerateNanInfAndOutOfRangeTriangles) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   Mesh mesh;
-  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0},   // 0..3: 3 is collinear with 0, 1
+  mesh.positions = {{0, 0, 0},   {1, 0, 0},   {0, 1, 0},    {2, 0, 0},  // 0..3: 3 is collinear with 0, 1
                     {nan, 0, 0}, {0, inf, 0}, {0, 0, -inf}, {1, 1, 1}};
   mesh.triangles = {
-      {0, 1, 2},     // kept
-      {0, 1, 3},     // zero area (collinear)
-      {0, 0, 2},     // zero area (repeated vertex)
-      {1, 1, 1},     // zero area (point)
-      {0, 1, 4},     // NaN vertex
-      {0, 5, 2},     // +Inf vertex
-      {6, 1, 2},     // -Inf vertex
-      {0, 1, 8},     // index out of range
-      {0, 0xFFFFFFFFu, 2},
-      {1, 2, 7},     // kept
+      {0, 1, 2},                       // kept
+      {0, 1, 3},                       // zero area (collinear)
+      {0, 0, 2},                       // zero area (repeated vertex)
+      {1, 1, 1},                       // zero area (point)
+      {0, 1, 4},                       // NaN vertex
+      {0, 5, 2},                       // +Inf vertex
+      {6, 1, 2},                       // -Inf vertex
+      {0, 1, 8},                       // index out of range
+      {0, 0xFFFFFFFFu, 2}, {1, 2, 7},  // kept
   };
   Bvh2 bvh = build(mesh);
   test::expectValidBvh(bvh, mesh, {}, 2);

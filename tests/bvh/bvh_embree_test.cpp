@@ -96,9 +96,9 @@ TEST(BvhEmbree, BunnyPrimaryRaysAgreeWithRobustEmbree) {
     hitsEmbree += theyHit;
     if (weHit != theyHit) {
       if (++disagreements <= 20) {
-        std::printf("  disagreement ray %zu (px %zu,%zu): ours %s t=%.9g tri %u, embree %s t=%.9g tri %u\n", i,
-                    i % res, i / res, weHit ? "hit" : "miss", ours[i].hit.t, ours[i].hit.triId,
-                    theyHit ? "hit" : "miss", theirs[i].ray.tfar, theirs[i].hit.primID);
+        std::printf("  disagreement ray %zu (px %zu,%zu): ours %s t=%.9g tri %u, embree %s t=%.9g tri %u\n", i, i % res,
+                    i / res, weHit ? "hit" : "miss", ours[i].hit.t, ours[i].hit.triId, theyHit ? "hit" : "miss",
+                    theirs[i].ray.tfar, theirs[i].hit.primID);
       }
       continue;
     }
@@ -108,16 +108,18 @@ TEST(BvhEmbree, BunnyPrimaryRaysAgreeWithRobustEmbree) {
     tOver1e4 += rel > 1e-4;
   }
   const double mrays = [](size_t n, double s) { return static_cast<double>(n) / s * 1e-6; }(rays.size(), 1.0);
-  std::printf("  %ux%u rays: hits ours %llu, embree %llu, hit/miss disagreements %llu, max rel dt %.3g, "
-              "dt > 1e-4: %llu\n",
-              res, res, static_cast<unsigned long long>(hitsOurs), static_cast<unsigned long long>(hitsEmbree),
-              static_cast<unsigned long long>(disagreements), maxRelT, static_cast<unsigned long long>(tOver1e4));
+  std::printf(
+      "  %ux%u rays: hits ours %llu, embree %llu, hit/miss disagreements %llu, max rel dt %.3g, "
+      "dt > 1e-4: %llu\n",
+      res, res, static_cast<unsigned long long>(hitsOurs), static_cast<unsigned long long>(hitsEmbree),
+      static_cast<unsigned long long>(disagreements), maxRelT, static_cast<unsigned long long>(tOver1e4));
   std::printf("  steps per ray: mean %.1f, max %u (limit %u)\n", double(stepsSum) / rays.size(), stepsMax,
               gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
-  std::printf("  Mrays/s: ours 1 thread %.2f, ours batch (%u threads) %.2f, embree rtcIntersect1 1 thread %.2f "
-              "(ratio 1 thread %.2f)\n",
-              mrays / oursSeconds, std::thread::hardware_concurrency(), mrays / batchSeconds,
-              mrays / embreeSeconds, embreeSeconds / oursSeconds);
+  std::printf(
+      "  Mrays/s: ours 1 thread %.2f, ours batch (%u threads) %.2f, embree rtcIntersect1 1 thread %.2f "
+      "(ratio 1 thread %.2f)\n",
+      mrays / oursSeconds, std::thread::hardware_concurrency(), mrays / batchSeconds, mrays / embreeSeconds,
+      embreeSeconds / oursSeconds);
   EXPECT_LE(static_cast<double>(disagreements), 1e-5 * static_cast<double>(rays.size()));
   EXPECT_GT(hitsOurs, rays.size() / 10);
 }

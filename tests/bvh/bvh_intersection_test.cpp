@@ -53,7 +53,8 @@ TEST(BvhWatertight, MatchesDoubleOracleOnRandomRays) {
   const uint32_t pairs = test::scaled(200000, 20000);
   uint32_t hits = 0;
   for (uint32_t i = 0; i < pairs; ++i) {
-    glm::vec3 a(unit(rng), unit(rng), unit(rng)), b(unit(rng), unit(rng), unit(rng)), c(unit(rng), unit(rng), unit(rng));
+    glm::vec3 a(unit(rng), unit(rng), unit(rng)), b(unit(rng), unit(rng), unit(rng)),
+        c(unit(rng), unit(rng), unit(rng));
     glm::vec3 origin = 3.0f * glm::vec3(unit(rng), unit(rng), unit(rng));
     // Aim near the triangle half of the time so that hits are frequent.
     glm::vec3 target = (a + b + c) / 3.0f + 0.3f * glm::vec3(unit(rng), unit(rng), unit(rng));
@@ -65,8 +66,8 @@ TEST(BvhWatertight, MatchesDoubleOracleOnRandomRays) {
     ++hits;
     // The float error of t is absolute, a few ulps of the magnitudes the test works with (the vertex
     // distances from the origin in units of |dir|; cf. pbrt's deltaT), not relative to t itself.
-    double scale = std::max({glm::distance(a, origin), glm::distance(b, origin), glm::distance(c, origin)}) /
-                   glm::length(ray.dir);
+    double scale =
+        std::max({glm::distance(a, origin), glm::distance(b, origin), glm::distance(c, origin)}) / glm::length(ray.dir);
     EXPECT_NEAR(f.t, d.t, 1e-5 * std::max(d.t, scale)) << "pair " << i;
     EXPECT_NEAR(f.u, d.u, 1e-4) << "pair " << i;
     EXPECT_NEAR(f.v, d.v, 1e-4) << "pair " << i;

@@ -18,7 +18,7 @@ using namespace gpu_shared;
 TEST(BvhOffsetRay, ConstantsAreThoseOfTheChapter) {
   EXPECT_EQ(HT_OFFSET_ORIGIN, 1.0f / 32.0f);
   EXPECT_EQ(HT_OFFSET_FLOAT_SCALE, 1.0f / 65536.0f);
-  EXPECT_NE(HT_OFFSET_FLOAT_SCALE, 1.0f / 65535.0f);  // a port seen in the wild used 1/65535 (bvh.md §5.3)
+  EXPECT_NE(HT_OFFSET_FLOAT_SCALE, 1.0f / 65535.0f);  // a port seen in the wild used 1/65535 (docs/BVH.md §5.3)
   EXPECT_EQ(HT_OFFSET_INT_SCALE, 256.0f);
 }
 
@@ -58,8 +58,10 @@ TEST(BvhOffsetRay, MagnitudesFrom1em30To1e30) {
       double delta = double(q[k]) - double(p[k]);
       ASSERT_GE(delta * n[k], 0.0) << "i " << i << " k " << k;
       // Close: at most 256 ULPs (each <= 2^-23 max(|p|, |q|)) or n/65536 near zero.
-      double bound = std::fabs(p[k]) < 1.0f / 32.0f ? std::fabs(n[k]) / 65536.0 + std::ldexp(std::fabs(double(q[k])), -23)  // + rounding of the sum
-                                                    : 256.0 * std::ldexp(std::max(std::fabs(double(p[k])), std::fabs(double(q[k]))), -23);
+      double bound =
+          std::fabs(p[k]) < 1.0f / 32.0f
+              ? std::fabs(n[k]) / 65536.0 + std::ldexp(std::fabs(double(q[k])), -23)  // + rounding of the sum
+              : 256.0 * std::ldexp(std::max(std::fabs(double(p[k])), std::fabs(double(q[k]))), -23);
       ASSERT_LE(std::fabs(delta), bound) << "i " << i << " k " << k;
     }
     // Strictly on the normal's side of the plane through p.

@@ -96,12 +96,12 @@ inline Mesh closedSphere(glm::vec3 center, float radius, uint32_t rings, uint32_
       mesh.triangles.emplace_back(ring(r, s), ring(r + 1, s + 1), ring(r, s + 1));
     }
   }
-  for (uint32_t s = 0; s < segments; ++s) mesh.triangles.emplace_back(south, ring(rings - 1, s + 1), ring(rings - 1, s));
+  for (uint32_t s = 0; s < segments; ++s)
+    mesh.triangles.emplace_back(south, ring(rings - 1, s + 1), ring(rings - 1, s));
   return mesh;
 }
 
-inline gpu_shared::HtRay makeRay(glm::vec3 origin, glm::vec3 dir, float tmin = 0.0f,
-                                 float tmax = INFINITY) {
+inline gpu_shared::HtRay makeRay(glm::vec3 origin, glm::vec3 dir, float tmin = 0.0f, float tmax = INFINITY) {
   gpu_shared::HtRay ray;
   ray.origin = origin;
   ray.tmin = tmin;
@@ -113,9 +113,7 @@ inline gpu_shared::HtRay makeRay(glm::vec3 origin, glm::vec3 dir, float tmin = 0
 inline glm::vec3 randomUnitVector(std::mt19937& rng) {
   std::normal_distribution<float> normal;
   glm::vec3 v;
-  do {
-    v = glm::vec3(normal(rng), normal(rng), normal(rng));
-  } while (glm::dot(v, v) < 1e-6f);
+  do { v = glm::vec3(normal(rng), normal(rng), normal(rng)); } while (glm::dot(v, v) < 1e-6f);
   return glm::normalize(v);
 }
 
@@ -148,8 +146,7 @@ inline std::vector<gpu_shared::HtRay> pinholeRays(const Mesh& mesh, uint32_t wid
 // Structural checks of a built Bvh2: a tree over all nodes; leaves partition primIndex; primIndex is exactly
 // the usable triangles, each once; child boxes inside parents; leaf boxes contain their triangles; bounds on
 // depth and leaf size.
-inline void expectValidBvh(const Bvh2& bvh, const Mesh& mesh, const BuildOptions& options,
-                           uint64_t expectedKept) {
+inline void expectValidBvh(const Bvh2& bvh, const Mesh& mesh, const BuildOptions& options, uint64_t expectedKept) {
   ASSERT_EQ(bvh.primIndex.size(), expectedKept);
   ASSERT_EQ(bvh.report.trianglesIn, mesh.triangles.size());
   ASSERT_EQ(bvh.report.trianglesDropped, mesh.triangles.size() - expectedKept);

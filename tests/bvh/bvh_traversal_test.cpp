@@ -154,10 +154,10 @@ TEST(BvhTraversal, NanAndInfRaysMissImmediately) {
   GpuBvh gpu = buildGpuBvh(mesh.positions, mesh.triangles, {});
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = INFINITY;
   std::vector<HtRay> bad = {
-      test::makeRay({nan, 0.5f, 0.5f}, {0, 0, 1}),     test::makeRay({0.5f, 0.5f, 0.5f}, {nan, 0, 1}),
-      test::makeRay({inf, 0.5f, 0.5f}, {-1, 0, 0}),    test::makeRay({0.5f, -inf, 0.5f}, {0, 1, 0}),
-      test::makeRay({0.5f, 0.5f, -2}, {0, 0, inf}),    test::makeRay({0.5f, 0.5f, -2}, {inf, inf, inf}),
-      test::makeRay({0.5f, 0.5f, -2}, {0, 0, 0}),      test::makeRay({0.5f, 0.5f, -2}, {0, 0, 1}, nan, inf),
+      test::makeRay({nan, 0.5f, 0.5f}, {0, 0, 1}),        test::makeRay({0.5f, 0.5f, 0.5f}, {nan, 0, 1}),
+      test::makeRay({inf, 0.5f, 0.5f}, {-1, 0, 0}),       test::makeRay({0.5f, -inf, 0.5f}, {0, 1, 0}),
+      test::makeRay({0.5f, 0.5f, -2}, {0, 0, inf}),       test::makeRay({0.5f, 0.5f, -2}, {inf, inf, inf}),
+      test::makeRay({0.5f, 0.5f, -2}, {0, 0, 0}),         test::makeRay({0.5f, 0.5f, -2}, {0, 0, 1}, nan, inf),
       test::makeRay({0.5f, 0.5f, -2}, {0, 0, 1}, 0, nan), test::makeRay({0.5f, 0.5f, -2}, {0, 0, 1}, 5, 1),
   };
   for (size_t i = 0; i < bad.size(); ++i) {
@@ -173,7 +173,7 @@ TEST(BvhTraversal, NanAndInfRaysMissImmediately) {
   EXPECT_FALSE(ok.overflow);
 }
 
-// Embree verify's watertight test (bvh.md §6): rays from inside a closed sphere centred far from the origin
+// Embree verify's watertight test (docs/BVH.md §6): rays from inside a closed sphere centred far from the origin
 // must all hit; here also near the origin and for axis-aligned directions.
 TEST(BvhTraversal, ClosedSphereDoesNotLeak) {
   const uint32_t rays = test::scaled(200000, 20000);
@@ -217,7 +217,7 @@ TEST(BvhTraversal, AxisAlignedRaysThroughGridEdgesAndVertices) {
   }
   GpuBvh gpu = buildGpuBvh(grid.positions, grid.triangles, {});
   uint32_t misses = 0, total = 0;
-  for (uint32_t y = 1; y < 2 * n; ++y) {      // interior only: half-cell steps hit edges, vertices, diagonals
+  for (uint32_t y = 1; y < 2 * n; ++y) {  // interior only: half-cell steps hit edges, vertices, diagonals
     for (uint32_t x = 1; x < 2 * n; ++x) {
       for (float dz : {-1.0f, 1.0f}) {
         HtRay ray = test::makeRay({0.0625f * x, 0.0625f * y, -dz}, {0.0f, 0.0f, dz});

@@ -24,19 +24,20 @@ inline Bounds3 testBounds() {
   return b;
 }
 
-// Synthetic 8K (7680x4320) lenticular panel in the style of the 32" Gen3 units: Gen3 lens parameters (optics.md §1.1,
-// LKG-J pitch and slope) scaled to an 8K panel; pitch_s is about 1190 lenses, so phi reaches ~1200.
-// cellMode 0 = classic; 2 = the LKG-J template cells.
+// Synthetic 8K (7680x4320) lenticular panel in the style of the 32" Gen3 units: Gen3 lens parameters (docs/OPTICS.md
+// §1.1, LKG-J pitch and slope) scaled to an 8K panel; pitch_s is about 1190 lenses, so phi reaches ~1200. cellMode 0 =
+// classic; 2 = the LKG-J template cells.
 inline DisplayConfig eightKDisplay(int cellMode, bool flipX = false, bool flipSubp = false, bool invView = true) {
   const std::string cells =
-      cellMode == 0 ? "[]"
-                    : R"([{"ROffsetX":-0.31,"ROffsetY":0.25,"GOffsetX":0.28,"GOffsetY":0.25,"BOffsetX":0,
+      cellMode == 0 ? "[]" : R"([{"ROffsetX":-0.31,"ROffsetY":0.25,"GOffsetX":0.28,"GOffsetY":0.25,"BOffsetX":0,
                            "BOffsetY":-0.25},
                           {"ROffsetX":-0.31,"ROffsetY":-0.25,"GOffsetX":0.28,"GOffsetY":-0.25,"BOffsetX":0,
                            "BOffsetY":0.25}])";
   std::string json = std::string(R"({"name": "8k", "calibration": {"pitch": 44.72, "slope": -6.9, "center": 0.37,
-      "viewCone": 50, "invView": )") + (invView ? "1" : "0") + R"(, "DPI": 280, "screenW": 7680, "screenH": 4320,
-      "flipImageX": )" + (flipX ? "1" : "0") + R"(, "flipImageY": 0, "flipSubp": )" + (flipSubp ? "1" : "0") +
+      "viewCone": 50, "invView": )") +
+                     (invView ? "1" : "0") + R"(, "DPI": 280, "screenW": 7680, "screenH": 4320,
+      "flipImageX": )" +
+                     (flipX ? "1" : "0") + R"(, "flipImageY": 0, "flipSubp": )" + (flipSubp ? "1" : "0") +
                      R"(, "CellPatternMode": )" + std::to_string(cellMode) + R"(, "subpixelCells": )" + cells + "}}";
   return parseDisplayConfig(json, "synthetic-8k", "");
 }

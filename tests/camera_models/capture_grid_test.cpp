@@ -1,4 +1,4 @@
-// Two-plane capture grid (optics.md §9 M5, Levoy & Hanrahan 1996). Checks written without the model code: each ray
+// Two-plane capture grid (docs/OPTICS.md §9 M5, Levoy & Hanrahan 1996). Checks written without the model code: each ray
 // starts at its camera (s, t) on the camera plane and crosses the focal window at its pixel's (u, v); one row of the
 // grid with ds = D tan(theta) spacing reproduces the M1 quilt cameras; float vs double over whole images; bad
 // sections are ConfigErrors.
@@ -53,10 +53,15 @@ TEST(CaptureGrid, RaysJoinCameraAndWindowPoint) {
 // With equal spacing only the centre camera pair is exact, so compare camera 0 of a 1x1 grid placed at theta = 0 and
 // the 2-camera row at +-ds/2 against o = (D tan(theta), 0, D), theta = atan(ds/(2D)).
 TEST(CaptureGrid, RowIsTheQuiltCameraArray) {
-  const json config = {{"model", "capture-grid"}, {"camera", {{"target", {0, 0, 0}}}},
-                       {"captureGrid", {{"columns", 2}, {"rows", 1}, {"spacing", {0.4, 1.0}}, {"distance", 5.0},
-                                        {"window", {{"width", 2.0}, {"height", 1.5}}},
-                                        {"image", {{"width", 400}, {"height", 300}}}}}};
+  const json config = {{"model", "capture-grid"},
+                       {"camera", {{"target", {0, 0, 0}}}},
+                       {"captureGrid",
+                        {{"columns", 2},
+                         {"rows", 1},
+                         {"spacing", {0.4, 1.0}},
+                         {"distance", 5.0},
+                         {"window", {{"width", 2.0}, {"height", 1.5}}},
+                         {"image", {{"width", 400}, {"height", 300}}}}}};
   const DisplayConfig parsed = parseDisplayConfig(config.dump(), "row.json", "");
   const gpu_shared::CaptureGridParams p = makeCaptureGridParams(parsed, Bounds3{});
   const double theta = std::atan(0.2 / 5.0);
@@ -104,15 +109,17 @@ TEST(CaptureGrid, FloatMatchesDoubleReference) {
 
 ConfigError gridSectionError(const std::function<void(json&)>& edit) {
   json config = {{"model", "capture-grid"},
-                 {"captureGrid", {{"columns", 8}, {"rows", 6}, {"spacing", {0.1, 0.1}}, {"distance", 2.0},
-                                  {"window", {{"width", 1.6}, {"height", 1.2}}},
-                                  {"image", {{"width", 64}, {"height", 48}}}}}};
+                 {"captureGrid",
+                  {{"columns", 8},
+                   {"rows", 6},
+                   {"spacing", {0.1, 0.1}},
+                   {"distance", 2.0},
+                   {"window", {{"width", 1.6}, {"height", 1.2}}},
+                   {"image", {{"width", 64}, {"height", 48}}}}}};
   edit(config["captureGrid"]);
   try {
     parseDisplayConfig(config.dump(), "cg.json", "");
-  } catch (const ConfigError& e) {
-    return e;
-  }
+  } catch (const ConfigError& e) { return e; }
   ADD_FAILURE() << "expected a ConfigError for " << config.dump();
   return ConfigError("", "", "", "");
 }

@@ -16,8 +16,8 @@
 namespace ht {
 namespace {
 
-using ::testing::HasSubstr;
 using test::fixturePath;
+using ::testing::HasSubstr;
 
 // A valid visual.json with one field replaced (or removed when replacement is empty).
 std::string visualJsonWith(const std::string& key, const std::string& replacement) {
@@ -37,9 +37,7 @@ std::string visualJsonWith(const std::string& key, const std::string& replacemen
 ConfigError catchConfigError(const std::function<void()>& action) {
   try {
     action();
-  } catch (const ConfigError& e) {
-    return e;
-  }
+  } catch (const ConfigError& e) { return e; }
   ADD_FAILURE() << "expected a ConfigError";
   return ConfigError("", "", "", "");
 }

@@ -1,5 +1,5 @@
-// Parsing of good inputs: every visual.json fixture of optics.md §1.1, both CellPatternMode casings, bare vs wrapped
-// numbers, booleans, flips, our display-config format, and the built-in (embedded) displays.
+// Parsing of good inputs: every visual.json fixture of docs/OPTICS.md §1.1, both CellPatternMode casings, bare vs
+// wrapped numbers, booleans, flips, our display-config format, and the built-in (embedded) displays.
 #include <fstream>
 #include <sstream>
 
@@ -184,9 +184,9 @@ TEST(DisplayConfigParse, EmbeddedCalibrationAndAutoKeywords) {
 }
 
 TEST(DisplayConfigBuiltin, NamesAndNominalValues) {
-  EXPECT_EQ(builtinDisplayNames(), (std::vector<std::string>{"capture-16x16", "capture-8x6", "gen1-8.9",
-                                                             "gen3-16-landscape", "go",
-                                                             "holovizio-wall-70", "integral-15-4k", "oblique-9x9", "portrait"}));
+  EXPECT_EQ(builtinDisplayNames(),
+            (std::vector<std::string>{"capture-16x16", "capture-8x6", "gen1-8.9", "gen3-16-landscape", "go",
+                                      "holovizio-wall-70", "integral-15-4k", "oblique-9x9", "portrait"}));
   for (const std::string& name : builtinDisplayNames()) {
     DisplayConfig config = builtinDisplay(name);
     EXPECT_EQ(config.name, name);
@@ -222,9 +222,7 @@ TEST(DisplayConfigBuiltin, EmbeddedCopiesMatchShippedFiles) {
     DisplayConfig fromDisk = loadDisplayConfig(std::string(HT_SOURCE_DIR) + "/configs/" + name + ".json");
     DisplayConfig embedded = builtinDisplay(name);
     ASSERT_EQ(fromDisk.calibration.has_value(), embedded.calibration.has_value()) << name;
-    if (fromDisk.calibration) {
-      EXPECT_EQ(fromDisk.calibration->rawJson, embedded.calibration->rawJson) << name;
-    }
+    if (fromDisk.calibration) { EXPECT_EQ(fromDisk.calibration->rawJson, embedded.calibration->rawJson) << name; }
     EXPECT_EQ(fromDisk.description, embedded.description) << name;
   }
 }

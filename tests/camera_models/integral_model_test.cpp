@@ -1,4 +1,4 @@
-// Integral imaging / microlens panels (optics.md §7, §9 M4). Checks written without the model code: in the pinhole
+// Integral imaging / microlens panels (docs/OPTICS.md §7, §9 M4). Checks written without the model code: in the pinhole
 // ("centre") case each ray is the line through its LCD pixel and the nearest lens centre (found here by brute force);
 // with g = f a thin lens collimates every aperture sample of a pixel (ray transfer, which fixes the lens-term sign);
 // rays start on the front plane; bad sections are ConfigErrors; float vs double over whole panels incl. corners.
@@ -68,7 +68,7 @@ TEST(IntegralModel, PinholeRayThroughPixelAndLensCentre) {
       gpu_shared::integral_ray(p, x, y, kWhole, glm::vec2(0.5f), origin, dir);
       const glm::dvec3 o = (glm::dvec3(origin) - target) / scale, d(dir);
       ASSERT_NEAR(glm::length(d), 1.0, 1e-6);
-      ASSERT_LT(d.z, 0.0);                  // into the display
+      ASSERT_LT(d.z, 0.0);                   // into the display
       EXPECT_NEAR(o.z, c.frontPlane, 1e-3);  // starts on the front plane
       const glm::dvec3 atLens = o + (-o.z / d.z) * d, atLcd = o + ((-c.gap - o.z) / d.z) * d;
       EXPECT_NEAR(atLens.x, lens.x, 1e-4) << x << "," << y;
@@ -140,7 +140,8 @@ TEST(IntegralModel, FloatMatchesDoubleReference) {
     std::printf("integral %s %ux%u rot %g %s float vs double: max angle %.3g rad, max origin %.3g (scene scale %.3g)\n",
                 config.name.c_str(), config.integral->panelWidth, config.integral->panelHeight,
                 config.integral->lensRotationDeg,
-                config.integral->sampling == LensSampling::Aperture ? "aperture" : "centre", maxAngle, maxOrigin, sceneScale);
+                config.integral->sampling == LensSampling::Aperture ? "aperture" : "centre", maxAngle, maxOrigin,
+                sceneScale);
     EXPECT_LE(maxAngle, 2e-6) << config.name;
     EXPECT_LE(maxOrigin, 1e-6 * sceneScale) << config.name;
   }
@@ -173,9 +174,7 @@ ConfigError integralSectionError(const std::function<void(json&)>& edit) {
   edit(config["integral"]);
   try {
     parseDisplayConfig(config.dump(), "ii.json", "");
-  } catch (const ConfigError& e) {
-    return e;
-  }
+  } catch (const ConfigError& e) { return e; }
   ADD_FAILURE() << "expected a ConfigError for " << config.dump();
   return ConfigError("", "", "", "");
 }
@@ -197,7 +196,8 @@ TEST(IntegralConfig, BadValuesRejected) {
   EXPECT_EQ(integralSectionError([](json& s) { s["lensPitch"] = -0.5; }).field(), "integral.lensPitch");
   EXPECT_EQ(integralSectionError([](json& s) { s["focalLength"] = 0; }).field(), "integral.focalLength");
   EXPECT_EQ(integralSectionError([](json& s) { s["pixelPitch"] = "NaN"; }).field(), "integral.pixelPitch");
-  EXPECT_EQ(integralSectionError([](json& s) { s["viewerDistance"] = std::nan(""); }).field(), "integral.viewerDistance");
+  EXPECT_EQ(integralSectionError([](json& s) { s["viewerDistance"] = std::nan(""); }).field(),
+            "integral.viewerDistance");
   EXPECT_EQ(integralSectionError([](json& s) { s["frontPlane"] = 0; }).field(), "integral.frontPlane");
   EXPECT_EQ(integralSectionError([](json& s) { s["frontPlane"] = 501; }).field(), "integral.frontPlane");
   EXPECT_EQ(integralSectionError([](json& s) { s["panelWidth"] = 0; }).field(), "integral.panelWidth");

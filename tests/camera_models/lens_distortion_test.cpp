@@ -10,8 +10,8 @@
 #include "camera_models/pinhole_model.h"
 #include "camera_models/pinhole_params.h"
 #include "camera_models/projector_setup.h"
-#include "common/error.h"
 #include "camera_test_support.h"
+#include "common/error.h"
 
 namespace ht {
 namespace {
@@ -37,16 +37,17 @@ gpu_shared::LensDistortion block(const Coefficients& c) {
 
 TEST(LensDistortion, UndistortInvertsDistortRoundTrip) {
   // Barrel, pincushion and a strong wide-angle set with tangential terms (OpenCV-typical magnitudes).
-  for (const Coefficients& c : {Coefficients{-0.28, 0.07, 0.0, 0.0005, -0.0003},
-                                Coefficients{0.12, 0.03, 0.001, -0.001, 0.002},
-                                Coefficients{-0.35, 0.15, -0.03, 0.001, 0.001}}) {
+  for (const Coefficients& c :
+       {Coefficients{-0.28, 0.07, 0.0, 0.0005, -0.0003}, Coefficients{0.12, 0.03, 0.001, -0.001, 0.002},
+        Coefficients{-0.35, 0.15, -0.03, 0.001, 0.001}}) {
     const gpu_shared::LensDistortion d = block(c);
     double maxError = 0.0, maxForward = 0.0;
     for (double x = -0.6; x <= 0.6; x += 0.05) {
       for (double y = -0.45; y <= 0.45; y += 0.05) {
         const glm::dvec2 u(x, y);
         const glm::dvec2 xd = distortDouble(c, u);
-        maxForward = std::max(maxForward, glm::length(glm::dvec2(gpu_shared::brown_conrady_distort(d, glm::vec2(u))) - xd));
+        maxForward =
+            std::max(maxForward, glm::length(glm::dvec2(gpu_shared::brown_conrady_distort(d, glm::vec2(u))) - xd));
         const glm::dvec2 back(gpu_shared::brown_conrady_undistort(d, glm::vec2(xd)));
         maxError = std::max(maxError, glm::length(back - u));
       }
@@ -76,7 +77,8 @@ TEST(LensDistortion, DistortedPinholeRayLeavesAlongUndistortedPoint) {
   const glm::dvec3 up = glm::cross(right, forward);
   const double tanHalf = std::tan(0.5 * camera.fovyDeg * 3.14159265358979323846 / 180.0);
   const double aspect = double(camera.width) / camera.height;
-  for (auto [x, y] : {std::pair{0u, 0u}, {camera.width - 1, camera.height - 1}, {camera.width / 3, camera.height / 2}}) {
+  for (auto [x, y] :
+       {std::pair{0u, 0u}, {camera.width - 1, camera.height - 1}, {camera.width / 3, camera.height / 2}}) {
     glm::vec3 origin, dir;
     gpu_shared::pinhole_ray(p, x, y, glm::vec2(0.5f), origin, dir);
     // Project the ray back to normalized image coordinates and distort in double: must land on the pixel centre.
@@ -94,26 +96,27 @@ TEST(LensDistortion, DistortedPinholeRayLeavesAlongUndistortedPoint) {
 // the field named.
 TEST(LensDistortion, ConfigFieldsReachTheBlock) {
   const DisplayConfig config = parseDisplayConfig(R"({"model": "pinhole", "pinhole": {"width": 64, "height": 48,
-      "distortion": {"k1": -0.2, "k2": 0.05, "p2": 0.001}}})", "lens.json", "");
+      "distortion": {"k1": -0.2, "k2": 0.05, "p2": 0.001}}})",
+                                                  "lens.json", "");
   EXPECT_EQ(config.pinhole.distortion.k1, -0.2);
   EXPECT_EQ(config.pinhole.distortion.k3, 0.0);
   const gpu_shared::PinholeParams p = makePinholeParams(config, test::testBounds());
   EXPECT_EQ(p.distortion.radial, glm::vec4(-0.2f, 0.05f, 0.0f, 1.0f));
   EXPECT_EQ(p.distortion.tangential, glm::vec4(0.0f, 0.001f, 0.0f, 0.0f));
-  const DisplayConfig ideal = parseDisplayConfig(R"({"model": "pinhole", "pinhole": {"width": 64, "height": 48}})", "i.json", "");
+  const DisplayConfig ideal =
+      parseDisplayConfig(R"({"model": "pinhole", "pinhole": {"width": 64, "height": 48}})", "i.json", "");
   EXPECT_FALSE(gpu_shared::lens_has_distortion(makePinholeParams(ideal, test::testBounds()).distortion));
 }
 
 TEST(LensDistortion, BadCoefficientsNameTheField) {
   auto message = [](const std::string& distortion, double fovyDeg) {
     try {
-      const DisplayConfig c = parseDisplayConfig(R"({"model": "pinhole", "pinhole": {"width": 64, "height": 48, "fovyDeg": )" +
-                                                     std::to_string(fovyDeg) + R"(, "distortion": )" + distortion + "}}",
-                                                 "lens.json", "");
+      const DisplayConfig c =
+          parseDisplayConfig(R"({"model": "pinhole", "pinhole": {"width": 64, "height": 48, "fovyDeg": )" +
+                                 std::to_string(fovyDeg) + R"(, "distortion": )" + distortion + "}}",
+                             "lens.json", "");
       makePinholeParams(c, test::testBounds());
-    } catch (const ConfigError& e) {
-      return std::string(e.what());
-    }
+    } catch (const ConfigError& e) { return std::string(e.what()); }
     return std::string("(no error)");
   };
   EXPECT_THAT(message(R"({"k4": 0.1})", 45), ::testing::HasSubstr("k4"));
@@ -130,24 +133,25 @@ TEST(LensDistortion, BadCoefficientsNameTheField) {
 // "projectorArray.lens": parsed into the block, and refused with the field named when it cannot be a lens.
 TEST(LensDistortion, ProjectorLensConfig) {
   auto config = [](const std::string& lens) {
-    return parseDisplayConfig(R"({"model": "projector-array", "projectorArray": {"screen": {"width": 400, "height": 300},
+    return parseDisplayConfig(
+        R"({"model": "projector-array", "projectorArray": {"screen": {"width": 400, "height": 300},
         "observerDistance": 1000, "image": {"width": 320, "height": 240},
-        "projectors": [{"position": [-20, 0, -800]}, {"position": [20, 0, -800]}], "lens": )" + lens + "}}",
-                              "wall.json", "");
+        "projectors": [{"position": [-20, 0, -800]}, {"position": [20, 0, -800]}], "lens": )" +
+            lens + "}}",
+        "wall.json", "");
   };
   auto message = [&](const std::string& lens) {
     try {
       makeProjectorArrayParams(config(lens), test::testBounds());
-    } catch (const ConfigError& e) {
-      return std::string(e.what());
-    }
+    } catch (const ConfigError& e) { return std::string(e.what()); }
     return std::string("(no error)");
   };
   const gpu_shared::ProjectorArrayParams p = makeProjectorArrayParams(
       config(R"({"focalLength": 400, "principalOffset": [3, -2], "distortion": {"k1": -0.1}})"), test::testBounds());
   EXPECT_EQ(p.lens, glm::vec4(400.0f, 0.0f, 3.0f, -2.0f));
   EXPECT_EQ(p.distortion.radial, glm::vec4(-0.1f, 0.0f, 0.0f, 1.0f));
-  EXPECT_FALSE(gpu_shared::lens_has_distortion(makeProjectorArrayParams(config(R"({"focalLength": 400})"), test::testBounds()).distortion));
+  EXPECT_FALSE(gpu_shared::lens_has_distortion(
+      makeProjectorArrayParams(config(R"({"focalLength": 400})"), test::testBounds()).distortion));
   EXPECT_THAT(message(R"({"focalLength": 0})"), ::testing::HasSubstr("projectorArray.lens.focalLength"));
   EXPECT_THAT(message(R"({"focalLength": 400, "principalOffset": [1]})"), ::testing::HasSubstr("principalOffset"));
   EXPECT_THAT(message(R"({"focalLength": 400, "zoom": 2})"), ::testing::HasSubstr("zoom"));

@@ -1,5 +1,5 @@
 // Consistency checks written without the model code: at each view-bin centre the direct ray equals the quilt camera
-// ray of optics.md §9 M1 (looking-glass-webxr LookingGlassXRDevice.ts) for camera i through the same focal-plane
+// ray of docs/OPTICS.md §9 M1 (looking-glass-webxr LookingGlassXRDevice.ts) for camera i through the same focal-plane
 // point; directions are unit; every ray meets the focal plane inside the focal rectangle; view 0 is leftmost.
 #include <cmath>
 #include <numbers>
@@ -14,7 +14,7 @@
 namespace ht {
 namespace {
 
-// optics.md §9 M1, from the config's explicit numbers (no resolveLenticularCamera):
+// docs/OPTICS.md §9 M1, from the config's explicit numbers (no resolveLenticularCamera):
 //   D = 0.5*targetDiam/tan(fovy/2); theta_i = viewCone_rad*((i+0.5)/N - 0.5); o_i = (D tan(theta_i), 0, D)
 //   P = ((u - 0.5)*aspect*targetDiam, (v - 0.5)*targetDiam, 0); d = normalize(P - o_i); world = target + local.
 struct QuiltCamera {
@@ -54,7 +54,7 @@ TEST(CameraModelsConsistency, BinCentreRayEqualsQuiltCamera) {
   EXPECT_LT(maxOrigin, 1e-6 * 5.3);  // D = 5.34 here: float rounding of |origin|
 }
 
-// End to end through real subpixels: where the vendor phase (computed here, optics.md §3.1) is within 2e-4 of a
+// End to end through real subpixels: where the vendor phase (computed here, docs/OPTICS.md §3.1) is within 2e-4 of a
 // bin centre, the subpixel's ray is camera i's ray through the subpixel's focal-plane point (u + c*subp, v), up to
 // the angle that 2e-4 of phase makes (viewCone_rad * 2e-4).
 TEST(CameraModelsConsistency, SubpixelsAtBinCentresSeeQuiltCameras) {
@@ -176,7 +176,7 @@ TEST(CameraModelsConsistency, Gen3SamplePointsUseCellOffsets) {
   }
 }
 
-// View 0 is the leftmost camera (optics.md §4.1, §4.3): t -> 0 puts the origin left of the target.
+// View 0 is the leftmost camera (docs/OPTICS.md §4.1, §4.3): t -> 0 puts the origin left of the target.
 TEST(CameraModelsConsistency, ViewZeroIsLeftmost) {
   const DisplayConfig config = explicitPortrait();
   const gpu_shared::LenticularParams p = makeLenticularParams(config, test::testBounds());

@@ -1,5 +1,5 @@
-// Raw -> shader values (optics.md §2 worked examples), camera resolution (optics.md §4.3) and the LenticularParams /
-// PinholeParams blocks.
+// Raw -> shader values (docs/OPTICS.md §2 worked examples), camera resolution (docs/OPTICS.md §4.3) and the
+// LenticularParams / PinholeParams blocks.
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -17,7 +17,8 @@ namespace {
 using test::fixturePath;
 using test::loadFixture;
 
-// The worked examples of optics.md §2 are quoted to a given number of digits: compare to half a unit of the last one.
+// The worked examples of docs/OPTICS.md §2 are quoted to a given number of digits: compare to half a unit of the last
+// one.
 TEST(CameraModelsShaderValues, PortraitPr56WorkedExample) {
   LenticularShaderValues v = lenticularShaderValues(*loadFixture("portrait_pr56_visual.json").calibration);
   EXPECT_NEAR(v.pitch, 246.973, 0.0005);
@@ -30,7 +31,7 @@ TEST(CameraModelsShaderValues, Gen1OriginalWorkedExample) {
   LenticularShaderValues v = lenticularShaderValues(*loadFixture("gen1_8.9_original_visual.json").calibration);
   EXPECT_NEAR(v.pitch, 370.625, 0.0005);
   EXPECT_NEAR(v.tilt, 0.11982, 0.000005);
-  // Close to the hand-entered pitch 370.66407267416486 of lonetech/LookingGlass quiltshader.glsl (optics.md §2).
+  // Close to the hand-entered pitch 370.66407267416486 of lonetech/LookingGlass quiltshader.glsl (docs/OPTICS.md §2).
   EXPECT_NEAR(v.pitch, 370.66407267416486, 0.05);
 }
 
@@ -41,7 +42,7 @@ TEST(CameraModelsShaderValues, GoTemplateWorkedExample) {
 }
 
 TEST(CameraModelsShaderValues, TaurayFormulaAgrees) {
-  // vga-group/tauray src/looking_glass.cc: corrected_pitch = W/dpi*pitch*sin(atan(|slope|)) (optics.md §2).
+  // vga-group/tauray src/looking_glass.cc: corrected_pitch = W/dpi*pitch*sin(atan(|slope|)) (docs/OPTICS.md §2).
   for (const char* name : {"portrait_pr56_visual.json", "gen1_8.9_original_visual.json", "go_template_visual.json"}) {
     const LookingGlassCalibration c = *loadFixture(name).calibration;
     const double tauray = c.screenW / c.DPI * c.pitch * std::sin(std::atan(std::fabs(c.slope)));
@@ -65,7 +66,7 @@ TEST(CameraModelsParams, LenticularParamsFields) {
   const double d = 0.5 * 1.5 / std::tan(8.0 * std::numbers::pi / 180.0);
   EXPECT_FLOAT_EQ(p.camera.x, static_cast<float>(d));
   EXPECT_FLOAT_EQ(p.camera.y, 1.5f);
-  EXPECT_FLOAT_EQ(p.camera.z, 0.75f);                                     // 1536 / 2048
+  EXPECT_FLOAT_EQ(p.camera.z, 0.75f);                                                       // 1536 / 2048
   EXPECT_FLOAT_EQ(p.camera.w, static_cast<float>(40.0 * 1.25 * std::numbers::pi / 180.0));  // depthiness 1.25
   EXPECT_FLOAT_EQ(p.panel.x, 1536.0f);
   EXPECT_FLOAT_EQ(p.panel.y, 2048.0f);
@@ -89,8 +90,8 @@ TEST(CameraModelsParams, Gen3CellOffsetsDividedOnce) {
   EXPECT_EQ(p.flags.y, 2);
   EXPECT_FLOAT_EQ(p.cellOffset[0].x, static_cast<float>(-0.31 / 3840.0));  // cell 0 R
   EXPECT_FLOAT_EQ(p.cellOffset[0].y, static_cast<float>(0.25 / 2160.0));
-  EXPECT_FLOAT_EQ(p.cellOffset[5].y, static_cast<float>(0.25 / 2160.0));   // cell 1 B
-  EXPECT_FLOAT_EQ(p.cellOffset[4].x, static_cast<float>(0.28 / 3840.0));   // cell 1 G
+  EXPECT_FLOAT_EQ(p.cellOffset[5].y, static_cast<float>(0.25 / 2160.0));  // cell 1 B
+  EXPECT_FLOAT_EQ(p.cellOffset[4].x, static_cast<float>(0.28 / 3840.0));  // cell 1 G
   // Building twice gives the same block (no in-place division, cf. looking-glass-webxr PR #59).
   gpu_shared::LenticularParams again = makeLenticularParams(builtinDisplay("gen3-16-landscape"), test::testBounds());
   for (int i = 0; i < 12; ++i) EXPECT_EQ(p.cellOffset[i], again.cellOffset[i]);
@@ -154,7 +155,7 @@ TEST(CameraModelsPinhole, MatchesM0InDouble) {
       glm::vec2 xi(unit(rng), unit(rng));
       glm::vec3 o, d;
       gpu_shared::pinhole_ray(p, x, y, xi, o, d);
-      // optics.md §9 M0, camera looking down -z from (0,1,5): camera axes equal world axes.
+      // docs/OPTICS.md §9 M0, camera looking down -z from (0,1,5): camera axes equal world axes.
       glm::dvec3 expected = glm::normalize(glm::dvec3((2.0 * (x + xi.x) / 640.0 - 1.0) * aspect * tanHalf,
                                                       (2.0 * (y + xi.y) / 480.0 - 1.0) * tanHalf, -1.0));
       EXPECT_LT(test::angleBetween(glm::dvec3(d), expected), 1e-6);
@@ -189,8 +190,8 @@ TEST(CameraModelsPinhole, LenticularPreviewIsTheCentreView) {
 }
 
 TEST(CameraModelsPinhole, AutoEyeSeesTheBounds) {
-  DisplayConfig config = parseDisplayConfig(R"({"model":"pinhole","pinhole":{"width":800,"height":600}})",
-                                            "auto.json", "");
+  DisplayConfig config =
+      parseDisplayConfig(R"({"model":"pinhole","pinhole":{"width":800,"height":600}})", "auto.json", "");
   Bounds3 bounds = test::testBounds();
   PinholeCamera camera = resolvePinholeCamera(config, bounds);
   EXPECT_NEAR(camera.lookAt.x, 0.3, 1e-6);

@@ -22,11 +22,11 @@ struct Sample {
 };
 
 struct ErrorStats {
-  double phase = 0.0;         // max |t_float - t_double| on the phase circle
-  double angle = 0.0;         // max angle between float and double directions (rad)
-  double origin = 0.0;        // max |o_float - o_double| (world units)
-  double unitLength = 0.0;    // max ||d_float| - 1|
-  long skippedNearWrap = 0;   // t within 1e-5 of 0 / 1: the view wraps there, both sides are right
+  double phase = 0.0;        // max |t_float - t_double| on the phase circle
+  double angle = 0.0;        // max angle between float and double directions (rad)
+  double origin = 0.0;       // max |o_float - o_double| (world units)
+  double unitLength = 0.0;   // max ||d_float| - 1|
+  long skippedNearWrap = 0;  // t within 1e-5 of 0 / 1: the view wraps there, both sides are right
   long samples = 0;
 };
 
@@ -57,9 +57,10 @@ ErrorStats measureErrors(const DisplayConfig& config, const Bounds3& bounds, con
 }
 
 void report(const char* what, const ErrorStats& s, double scale) {
-  std::printf("[ %s ] %ld samples: max |dt| %.3g, angle %.3g rad, origin %.3g (%.3g of |target| + D), "
-              "||d|-1| %.3g, %ld near the wrap\n",
-              what, s.samples, s.phase, s.angle, s.origin, s.origin / scale, s.unitLength, s.skippedNearWrap);
+  std::printf(
+      "[ %s ] %ld samples: max |dt| %.3g, angle %.3g rad, origin %.3g (%.3g of |target| + D), "
+      "||d|-1| %.3g, %ld near the wrap\n",
+      what, s.samples, s.phase, s.angle, s.origin, s.origin / scale, s.unitLength, s.skippedNearWrap);
 }
 
 // Every `stride`-th pixel of the panel, all three channels, xi from a fixed low-discrepancy sequence (R2).
@@ -89,8 +90,8 @@ struct SampleList {
 // The four corners (every channel, footprint corners and centre), the last row and column, and a coarse grid.
 SampleList cornersEdgesAndGrid(std::uint32_t width, std::uint32_t height) {
   std::vector<Sample> samples;
-  const std::vector<glm::vec2> xis = {{0.0f, 0.0f}, {0.5f, 0.5f}, {0.9999f, 0.9999f}, {0.0f, 0.9999f},
-                                      {0.9999f, 0.0f}, {0.31f, 0.77f}};
+  const std::vector<glm::vec2> xis = {{0.0f, 0.0f},    {0.5f, 0.5f},    {0.9999f, 0.9999f},
+                                      {0.0f, 0.9999f}, {0.9999f, 0.0f}, {0.31f, 0.77f}};
   for (std::uint32_t y : {0u, height - 1})
     for (std::uint32_t x : {0u, width - 1})
       for (std::uint32_t c = 0; c < 3; ++c)
@@ -162,21 +163,21 @@ TEST(CameraModelsPrecision, UnsplitFloatPhaseIsWorseOnEightK) {
   double splitError = 0.0, unsplitError = 0.0, vendorFloatError = 0.0;
   for (const Sample& s : cornersEdgesAndGrid(7680, 4320).samples) {
     const double tRef = reference.viewPhase(s.x, s.y, s.c, glm::dvec2(s.xi));
-    splitError = std::max(splitError, std::fabs(test::phaseDifference(
-                                          gpu_shared::lenticular_view_phase(p, s.x, s.y, s.c, s.xi), tRef)));
+    splitError = std::max(
+        splitError, std::fabs(test::phaseDifference(gpu_shared::lenticular_view_phase(p, s.x, s.y, s.c, s.xi), tRef)));
     unsplitError = std::max(unsplitError, std::fabs(test::phaseDifference(
                                               gpu_shared::lenticular_view_phase(unsplit, s.x, s.y, s.c, s.xi), tRef)));
     // holoplaycore.js formula in float with float uniforms, at the same sample point.
     const glm::vec2 uv = gpu_shared::lenticular_sample_uv(p, s.x, s.y, s.c, s.xi);
     const float phi = (uv.x + uv.y * p.phase.y) * p.phase.x - p.phase.w;
-    vendorFloatError = std::max(vendorFloatError,
-                                std::fabs(test::phaseDifference(1.0 - (phi - std::floor(phi)), tRef)));
+    vendorFloatError =
+        std::max(vendorFloatError, std::fabs(test::phaseDifference(1.0 - (phi - std::floor(phi)), tRef)));
   }
-  std::printf("[ 8k ] max |dt|: split %.3g, unsplit fallback %.3g, vendor-style float %.3g\n", splitError,
-              unsplitError, vendorFloatError);
+  std::printf("[ 8k ] max |dt|: split %.3g, unsplit fallback %.3g, vendor-style float %.3g\n", splitError, unsplitError,
+              vendorFloatError);
   EXPECT_LT(splitError, kPhaseBound);
-  EXPECT_GT(vendorFloatError, 1e-5);            // the naive formula misses the ~1e-5 goal on 8K ...
-  EXPECT_GT(unsplitError, 10.0 * splitError);   // ... the fallback too ...
+  EXPECT_GT(vendorFloatError, 1e-5);                       // the naive formula misses the ~1e-5 goal on 8K ...
+  EXPECT_GT(unsplitError, 10.0 * splitError);              // ... the fallback too ...
   EXPECT_LT(unsplitError, 1200.0 * std::ldexp(1.0, -21));  // ... but stays within a few ulp of phi ~ 1200
 }
 

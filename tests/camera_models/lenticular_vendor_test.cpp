@@ -1,6 +1,6 @@
-// The shared float model against the VENDOR SHADER formula, re-implemented here from optics.md §3 (not from
+// The shared float model against the VENDOR SHADER formula, re-implemented here from docs/OPTICS.md §3 (not from
 // lenticular_model.h): holoplaycore.js `GetSubpixelViews` (§3.1) and the Gen3 cell variant `GetCellForPixel` /
-// `GetPixelShift` (§3.2), on the real calibrations of optics.md §1.1, at every subpixel of each panel.
+// `GetPixelShift` (§3.2), on the real calibrations of docs/OPTICS.md §1.1, at every subpixel of each panel.
 #include <cmath>
 #include <cstdio>
 
@@ -60,10 +60,10 @@ VendorShader<T> vendorShader(const LookingGlassCalibration& c) {
 }
 
 struct VendorComparison {
-  double maxVsDouble = 0.0;       // |t_model - t_vendor(double)| on the phase circle
-  double maxVsFloat = 0.0;        // |t_model - t_vendor(float)|
+  double maxVsDouble = 0.0;  // |t_model - t_vendor(double)| on the phase circle
+  double maxVsFloat = 0.0;   // |t_model - t_vendor(float)|
   double maxFloatVendorError = 0.0;
-  long indexMismatches = 0;       // view index differs although the phase is not within 1e-5 of a bin edge
+  long indexMismatches = 0;  // view index differs although the phase is not within 1e-5 of a bin edge
   long nearEdge = 0;
   long samples = 0;
 };
@@ -96,10 +96,11 @@ VendorComparison compareWithVendor(const DisplayConfig& config, int views, std::
       }
     }
   }
-  std::printf("[ %s ] %ld subpixels, N=%d: max |dt| vs vendor double %.3g, vs vendor float %.3g "
-              "(vendor float vs double %.3g); %ld within 1e-5 of a bin edge, %ld index mismatches elsewhere\n",
-              config.name.c_str(), result.samples, views, result.maxVsDouble, result.maxVsFloat,
-              result.maxFloatVendorError, result.nearEdge, result.indexMismatches);
+  std::printf(
+      "[ %s ] %ld subpixels, N=%d: max |dt| vs vendor double %.3g, vs vendor float %.3g "
+      "(vendor float vs double %.3g); %ld within 1e-5 of a bin edge, %ld index mismatches elsewhere\n",
+      config.name.c_str(), result.samples, views, result.maxVsDouble, result.maxVsFloat, result.maxFloatVendorError,
+      result.nearEdge, result.indexMismatches);
   return result;
 }
 
@@ -144,7 +145,7 @@ TEST(CameraModelsVendor, Gen3PortraitCellsEveryOtherRow) {
   expectMatchesVendor(loadFixture("gen3_16_portrait_lowercase_visual.json"), 66, 2);
 }
 
-// flipSubp (BGR): output R takes the phase of subpixel 2 and B of subpixel 0 (HoloPlayCore ri/bi, optics.md §3.1).
+// flipSubp (BGR): output R takes the phase of subpixel 2 and B of subpixel 0 (HoloPlayCore ri/bi, docs/OPTICS.md §3.1).
 TEST(CameraModelsVendor, FlipSubpSwapsRedAndBlue) {
   DisplayConfig config = loadFixture("portrait_pr56_visual.json");
   DisplayConfig bgr = config;
@@ -182,7 +183,7 @@ TEST(CameraModelsVendor, InvViewZeroIsHoloplayJsOrder) {
   EXPECT_LT(maxError, kModelPhaseBound);
 }
 
-// The footprint is 1/3 px wide: across it the phase changes by pitch_s*subp (optics.md §9 M2, w_t), decreasing
+// The footprint is 1/3 px wide: across it the phase changes by pitch_s*subp (docs/OPTICS.md §9 M2, w_t), decreasing
 // with invView. Along y the footprint spans one pixel: tilt*pitch_s/H.
 TEST(CameraModelsVendor, FootprintPhaseWidth) {
   DisplayConfig config = loadFixture("portrait_pr56_visual.json");

@@ -1,4 +1,4 @@
-// Oblique (sheared orthographic) direction camera (optics.md §9 M6, Burnett "Oblique Slice and Dice"). The float
+// Oblique (sheared orthographic) direction camera (docs/OPTICS.md §9 M6, Burnett "Oblique Slice and Dice"). The float
 // shared header (run as C++) against the double reference over whole images and an 8K x 8K image; consistency checks
 // written without the model code (parallel rays per view, each ray crosses its window point, starts on z = zFront,
 // view angles evenly spaced in angle); placement defaults; bad sections are ConfigErrors.
@@ -29,9 +29,9 @@ constexpr double kMaxAngleError = 2e-6;        // rad
 constexpr double kMaxOriginErrorScale = 1e-6;  // of the scene scale (bounds diagonal)
 
 DisplayConfig obliqueConfig(const std::string& section, const std::string& camera = R"({"target": "auto"})") {
-  return parseDisplayConfig(R"({"name": "obl", "model": "oblique", "camera": )" + camera + R"(, "oblique": )" +
-                                section + "}",
-                            "obl.json", "");
+  return parseDisplayConfig(
+      R"({"name": "obl", "model": "oblique", "camera": )" + camera + R"(, "oblique": )" + section + "}", "obl.json",
+      "");
 }
 
 double sceneScale(const Bounds3& b) { return glm::length(glm::dvec3(b.hi) - glm::dvec3(b.lo)); }
@@ -187,9 +187,9 @@ TEST(ObliqueModel, ParallelRaysThroughWindowPointsFromFrontPlane) {
           const glm::vec2 xi(float(x % 7) / 7.0f, float(y % 5) / 5.0f);
           const FloatRay r = floatRay(p, x, y, view, xi);
           EXPECT_EQ(r.dir, first.dir) << "view " << view << " pixel " << x << "," << y;  // parallel: same bits
-          EXPECT_NEAR(r.origin.z - target.z, 1.75, 1e-6);                                  // starts on z = zFront
-          const glm::dvec3 window = target + glm::dvec3((x + double(xi.x)) / 320.0 * 3.2 - 1.6,
-                                                        (y + double(xi.y)) / 200.0 * 2.5 - 1.25, 0.0);
+          EXPECT_NEAR(r.origin.z - target.z, 1.75, 1e-6);                                // starts on z = zFront
+          const glm::dvec3 window =
+              target + glm::dvec3((x + double(xi.x)) / 320.0 * 3.2 - 1.6, (y + double(xi.y)) / 200.0 * 2.5 - 1.25, 0.0);
           // Crosses z = 0 (display-local) at its window point.
           const double t = (target.z - r.origin.z) / r.dir.z;
           const glm::dvec3 hit = r.origin + t * r.dir;
@@ -254,9 +254,7 @@ TEST(ObliqueSetup, AutoWindowAndFrontPlane) {
 ConfigError obliqueError(const std::string& section, const std::string& camera = R"({"target": "auto"})") {
   try {
     obliqueConfig(section, camera);
-  } catch (const ConfigError& e) {
-    return e;
-  }
+  } catch (const ConfigError& e) { return e; }
   ADD_FAILURE() << "accepted: " << section;
   return ConfigError("", "", "", "");
 }
@@ -266,8 +264,10 @@ TEST(ObliqueConfig, BadSectionsAreRejected) {
   struct Case {
     std::string section, field;
   } cases[] = {
-      {R"({"columns": 0, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image + "}", "oblique.columns"},
-      {R"({"columns": -2, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image + "}", "oblique.columns"},
+      {R"({"columns": 0, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image + "}",
+       "oblique.columns"},
+      {R"({"columns": -2, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image + "}",
+       "oblique.columns"},
       {R"({"columns": 3, "rows": 0, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image + "}", "oblique.rows"},
       {R"({"columns": 3, "rows": 2.5, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image + "}", "oblique.rows"},
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 180, "verticalConeDeg": 20, )" + image + "}",
@@ -281,25 +281,32 @@ TEST(ObliqueConfig, BadSectionsAreRejected) {
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, )" + image + "}", "oblique.verticalConeDeg"},
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20})", "oblique.image"},
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, "image": {"width": 0,
-          "height": 64}})", "oblique.image.width"},
+          "height": 64}})",
+       "oblique.image.width"},
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, "image": {"width": 64,
-          "height": -64}})", "oblique.image.height"},
+          "height": -64}})",
+       "oblique.image.height"},
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, "image": {"width": 64,
-          "height": 64, "depth": 1}})", "oblique.image.depth"},
+          "height": 64, "depth": 1}})",
+       "oblique.image.depth"},
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image +
-           R"(, "window": {"width": 0, "height": 1}})", "oblique.window.width"},
+           R"(, "window": {"width": 0, "height": 1}})",
+       "oblique.window.width"},
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image +
-           R"(, "window": {"width": 1, "height": -1}})", "oblique.window.height"},
+           R"(, "window": {"width": 1, "height": -1}})",
+       "oblique.window.height"},
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image +
-           R"(, "window": {"width": 1, "height": "NaN"}})", "oblique.window.height"},
-      {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image +
-           R"(, "window": 2})", "oblique.window"},
+           R"(, "window": {"width": 1, "height": "NaN"}})",
+       "oblique.window.height"},
+      {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image + R"(, "window": 2})",
+       "oblique.window"},
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image + R"(, "zFront": 0})",
        "oblique.zFront"},
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image + R"(, "zFront": -1})",
        "oblique.zFront"},
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image +
-           R"(, "zFront": "far"})", "oblique.zFront"},
+           R"(, "zFront": "far"})",
+       "oblique.zFront"},
       {R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20, )" + image + R"(, "zfront": 1})",
        "oblique.zfront"},
   };
@@ -311,7 +318,8 @@ TEST(ObliqueConfig, BadSectionsAreRejected) {
   }
   // Both camera.size and an explicit window: ambiguous size.
   const ConfigError both = obliqueError(R"({"columns": 3, "rows": 3, "horizontalConeDeg": 20, "verticalConeDeg": 20,
-      "image": {"width": 64, "height": 64}, "window": {"width": 1, "height": 1}})", R"({"size": 2})");
+      "image": {"width": 64, "height": 64}, "window": {"width": 1, "height": 1}})",
+                                        R"({"size": 2})");
   EXPECT_EQ(both.field(), "camera.size");
   // NaN / infinity cannot be written as JSON numbers: the parser reports them.
   EXPECT_THROW(obliqueConfig(R"({"columns": 3, "rows": 3, "horizontalConeDeg": NaN, "verticalConeDeg": 20,

@@ -16,8 +16,8 @@
 namespace ht {
 namespace {
 
-using ::testing::HasSubstr;
 using nlohmann::json;
+using ::testing::HasSubstr;
 
 json validConfig() {
   return json::parse(R"({"name": "pa", "model": "projector-array",
@@ -30,9 +30,7 @@ json validConfig() {
 ConfigError errorOf(const json& config) {
   try {
     parseDisplayConfig(config.dump(), "pa.json", "");
-  } catch (const ConfigError& e) {
-    return e;
-  }
+  } catch (const ConfigError& e) { return e; }
   ADD_FAILURE() << "expected a ConfigError for " << config.dump();
   return ConfigError("", "", "", "");
 }
@@ -80,22 +78,30 @@ TEST(ProjectorConfig, ProjectorInFrontOfScreen) {
 
 TEST(ProjectorConfig, ZeroOrNegativeSizes) {
   EXPECT_EQ(projectorSectionError([](json& s) { s["screen"]["width"] = 0; }).field(), "projectorArray.screen.width");
-  EXPECT_EQ(projectorSectionError([](json& s) { s["screen"]["height"] = -600; }).field(), "projectorArray.screen.height");
-  EXPECT_EQ(projectorSectionError([](json& s) { s["observerDistance"] = 0; }).field(), "projectorArray.observerDistance");
-  EXPECT_EQ(projectorSectionError([](json& s) { s["observerDistance"] = -1; }).field(), "projectorArray.observerDistance");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["screen"]["height"] = -600; }).field(),
+            "projectorArray.screen.height");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["observerDistance"] = 0; }).field(),
+            "projectorArray.observerDistance");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["observerDistance"] = -1; }).field(),
+            "projectorArray.observerDistance");
   EXPECT_EQ(projectorSectionError([](json& s) { s["image"]["width"] = 0; }).field(), "projectorArray.image.width");
   EXPECT_EQ(projectorSectionError([](json& s) { s["projectors"][1]["height"] = 0; }).field(),
             "projectorArray.projectors[1].height");
-  EXPECT_EQ(projectorSectionError([](json& s) { s["angularScattering"] = -0.1; }).field(), "projectorArray.angularScattering");
-  EXPECT_EQ(projectorSectionError([](json& s) { s["projectors"] = json::array(); }).field(), "projectorArray.projectors");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["angularScattering"] = -0.1; }).field(),
+            "projectorArray.angularScattering");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["projectors"] = json::array(); }).field(),
+            "projectorArray.projectors");
 }
 
 TEST(ProjectorConfig, NonFiniteNumbers) {
   // JSON has no NaN literal: a NaN arrives as a string or an overflowing number.
-  EXPECT_EQ(projectorSectionError([](json& s) { s["observerDistance"] = "NaN"; }).field(), "projectorArray.observerDistance");
+  EXPECT_EQ(projectorSectionError([](json& s) { s["observerDistance"] = "NaN"; }).field(),
+            "projectorArray.observerDistance");
   EXPECT_EQ(projectorSectionError([](json& s) { s["observerHeight"] = std::nan(""); }).field(),
             "projectorArray.observerHeight");  // dumps as null
-  EXPECT_EQ(projectorSectionError([](json& s) { s["projectors"][0]["position"] = {0, "NaN", -10}; }).field(),
+  EXPECT_EQ(projectorSectionError([](json& s) {
+              s["projectors"][0]["position"] = {0, "NaN", -10};
+            }).field(),
             "projectorArray.projectors[0].position");
   json config = validConfig();
   std::string text = config.dump();
@@ -104,17 +110,22 @@ TEST(ProjectorConfig, NonFiniteNumbers) {
 }
 
 TEST(ProjectorConfig, BadHomographies) {
-  const auto withHomography = [](json h) { return projectorSectionError([&](json& s) { s["projectors"][0]["homography"] = h; }); };
+  const auto withHomography = [](json h) {
+    return projectorSectionError([&](json& s) { s["projectors"][0]["homography"] = h; });
+  };
   const std::string field = "projectorArray.projectors[0].homography";
-  EXPECT_EQ(withHomography(json::parse("[[1,0,0],[2,0,0],[0,0,1]]")).field(), field);           // singular
-  EXPECT_EQ(withHomography(json::parse("[[1,0,0],[0,1,0],[0.01,0,-1]]")).field(), field);       // w <= 0 at a corner
-  EXPECT_EQ(withHomography(json::parse("[[1,0,0],[0,1,0]]")).field(), field);                   // 2 rows
-  EXPECT_EQ(withHomography(json::parse("[[1,0,0],[0,1,\"x\"],[0,0,1]]")).field(), field);       // not a number
+  EXPECT_EQ(withHomography(json::parse("[[1,0,0],[2,0,0],[0,0,1]]")).field(), field);      // singular
+  EXPECT_EQ(withHomography(json::parse("[[1,0,0],[0,1,0],[0.01,0,-1]]")).field(), field);  // w <= 0 at a corner
+  EXPECT_EQ(withHomography(json::parse("[[1,0,0],[0,1,0]]")).field(), field);              // 2 rows
+  EXPECT_EQ(withHomography(json::parse("[[1,0,0],[0,1,\"x\"],[0,0,1]]")).field(), field);  // not a number
 }
 
 TEST(ProjectorConfig, StructuralErrors) {
-  EXPECT_EQ(projectorSectionError([](json& s) { s["observerDistanse"] = 1; }).field(), "projectorArray.observerDistanse");
-  EXPECT_EQ(projectorSectionError([](json& s) { s["projectors"][0]["pos"] = {0, 0, -1}; }).field(),
+  EXPECT_EQ(projectorSectionError([](json& s) { s["observerDistanse"] = 1; }).field(),
+            "projectorArray.observerDistanse");
+  EXPECT_EQ(projectorSectionError([](json& s) {
+              s["projectors"][0]["pos"] = {0, 0, -1};
+            }).field(),
             "projectorArray.projectors[0].pos");
   EXPECT_EQ(projectorSectionError([](json& s) { s.erase("image"); }).field(), "projectorArray.projectors[0].width");
   json tooMany = validConfig();

@@ -1,5 +1,5 @@
-// HPO projector array (optics.md §6, §9 M3). Consistency checks written without the model code: the screen point is
-// computed here from the config (linear mapping, or the fixture's homography), and each ray must pass through it,
+// HPO projector array (docs/OPTICS.md §6, §9 M3). Consistency checks written without the model code: the screen point
+// is computed here from the config (linear mapping, or the fixture's homography), and each ray must pass through it,
 // start on the observer line (z = Dobs, y = h), continue its projector's line P_k -> S horizontally and take its
 // vertical slope from the observer. Then float vs double over whole projector images of the 70-projector wall.
 #include <algorithm>
@@ -24,7 +24,7 @@ constexpr std::uint32_t kProjectorStride = 3;
 
 DisplayConfig smallArray() { return test::loadFixture("display_projector_small.json"); }
 
-// Screen point of projector pixel position (px, py), display units: Doronin's linear map (optics.md §6), or the
+// Screen point of projector pixel position (px, py), display units: Doronin's linear map (docs/OPTICS.md §6), or the
 // fixture's explicit homography (row-major, on (px, py, 1)).
 glm::dvec3 expectedScreenPoint(const ProjectorArrayConfig& a, std::uint32_t k, glm::dvec2 pixel) {
   const ProjectorConfig& projector = a.projectors[k];
@@ -92,7 +92,7 @@ TEST(ProjectorModel, ObserverHeightOnlyChangesVerticalPerspective) {
 }
 
 // Scattering rotates the ray about the vertical through S by dA = sigma * sqrt(-2 ln(1 - u)) cos(2 pi v),
-// sigma = as / 1.11741 / sqrt(2) (optics.md §9 M3).
+// sigma = as / 1.11741 / sqrt(2) (docs/OPTICS.md §9 M3).
 TEST(ProjectorModel, ScatteringRotatesAboutScreenPoint) {
   const DisplayConfig config = smallArray();
   const gpu_shared::ProjectorArrayParams p = makeProjectorArrayParams(config, test::testBounds());

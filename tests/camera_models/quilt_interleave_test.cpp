@@ -180,9 +180,7 @@ TEST(QuiltInterleave, ImagesOfTheWrongSizeAreErrors) {
 ConfigError fitError(const QuiltLayout& layout, const DisplayConfig& display) {
   try {
     checkQuiltFitsDisplay(layout, display, "take_qs.png");
-  } catch (const ConfigError& e) {
-    return e;
-  }
+  } catch (const ConfigError& e) { return e; }
   ADD_FAILURE() << "checkQuiltFitsDisplay accepted the quilt";
   return ConfigError("", "", "", "");
 }

@@ -1,4 +1,4 @@
-// Quilt names, tile layout and device defaults (optics.md §4.1, §4.2): name tags round-trip and malformed tags are
+// Quilt names, tile layout and device defaults (docs/OPTICS.md §4.1, §4.2): name tags round-trip and malformed tags are
 // ConfigErrors; view 0 is the bottom-left tile and views run left to right, then upward.
 #include <string>
 
@@ -39,9 +39,9 @@ TEST(QuiltLayout, ParsesVendorNames) {
 }
 
 TEST(QuiltLayout, MalformedNamesRejected) {
-  for (const std::string name : {"hologram.png", "_qs0x9a0.75", "_qs5x0a0.75", "_qs5x9a", "_qs5x9a0", "_qs5x9a0.0",
-                                 "_qs5x9a1.2.3", "_qsx9a1", "_qs5xa1", "_qs1025x1a1", "_qs99999999999x1a1",
-                                 "_qs5x9a.", "qs5x9a0.75"}) {
+  for (const std::string name :
+       {"hologram.png", "_qs0x9a0.75", "_qs5x0a0.75", "_qs5x9a", "_qs5x9a0", "_qs5x9a0.0", "_qs5x9a1.2.3", "_qsx9a1",
+        "_qs5xa1", "_qs1025x1a1", "_qs99999999999x1a1", "_qs5x9a.", "qs5x9a0.75"}) {
     try {
       parseQuiltName(name);
       ADD_FAILURE() << "accepted " << name;
@@ -92,9 +92,9 @@ TEST(QuiltLayout, DeviceDefaults) {
     const char* display;
     std::uint32_t columns, rows, size, tileWidth, tileHeight;
   };
-  for (const Expected& e : {Expected{"portrait", 8, 6, 3360, 420, 560}, Expected{"go", 11, 6, 4092, 372, 682},
-                            Expected{"gen3-16-landscape", 7, 7, 6000, 857, 857},
-                            Expected{"gen1-8.9", 5, 9, 4096, 819, 455}}) {
+  for (const Expected& e :
+       {Expected{"portrait", 8, 6, 3360, 420, 560}, Expected{"go", 11, 6, 4092, 372, 682},
+        Expected{"gen3-16-landscape", 7, 7, 6000, 857, 857}, Expected{"gen1-8.9", 5, 9, 4096, 819, 455}}) {
     const DisplayConfig config = builtinDisplay(e.display);
     const QuiltLayout layout = defaultQuiltLayout(config);
     EXPECT_EQ(layout.columns, e.columns) << e.display;
@@ -116,7 +116,8 @@ TEST(QuiltLayout, ConfigQuiltSizeReplacesTheDeviceDefault) {
   auto config = [](const std::string& quilt) {
     return parseDisplayConfig(R"({"name": "q", "calibration": {"pitch": 52.59, "slope": -7.21, "center": 0.4,
         "viewCone": 40, "invView": 1, "DPI": 324, "screenW": 1536, "screenH": 2048, "flipImageX": 0, "flipImageY": 0,
-        "flipSubp": 0}, "camera": {"quilt": )" + quilt + "}}",
+        "flipSubp": 0}, "camera": {"quilt": )" +
+                                  quilt + "}}",
                               "q.json", "");
   };
   const QuiltLayout small = defaultQuiltLayout(config(R"({"columns": 4, "rows": 3, "width": 200, "height": 150})"));
@@ -125,16 +126,14 @@ TEST(QuiltLayout, ConfigQuiltSizeReplacesTheDeviceDefault) {
   EXPECT_EQ(small.tileWidth, 50u);
   EXPECT_EQ(small.tileHeight, 50u);
   EXPECT_DOUBLE_EQ(small.aspect, 0.75);
-  for (const char* bad : {R"({"columns": 4, "rows": 3, "width": 3, "height": 150})",
-                          R"({"columns": 0, "rows": 3, "width": 200, "height": 150})",
-                          R"({"columns": 4, "rows": 3, "width": 200})",
-                          R"({"columns": 4, "rows": 3, "width": 200, "height": 150, "depth": 1})", "[4, 3]"}) {
+  for (const char* bad :
+       {R"({"columns": 4, "rows": 3, "width": 3, "height": 150})",
+        R"({"columns": 0, "rows": 3, "width": 200, "height": 150})", R"({"columns": 4, "rows": 3, "width": 200})",
+        R"({"columns": 4, "rows": 3, "width": 200, "height": 150, "depth": 1})", "[4, 3]"}) {
     try {
       config(bad);
       ADD_FAILURE() << "accepted " << bad;
-    } catch (const ConfigError& e) {
-      EXPECT_NE(std::string(e.field()).find("quilt"), std::string::npos) << e.what();
-    }
+    } catch (const ConfigError& e) { EXPECT_NE(std::string(e.field()).find("quilt"), std::string::npos) << e.what(); }
   }
 }
 

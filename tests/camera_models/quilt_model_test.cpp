@@ -1,4 +1,4 @@
-// The quilt cameras (optics.md §9 M1): the shared float quilt_ray against the lenticular model at each view's bin
+// The quilt cameras (docs/OPTICS.md §9 M1): the shared float quilt_ray against the lenticular model at each view's bin
 // centre (the direct path reproduces the quilt path there, §9 M2) and against the independent double reference over
 // whole tiles, including the corners of an 8K panel's default quilt.
 #include <algorithm>
@@ -47,9 +47,8 @@ void expectQuiltEqualsLenticularAtBinCentres(const DisplayConfig& config) {
         maxOrigin = std::max(maxOrigin, glm::length(glm::dvec3(qo) - glm::dvec3(lo)));
         // The two double references agree too (both transcribe looking-glass-webxr's camera).
         const ReferenceRay q = quiltReference.ray(x, y, view, {0.5, 0.5});
-        const ReferenceRay l = lenticularReference.rayForPhase((view + 0.5) / layout.views(),
-                                                               {(x + 0.5) / layout.tileWidth,
-                                                                (y + 0.5) / layout.tileHeight});
+        const ReferenceRay l = lenticularReference.rayForPhase(
+            (view + 0.5) / layout.views(), {(x + 0.5) / layout.tileWidth, (y + 0.5) / layout.tileHeight});
         maxReferenceAngle = std::max(maxReferenceAngle, test::angleBetween(q.dir, l.dir));
         EXPECT_LT(glm::length(q.origin - l.origin), 1e-12 * glm::length(l.origin) + 1e-12);
       }
@@ -61,7 +60,9 @@ void expectQuiltEqualsLenticularAtBinCentres(const DisplayConfig& config) {
   EXPECT_LT(maxReferenceAngle, 1e-13);
 }
 
-TEST(QuiltModel, BinCentresEqualLenticularPortrait) { expectQuiltEqualsLenticularAtBinCentres(builtinDisplay("portrait")); }
+TEST(QuiltModel, BinCentresEqualLenticularPortrait) {
+  expectQuiltEqualsLenticularAtBinCentres(builtinDisplay("portrait"));
+}
 TEST(QuiltModel, BinCentresEqualLenticularGo) { expectQuiltEqualsLenticularAtBinCentres(builtinDisplay("go")); }
 TEST(QuiltModel, BinCentresEqualLenticularEightK) { expectQuiltEqualsLenticularAtBinCentres(test::eightKDisplay(2)); }
 
@@ -89,13 +90,14 @@ TEST(QuiltModel, FloatMatchesDoubleReferenceEightK) {
       for (std::uint32_t y : {0u, layout.tileHeight - 1})
         for (glm::vec2 xi : {glm::vec2(0.0f), glm::vec2(0.9999999f)}) check(x, y, view, xi);
   }
-  std::printf("quilt 8K float vs double: max angle %.3g rad, max origin %.3g (scene scale %.3g)\n", maxAngle,
-              maxOrigin, sceneScale);
+  std::printf("quilt 8K float vs double: max angle %.3g rad, max origin %.3g (scene scale %.3g)\n", maxAngle, maxOrigin,
+              sceneScale);
   EXPECT_LE(maxAngle, 2e-6);
   EXPECT_LE(maxOrigin, 1e-6 * sceneScale);
 }
 
-// View 0 is the leftmost camera (optics.md §4.1): origins move right with the view index; the centre pair straddles x=0.
+// View 0 is the leftmost camera (docs/OPTICS.md §4.1): origins move right with the view index; the centre pair
+// straddles x=0.
 TEST(QuiltModel, ViewsRunLeftToRight) {
   const DisplayConfig config = builtinDisplay("portrait");
   const QuiltLayout layout = defaultQuiltLayout(config);

@@ -41,9 +41,9 @@ RayTable makeTable(std::uint32_t width, std::uint32_t height) {
 
 DisplayConfig rayTableConfig(const std::string& section = R"({"file": "table.exr"})",
                              const std::string& camera = R"({"target": [0, 0, 0]})") {
-  return parseDisplayConfig(R"({"name": "rt", "model": "ray-table", "camera": )" + camera + R"(, "rayTable": )" +
-                                section + "}",
-                            "rt.json", "/calib");
+  return parseDisplayConfig(
+      R"({"name": "rt", "model": "ray-table", "camera": )" + camera + R"(, "rayTable": )" + section + "}", "rt.json",
+      "/calib");
 }
 
 struct Ray {
@@ -247,8 +247,7 @@ TEST(RayTableConfig, SectionParsing) {
   EXPECT_EQ(fieldOf(R"({"file": "t.exr", "unit": 1})"), "rayTable.unit");
   EXPECT_EQ(fieldOf(R"({"file": "t.exr"})", R"({"size": 2})"), "camera.size");
   EXPECT_THROW(parseDisplayConfig(R"({"model": "ray-table"})", "x.json", ""), ConfigError);
-  EXPECT_THROW(parseDisplayConfig(R"({"model": "pinhole", "rayTable": {"file": "t.exr"}})", "x.json", ""),
-               ConfigError);
+  EXPECT_THROW(parseDisplayConfig(R"({"model": "pinhole", "rayTable": {"file": "t.exr"}})", "x.json", ""), ConfigError);
   EXPECT_THROW(makeRayTableParams(builtinDisplay("capture-8x6"), makeTable(2, 2), test::testBounds()), ConfigError);
 }
 

@@ -83,8 +83,8 @@ DisplayConfig lenticularPanel(int cellMode = 0) {
       "BOffsetY":0.25}])";
   return parseDisplayConfig(std::string(R"({"name": "sim", "calibration": {"pitch": 52.59, "slope": -7.21,
       "center": 0.40, "viewCone": 40, "invView": 1, "DPI": 324, "screenW": 192, "screenH": 128, "flipImageX": 0,
-      "flipImageY": 0, "flipSubp": 0, "CellPatternMode": )") + std::to_string(cellMode) +
-                                R"(, "subpixelCells": )" + cells + "}}",
+      "flipImageY": 0, "flipSubp": 0, "CellPatternMode": )") +
+                                std::to_string(cellMode) + R"(, "subpixelCells": )" + cells + "}}",
                             "sim.json", "");
 }
 
@@ -131,9 +131,7 @@ TEST(SimulatedLenticularView, DirectRenderSeenFromAnEyeIsThePinholeViewFromThere
       const double right = psnr(seen.rgba, lenticularPinhole(p, eye));
       const double wrong = psnr(seen.rgba, lenticularPinhole(p, glm::dvec3(-eye.x, eye.y, eye.z)));
       EXPECT_GT(right, 26.5) << "cell mode " << cellMode << ", eye x " << eye.x << " z " << eye.z;
-      if (std::fabs(eye.x) > 0.5) {
-        EXPECT_GT(right, wrong + 6.0) << "cell mode " << cellMode << ", eye x " << eye.x;
-      }
+      if (std::fabs(eye.x) > 0.5) { EXPECT_GT(right, wrong + 6.0) << "cell mode " << cellMode << ", eye x " << eye.x; }
     }
   }
 }
@@ -145,9 +143,8 @@ TEST(SimulatedLenticularView, DirectRenderSeenFromAnEyeIsThePinholeViewFromThere
 TEST(SimulatedLenticularView, PhasePatternShowsTheViewOfTheEyesCamera) {
   const gpu_shared::LenticularParams p = makeLenticularParams(lenticularPanel(), Bounds3{});
   const auto w = std::uint32_t(p.panel.x), h = std::uint32_t(p.panel.y);
-  const std::vector<float> phases = imageOf(w, h, [&](auto x, auto y, auto c) {
-    return gpu_shared::lenticular_view_phase(p, x, y, c, glm::vec2(0.5f));
-  });
+  const std::vector<float> phases = imageOf(
+      w, h, [&](auto x, auto y, auto c) { return gpu_shared::lenticular_view_phase(p, x, y, c, glm::vec2(0.5f)); });
   const double a = double(p.phase.x) / p.panel.x;  // phase per pixel
   const double d = p.camera.x, cone = p.camera.w;
   std::vector<glm::dvec3> eyes = lenticularViewConeEyes(p, 4);
@@ -181,8 +178,8 @@ TEST(SimulatedLenticularView, BadInputsAreErrors) {
   const gpu_shared::LenticularParams p = makeLenticularParams(lenticularPanel(), Bounds3{});
   const std::vector<float> panel(192 * 128 * 4, 0.5f);
   EXPECT_THROW(simulateLenticularView(p, std::vector<float>(16, 0.0f), {0, 0, 8}), Error);
-  EXPECT_THROW(simulateLenticularView(p, panel, {0, 0, 0}), Error);     // in the screen plane
-  EXPECT_THROW(simulateLenticularView(p, panel, {0, 0, -3}), Error);    // behind it
+  EXPECT_THROW(simulateLenticularView(p, panel, {0, 0, 0}), Error);   // in the screen plane
+  EXPECT_THROW(simulateLenticularView(p, panel, {0, 0, -3}), Error);  // behind it
   EXPECT_THROW(simulateLenticularView(p, panel, {NAN, 0, 8}), Error);
 }
 
@@ -194,12 +191,13 @@ TEST(SimulatedLenticularView, BadInputsAreErrors) {
 DisplayConfig projectorWall() {
   std::string projectors;
   for (int k = -18; k <= 18; ++k) {
-    projectors += std::string(projectors.empty() ? "" : ", ") + R"({"position": [)" + std::to_string(10 * k) +
-                  ", 0, -180]}";
+    projectors +=
+        std::string(projectors.empty() ? "" : ", ") + R"({"position": [)" + std::to_string(10 * k) + ", 0, -180]}";
   }
   return parseDisplayConfig(R"({"name": "wall", "model": "projector-array", "projectorArray": {"screen": {"width":
       160, "height": 90}, "observerDistance": 300, "observerHeight": 0, "angularScattering": "auto", "image": {"width":
-      96, "height": 54}, "projectors": [)" + projectors + "]}}",
+      96, "height": 54}, "projectors": [)" +
+                                projectors + "]}}",
                             "wall.json", "");
 }
 
@@ -249,9 +247,7 @@ TEST(SimulatedProjectorView, DirectRenderSeenFromAnEyeIsThePinholeViewFromThere)
     const double right = psnr(seen.rgba, screenPinhole(p, screen, out, eye));
     const double wrong = psnr(seen.rgba, screenPinhole(p, screen, out, glm::dvec3(-eye.x, eye.y, eye.z)));
     EXPECT_GT(right, 33.0) << "eye x " << eye.x;
-    if (std::fabs(eye.x) > 30.0) {
-      EXPECT_GT(right, wrong + 6.0) << "eye x " << eye.x;
-    }
+    if (std::fabs(eye.x) > 30.0) { EXPECT_GT(right, wrong + 6.0) << "eye x " << eye.x; }
   }
 }
 
@@ -275,9 +271,7 @@ TEST(SimulatedProjectorView, CoverageAndBrightnessShowInAlpha) {
       for (std::uint32_t x = 0; x < 32; ++x) {
         if (x < 16) {
           EXPECT_NEAR(at(x, row)[0], 0.7f, 1e-6f) << x << "," << row;
-          if (scattering > 1.0) {
-            EXPECT_GT(at(x, row)[3], 0.9f) << x << "," << row;
-          }
+          if (scattering > 1.0) { EXPECT_GT(at(x, row)[3], 0.9f) << x << "," << row; }
         } else {
           EXPECT_EQ(at(x, row)[3], 0.0f) << x << "," << row;
           EXPECT_EQ(at(x, row)[0], 0.0f) << x << "," << row;
@@ -309,8 +303,8 @@ TEST(SimulatedProjectorView, CoverageAndBrightnessShowInAlpha) {
 // 240x160 LCD, 0.1 pitch, lenses of 1.0 (10 pixels) 3.0 in front of it: a +-9.5 degree viewing zone.
 DisplayConfig integralPanel(const std::string& extra) {
   return parseDisplayConfig(R"({"name": "ii", "model": "integral", "integral": {"panelWidth": 240, "panelHeight":
-      160, "pixelPitch": 0.1, "lensPitch": 1.0, "gap": 3.0, "viewerDistance": 300, "frontPlane": 100, )" + extra +
-                                "}}",
+      160, "pixelPitch": 0.1, "lensPitch": 1.0, "gap": 3.0, "viewerDistance": 300, "frontPlane": 100, )" +
+                                extra + "}}",
                             "ii.json", "");
 }
 
@@ -355,9 +349,7 @@ TEST(SimulatedIntegralView, DirectRenderSeenFromAnEyeIsThePinholeViewThroughEach
       const double right = psnr(seen.rgba, lensPinhole(config, p, eye));
       const double wrong = psnr(seen.rgba, lensPinhole(config, p, glm::dvec3(-eye.x, eye.y, eye.z)));
       EXPECT_GT(right, 32.0) << grid << ", eye x " << eye.x;
-      if (std::fabs(eye.x) > 10.0) {
-        EXPECT_GT(right, wrong + 6.0) << grid << ", eye x " << eye.x;
-      }
+      if (std::fabs(eye.x) > 10.0) { EXPECT_GT(right, wrong + 6.0) << grid << ", eye x " << eye.x; }
     }
   }
 }

@@ -27,9 +27,7 @@ ParsedArguments parse(std::vector<std::string> args) { return parseArguments("ho
 std::string usageErrorOf(std::vector<std::string> args) {
   try {
     parse(args).unsignedValue("--spp", 1, 64);
-  } catch (const UsageError& e) {
-    return e.what();
-  }
+  } catch (const UsageError& e) { return e.what(); }
   return "(no UsageError)";
 }
 
@@ -73,9 +71,7 @@ TEST(CliArguments, DecimalNumbersAreCheckedLikeIntegers) {
   auto errorOf = [](std::vector<std::string> args) {
     try {
       parse(args).numberValue("--name", 0.0, 1.0);
-    } catch (const UsageError& e) {
-      return std::string(e.what());
-    }
+    } catch (const UsageError& e) { return std::string(e.what()); }
     return std::string("(no UsageError)");
   };
   EXPECT_EQ(errorOf({"--name", "1.5"}),

@@ -34,7 +34,8 @@ TEST(CliApp, UnknownRenderOptionExitsTwoWithTheExactMessage) {
 }
 
 TEST(CliApp, BadValuesAreUsageErrors) {
-  EXPECT_THAT(run({"render", "--spp", "zero"}).err, HasSubstr("option '--spp' = 'zero': expected an integer in [1, 4096]"));
+  EXPECT_THAT(run({"render", "--spp", "zero"}).err,
+              HasSubstr("option '--spp' = 'zero': expected an integer in [1, 4096]"));
   EXPECT_EQ(run({"render", "--spp", "0"}).code, kExitUsage);
   EXPECT_THAT(run({"render", "--depth"}).err, HasSubstr("option '--depth' needs a value"));
   EXPECT_THAT(run({"render", "-o", "frame.jpg"}).err, HasSubstr("expected a path ending in .png"));
@@ -62,8 +63,8 @@ TEST(CliApp, HelpInEveryFormExitsZero) {
     EXPECT_THAT(r.out, HasSubstr("render"));
     EXPECT_THAT(r.out, HasSubstr("info"));
   }
-  for (const auto& args : std::vector<std::vector<std::string>>{{"render", "--help"}, {"help", "render"},
-                                                                {"render", "--spp", "2", "-h"}}) {
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"render", "--help"}, {"help", "render"}, {"render", "--spp", "2", "-h"}}) {
     const CliRun r = run(args);
     EXPECT_EQ(r.code, kExitOk);
     EXPECT_THAT(r.out, StartsWith("Usage: holotrace render"));

@@ -6,9 +6,9 @@
 #include <fstream>
 #include <set>
 
+#include "camera_models/capture_grid_setup.h"
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_params.h"
-#include "camera_models/capture_grid_setup.h"
 #include "frame_io/image_reading.h"
 #include "frame_io/pixel_encoding.h"
 #include "frame_io/ray_table_exr.h"
@@ -23,11 +23,11 @@ namespace ht::cli {
 namespace {
 
 namespace fs = std::filesystem;
+using test::ProcessResult;
+using test::runProcess;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::Not;
-using test::ProcessResult;
-using test::runProcess;
 
 ProcessResult holotrace(const std::vector<std::string>& args) { return runProcess(HOLOTRACE_EXE, args); }
 
@@ -158,8 +158,8 @@ TEST(CliEndToEnd, CaptureGridWritesATaggedQuiltWithMetadataAndAMultiViewExr) {
                                      (dir.path() / "cap.png").string(), "--exr", (dir.path() / "cap.exr").string()});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_THAT(r.out, HasSubstr("8 views of 32x24"));
-  EXPECT_THAT(dir.entries(), ElementsAre("cap.exr", "cap_qs4x2a1.3333333333333333.json", "cap_qs4x2a1.3333333333333333.png",
-                                         "rig.json"));
+  EXPECT_THAT(dir.entries(), ElementsAre("cap.exr", "cap_qs4x2a1.3333333333333333.json",
+                                         "cap_qs4x2a1.3333333333333333.png", "rig.json"));
   const ImageSize quilt = inspect(dir.path() / "cap_qs4x2a1.3333333333333333.png");
   EXPECT_EQ(quilt.width, 128);
   EXPECT_EQ(quilt.height, 48);
@@ -175,8 +175,8 @@ TEST(CliEndToEnd, ProjectorArrayWritesOneImagePerProjector) {
       "projectorArray": {"screen": {"width": 160, "height": 90}, "observerDistance": 300, "observerHeight": 0,
       "angularScattering": "auto", "image": {"width": 40, "height": 20},
       "projectors": [{"position": [-10, 0, -180]}, {"position": [0, 0, -180]}, {"position": [10, 0, -180]}]}})");
-  const ProcessResult r = holotrace({"render", "--display", config.string(), "--scene", "builtin:sphere", "-o",
-                                     (dir.path() / "p.png").string()});
+  const ProcessResult r = holotrace(
+      {"render", "--display", config.string(), "--scene", "builtin:sphere", "-o", (dir.path() / "p.png").string()});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_THAT(r.out, HasSubstr("3 views of 40x20"));
   EXPECT_THAT(dir.entries(), ElementsAre("p_v00.png", "p_v01.png", "p_v02.png", "wall.json"));
@@ -188,8 +188,8 @@ TEST(CliEndToEnd, IntegralPanelRendersItsLcdImage) {
   const fs::path config = writeConfig(dir, "lenslets", R"({"name": "lenslets", "model": "integral", "spp": 1,
       "integral": {"panelWidth": 96, "panelHeight": 64, "pixelPitch": 0.1, "lensPitch": 1.0, "gap": 3.0,
       "focalLength": 3.0, "viewerDistance": 600, "frontPlane": 600}})");
-  const ProcessResult r = holotrace({"render", "--display", config.string(), "--scene", "builtin:sphere", "-o",
-                                     (dir.path() / "lcd.png").string()});
+  const ProcessResult r = holotrace(
+      {"render", "--display", config.string(), "--scene", "builtin:sphere", "-o", (dir.path() / "lcd.png").string()});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_THAT(r.out, HasSubstr("1 view of 96x64, 18432 targets"));  // 3 subpixel targets per pixel
   const ImageSize lcd = inspect(dir.path() / "lcd.png");
@@ -210,8 +210,8 @@ TEST(CliEndToEnd, QuiltPathRendersThePortraitQuiltAtItsDefaultSize) {
 
 TEST(CliEndToEnd, QuiltPathOfANonLenticularDisplayIsAConfigError) {
   ht::test::TempDirectory dir;
-  const ProcessResult r = holotrace({"render", "--quilt", "--display", "builtin:capture-8x6", "--out-dir",
-                                     dir.path().string()});
+  const ProcessResult r =
+      holotrace({"render", "--quilt", "--display", "builtin:capture-8x6", "--out-dir", dir.path().string()});
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_THAT(r.err, HasSubstr("capture-grid"));
   EXPECT_THAT(r.err, HasSubstr("--quilt"));
@@ -228,7 +228,7 @@ TEST(CliEndToEnd, DebugViewsWritesTheSubpixelViewPhasesWithoutTracing) {
   const frame_io::ImageFile image = frame_io::readImageFile(exr);
   ASSERT_EQ(image.width, 1536u);
   const std::vector<float>& pixels = image.rgba;
-  // Independent check of the classic phase formula (optics.md §3.1) at a few subpixels, half-float precision.
+  // Independent check of the classic phase formula (docs/OPTICS.md §3.1) at a few subpixels, half-float precision.
   const DisplayConfig display = builtinDisplay("portrait");
   const LenticularShaderValues v = lenticularShaderValues(*display.calibration);
   for (std::uint32_t x : {0u, 700u, 1535u}) {
@@ -256,7 +256,8 @@ TEST(CliEndToEnd, RaysDumpsTheTableAndItReadsBackAsARayTableDisplay) {
       "captureGrid": {"columns": 3, "rows": 2, "spacing": [0.1, 0.1], "distance": 3, "window": {"width": 2.4,
       "height": 1.8}, "image": {"width": 32, "height": 24}}})");
   const fs::path table = dir.path() / "rig_rays.exr";
-  ProcessResult r = holotrace({"rays", "--display", config.string(), "--scene", "builtin:sphere", "-o", table.string()});
+  ProcessResult r =
+      holotrace({"rays", "--display", config.string(), "--scene", "builtin:sphere", "-o", table.string()});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   const RayTable rays = frame_io::readRayTableExr(table);
   ASSERT_EQ(rays.width, 192u);  // the 6 views side by side (they fit the 16384-entry limit)

@@ -50,7 +50,8 @@ ProcessResult runProcess(const std::string& program, const std::vector<std::stri
   pid_t pid = 0;
   const int spawnError = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (spawnError != 0) throw std::runtime_error("posix_spawn " + program + " failed: error " + std::to_string(spawnError));
+  if (spawnError != 0)
+    throw std::runtime_error("posix_spawn " + program + " failed: error " + std::to_string(spawnError));
   int status = 0;
   if (waitpid(pid, &status, 0) != pid) throw std::runtime_error("waitpid failed for " + program);
 

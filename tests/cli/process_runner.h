@@ -6,7 +6,7 @@
 namespace ht::cli::test {
 
 struct ProcessResult {
-  int exitCode = -1;   // the exit status, or 128 + signal number if it was killed by a signal
+  int exitCode = -1;  // the exit status, or 128 + signal number if it was killed by a signal
   std::string out, err;
 };
 

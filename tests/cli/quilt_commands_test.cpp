@@ -25,9 +25,9 @@ namespace ht::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using ::testing::HasSubstr;
 using test::ProcessResult;
 using test::runProcess;
+using ::testing::HasSubstr;
 
 ProcessResult holotrace(const std::vector<std::string>& args) { return runProcess(HOLOTRACE_EXE, args); }
 
@@ -94,18 +94,19 @@ TEST(CliInterleave, InterleavedRenderedQuiltMatchesTheDirectRender) {
 
   // Renamed, the quilt's embedded metadata still gives its layout, and the panel is the same.
   fs::copy_file(quilt, dir.path() / "renamed.png");
-  r = holotrace({"interleave", "--display", display, "--quilt", dir.path() / "renamed.png", "-o",
-                 dir.path() / "panel_meta.png"});
+  r = holotrace(
+      {"interleave", "--display", display, "--quilt", dir.path() / "renamed.png", "-o", dir.path() / "panel_meta.png"});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   EXPECT_THAT(r.out, HasSubstr("layout from the metadata"));
   EXPECT_EQ(frame_io::readImageFile(dir.path() / "panel_meta.png").rgba,
             frame_io::readImageFile(dir.path() / "panel_vendor.png").rgba);
 }
 
-void writeQuilt(const fs::path& path, std::uint32_t w, std::uint32_t h, const frame_io::ImageAttributes& attributes = {}) {
+void writeQuilt(const fs::path& path, std::uint32_t w, std::uint32_t h,
+                const frame_io::ImageAttributes& attributes = {}) {
   const std::vector<float> rgba(std::size_t(w) * h * 4, 0.5f);
-  const frame_io::OutputFile file{path, frame_io::encodeImage({w, h, rgba}, frame_io::ImageFormat::Png8Srgb,
-                                                              attributes)};
+  const frame_io::OutputFile file{path,
+                                  frame_io::encodeImage({w, h, rgba}, frame_io::ImageFormat::Png8Srgb, attributes)};
   frame_io::writeFilesAtomically({&file, 1});
 }
 
@@ -129,8 +130,8 @@ TEST(CliInterleave, QuiltsThatCannotFitFailNamingTheValue) {
       {"missing_qs8x6a0.75.png", {}, "builtin:portrait", "missing_qs8x6a0.75.png"},
   };
   for (const Case& c : cases) {
-    std::vector<std::string> args = {"interleave", "--display", c.display,      "--quilt",
-                                     dir.path() / c.file, "-o", dir.path() / "out" / "panel.png"};
+    std::vector<std::string> args = {
+        "interleave", "--display", c.display, "--quilt", dir.path() / c.file, "-o", dir.path() / "out" / "panel.png"};
     args.insert(args.end(), c.extra.begin(), c.extra.end());
     const ProcessResult r = holotrace(args);
     EXPECT_EQ(r.exitCode, 1) << c.file << ": " << r.err;
@@ -159,8 +160,8 @@ std::vector<float> rowSlice(const frame_io::ImageFile& image, std::uint32_t x0, 
 TEST(CliSimulate, OneEyeAndASweepOfALenticularPanel) {
   ht::test::TempDirectory dir;
   const fs::path display = writeSmallPanel(dir.path());
-  ProcessResult r = holotrace({"render", "--display", display, "--scene", "builtin:plain", "--spp", "1", "-o",
-                               dir.path() / "panel.png"});
+  ProcessResult r = holotrace(
+      {"render", "--display", display, "--scene", "builtin:plain", "--spp", "1", "-o", dir.path() / "panel.png"});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
   r = holotrace({"simulate", "--display", display, "--panel", dir.path() / "panel.png", "-o", dir.path() / "mid.png"});
   ASSERT_EQ(r.exitCode, 0) << r.err << r.out;
@@ -204,8 +205,8 @@ TEST(CliSimulate, ProjectorImagesFromPerViewPngsOrAMultiViewExr) {
   ht::test::TempDirectory dir;
   const fs::path display = fs::path(HT_TEST_DATA_DIR) / "configs" / "display_projector_small.json";
   // display_projector_small has projectors of two image sizes: the simulator refuses it, naming the projector.
-  ProcessResult r = holotrace({"simulate", "--display", display, "--panel", dir.path() / "none.png", "-o",
-                               dir.path() / "v.png"});
+  ProcessResult r =
+      holotrace({"simulate", "--display", display, "--panel", dir.path() / "none.png", "-o", dir.path() / "v.png"});
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_THAT(r.err, HasSubstr("projectors[1].image"));
 
@@ -243,12 +244,14 @@ TEST(CliSimulate, BadInputsFailWithoutOutput) {
   const std::vector<Case> cases = {
       {{"--display", display, "--panel", dir.path() / "wrong_size.png"}, 1, "the display shows 1 image(s) of 192x128"},
       {{"--display", display, "--panel", dir.path() / "wrong_size.png", "--eye", "0,0,-1"}, 2, "'--eye' = '0,0,-1'"},
-      {{"--display", display, "--panel", dir.path() / "wrong_size.png", "--eye", "0,0,5", "--sweep", "3"}, 2,
+      {{"--display", display, "--panel", dir.path() / "wrong_size.png", "--eye", "0,0,5", "--sweep", "3"},
+       2,
        "not both"},
       {{"--display", display, "--panel", dir.path() / "wrong_size.png", "--sweep", "1"}, 2, "'--sweep'"},
       {{"--display", fs::path(HT_TEST_DATA_DIR) / "configs" / "display_pinhole.json", "--panel",
         dir.path() / "wrong_size.png"},
-       1, "field 'model' = pinhole"},
+       1,
+       "field 'model' = pinhole"},
   };
   for (const Case& c : cases) {
     std::vector<std::string> args = {"simulate", "-o", out};

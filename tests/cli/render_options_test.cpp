@@ -29,9 +29,9 @@ TEST(CliRenderOptions, Defaults) {
 }
 
 TEST(CliRenderOptions, EveryOptionIsRead) {
-  const RenderOptions o = parse({"--display", "visual.json", "--scene=model.glb", "--spp", "16", "--depth", "0",
-                                 "-o", "a/b.PNG", "--exr", "c.exr", "--out-dir", "frames", "--device", "1",
-                                 "--validation", "--seed", "4294967295", "--no-specialize"});
+  const RenderOptions o = parse({"--display", "visual.json", "--scene=model.glb", "--spp", "16", "--depth", "0", "-o",
+                                 "a/b.PNG", "--exr", "c.exr", "--out-dir", "frames", "--device", "1", "--validation",
+                                 "--seed", "4294967295", "--no-specialize"});
   EXPECT_EQ(o.displaySpec, "visual.json");
   EXPECT_EQ(o.sceneSpec, "model.glb");
   EXPECT_EQ(o.spp, 16u);

@@ -44,9 +44,7 @@ std::string metadata(std::uint32_t columns, std::uint32_t rows, double aspect) {
 ConfigError layoutError(const ImageHeader& h, const std::string& name, const QuiltLayoutHints& hints = {}) {
   try {
     resolveQuiltLayout(h, name, hints, smallPanel());
-  } catch (const ConfigError& e) {
-    return e;
-  }
+  } catch (const ConfigError& e) { return e; }
   ADD_FAILURE() << "resolveQuiltLayout accepted " << name;
   return ConfigError("", "", "", "");
 }
@@ -60,7 +58,8 @@ TEST(QuiltFileLayout, FromTheNameTagTheMetadataOrTheOptions) {
   EXPECT_EQ(named.layout.tileHeight, 6u);
   EXPECT_DOUBLE_EQ(named.layout.aspect, 1.5);
 
-  const QuiltFileLayout meta = resolveQuiltLayout(header(40, 18, metadata(5, 3, 1.25)), "renamed.png", {}, smallPanel());
+  const QuiltFileLayout meta =
+      resolveQuiltLayout(header(40, 18, metadata(5, 3, 1.25)), "renamed.png", {}, smallPanel());
   EXPECT_EQ(meta.source, "metadata");
   EXPECT_EQ(meta.layout.columns, 5u);
   EXPECT_DOUBLE_EQ(meta.layout.aspect, 1.25);
@@ -68,8 +67,8 @@ TEST(QuiltFileLayout, FromTheNameTagTheMetadataOrTheOptions) {
   // Options win over both; an aspect option alone keeps the tag's counts.
   QuiltLayoutHints hints;
   hints.columns = 4, hints.rows = 2;
-  const QuiltFileLayout options = resolveQuiltLayout(header(40, 18, metadata(5, 3, 1.5)), "a_qs5x3a1.5.png", hints,
-                                                     smallPanel());
+  const QuiltFileLayout options =
+      resolveQuiltLayout(header(40, 18, metadata(5, 3, 1.5)), "a_qs5x3a1.5.png", hints, smallPanel());
   EXPECT_EQ(options.source, "options");
   EXPECT_EQ(options.layout.columns, 4u);
   EXPECT_EQ(options.layout.tileWidth, 10u);
@@ -82,9 +81,9 @@ TEST(QuiltFileLayout, FromTheNameTagTheMetadataOrTheOptions) {
   EXPECT_DOUBLE_EQ(
       resolveQuiltLayout(header(40, 18, metadata(5, 3, 1.25)), "a_qs5x3.png", {}, smallPanel()).layout.aspect, 1.25);
   // A vendor's own ImageDescription (not holotrace metadata) is ignored.
-  EXPECT_EQ(resolveQuiltLayout(header(40, 18, "{\"app\": \"HoloPlay Studio\"}"), "a_qs5x3a1.5.png", {}, smallPanel())
-                .source,
-            "file name");
+  EXPECT_EQ(
+      resolveQuiltLayout(header(40, 18, "{\"app\": \"HoloPlay Studio\"}"), "a_qs5x3a1.5.png", {}, smallPanel()).source,
+      "file name");
 }
 
 TEST(QuiltFileLayout, RefusalsNameTheFileAndTheField) {
@@ -101,8 +100,7 @@ TEST(QuiltFileLayout, RefusalsNameTheFileAndTheField) {
   EXPECT_EQ(layoutError(header(40, 18), "a_qs0x3a1.5.png").field(), "quilt name");  // a count of 0
   EXPECT_EQ(layoutError(header(40, 18, R"({"generator": "holotrace", "rows": 3, "aspect": 1.5})"), "a.png").field(),
             "ImageDescription.columns");
-  EXPECT_EQ(layoutError(header(40, 18, R"({"generator": "holotrace", "columns": 5, "rows": 3, "aspect": -1})"),
-                        "a.png")
+  EXPECT_EQ(layoutError(header(40, 18, R"({"generator": "holotrace", "columns": 5, "rows": 3, "aspect": -1})"), "a.png")
                 .field(),
             "ImageDescription.aspect");
   ImageHeader multiView = header(40, 18);
@@ -131,8 +129,8 @@ TEST(QuiltFileInterleave, InterleavesTheDecodedQuiltAndRefusesOneThatDoesNotFit)
   const InterleavedQuilt panel = interleaveQuiltFile(file.path, display, {}, QuiltViewFilter::CentredLerp, 2);
   EXPECT_EQ(panel.width, 96u);
   EXPECT_EQ(panel.height, 64u);
-  const std::vector<float> want = interleaveQuilt(quiltImageViews(layout, rgba), makeLenticularParams(display, Bounds3{}),
-                                                  QuiltViewFilter::CentredLerp, 1);
+  const std::vector<float> want = interleaveQuilt(
+      quiltImageViews(layout, rgba), makeLenticularParams(display, Bounds3{}), QuiltViewFilter::CentredLerp, 1);
   EXPECT_EQ(panel.rgba, want);
 
   const OutputFile wide{dir.path() / "q_qs4x3a1.777.exr", file.bytes};

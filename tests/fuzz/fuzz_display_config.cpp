@@ -30,11 +30,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
     (void)ht::parseDisplayConfig(text, "fuzz.json", emptyBaseDir());
-  } catch (const ht::ConfigError&) {
-  }
+  } catch (const ht::ConfigError&) {}
   try {
     (void)ht::parseLookingGlassCalibrationText(text, "fuzz-visual.json");
-  } catch (const ht::ConfigError&) {
-  }
+  } catch (const ht::ConfigError&) {}
   return 0;
 }

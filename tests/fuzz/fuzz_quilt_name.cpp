@@ -36,7 +36,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
     checkRoundTrip(ht::parseQuiltName(text));
-  } catch (const ht::ConfigError&) {
-  }
+  } catch (const ht::ConfigError&) {}
   return 0;
 }

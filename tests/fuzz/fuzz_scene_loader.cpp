@@ -56,8 +56,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   try {
     (void)ht::loadScene(file.string());
-  } catch (const ht::SceneError&) {
-  }
+  } catch (const ht::SceneError&) {}
   std::filesystem::remove(file);
   return 0;
 }

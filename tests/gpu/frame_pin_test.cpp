@@ -114,23 +114,45 @@ std::vector<PinCase> pinCases(const Bounds3& bounds) {
   add("lenticular-portrait", gpu::makeDisplayCamera(portrait, bounds).camera, 2);
   add("lenticular-gen3", gpu::makeDisplayCamera(smallLenticular("gen3-16-landscape", 96, 54), bounds).camera, 1);
   add("quilt-portrait", makeQuiltParams(portrait, bounds, makeQuiltLayout(4, 2, 96, 64, 0.75)), 1);
-  add("pinhole", gpu::makeDisplayCamera(parse(R"({"model":"pinhole","pinhole":{"width":64,"height":48,
-      "fovyDeg":50,"eye":[0,0.3,3],"lookAt":[0,0,0],"distortion":{"k1":-0.1}}})"), bounds).camera, 2);
-  add("projector-array", gpu::makeDisplayCamera(parse(R"({"model":"projector-array","camera":{"size":1.5},
+  add("pinhole",
+      gpu::makeDisplayCamera(parse(R"({"model":"pinhole","pinhole":{"width":64,"height":48,
+      "fovyDeg":50,"eye":[0,0.3,3],"lookAt":[0,0,0],"distortion":{"k1":-0.1}}})"),
+                             bounds)
+          .camera,
+      2);
+  add("projector-array",
+      gpu::makeDisplayCamera(parse(R"({"model":"projector-array","camera":{"size":1.5},
       "projectorArray":{"screen":{"width":800,"height":600},"observerDistance":2500,"angularScattering":0.02,
       "image":{"width":40,"height":30},"projectors":[{"position":[-300,50,-1500]},{"position":[100,0,-1500]},
-      {"position":[300,10,-1600]}]}})"), bounds).camera, 1);
-  add("integral", gpu::makeDisplayCamera(parse(R"({"model":"integral","camera":{"size":1.5},"integral":{
+      {"position":[300,10,-1600]}]}})"),
+                             bounds)
+          .camera,
+      1);
+  add("integral",
+      gpu::makeDisplayCamera(parse(R"({"model":"integral","camera":{"size":1.5},"integral":{
       "panelWidth":64,"panelHeight":48,"pixelPitch":0.1,"lensPitch":0.77,"lensOffset":[0.13,-0.21],
       "lensRotationDeg":7.5,"gap":2.0,"focalLength":2.5,"viewerDistance":500,"frontPlane":120,
-      "sampling":"aperture"}})"), bounds).camera, 2);
-  add("capture-grid", gpu::makeDisplayCamera(parse(R"({"model":"capture-grid","captureGrid":{"columns":3,"rows":2,
+      "sampling":"aperture"}})"),
+                             bounds)
+          .camera,
+      2);
+  add("capture-grid",
+      gpu::makeDisplayCamera(parse(R"({"model":"capture-grid","captureGrid":{"columns":3,"rows":2,
       "spacing":[0.1,0.1],"distance":2.5,"window":{"width":1.6,"height":1.2},"image":{"width":32,"height":24}}})"),
-      bounds).camera, 1);
-  add("oblique", gpu::makeDisplayCamera(parse(R"({"model":"oblique","oblique":{"columns":3,"rows":3,
-      "horizontalConeDeg":40,"verticalConeDeg":30,"image":{"width":24,"height":24}}})"), bounds).camera, 1);
-  add("ray-table", gpu::makeDisplayCamera(parse(R"({"model":"ray-table","rayTable":{"file":"unused.exr"}})"), bounds,
-      gpu::CameraPath::Native, smallRayTable()).camera, 2);
+                             bounds)
+          .camera,
+      1);
+  add("oblique",
+      gpu::makeDisplayCamera(parse(R"({"model":"oblique","oblique":{"columns":3,"rows":3,
+      "horizontalConeDeg":40,"verticalConeDeg":30,"image":{"width":24,"height":24}}})"),
+                             bounds)
+          .camera,
+      1);
+  add("ray-table",
+      gpu::makeDisplayCamera(parse(R"({"model":"ray-table","rayTable":{"file":"unused.exr"}})"), bounds,
+                             gpu::CameraPath::Native, smallRayTable())
+          .camera,
+      2);
   // The same panel through the other filters and adaptive refinement (its own raygen/resolve pipelines).
   add("lenticular-gaussian", gpu::makeDisplayCamera(portrait, bounds).camera, 2);
   cases.back().settings.filter = gpu::SampleFilter::Gaussian;

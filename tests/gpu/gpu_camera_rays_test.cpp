@@ -19,9 +19,9 @@
 #include "camera_models/lenticular_reference.h"
 #include "camera_models/oblique_setup.h"
 #include "camera_models/pinhole_params.h"
-#include "camera_models/ray_table.h"
 #include "camera_models/projector_setup.h"
 #include "camera_models/quilt_setup.h"
+#include "camera_models/ray_table.h"
 #include "gpu/display_camera.h"
 #include "gpu_test_util.h"
 #include "tests/camera_models/camera_test_support.h"
@@ -40,7 +40,8 @@ TargetIndex decode(const gpu::FrameShape& shape, std::uint64_t target) {
   const std::uint64_t pixel = target / shape.targetsPerPixel;
   const auto c = static_cast<std::uint32_t>(target % shape.targetsPerPixel);
   const std::uint64_t viewPixels = std::uint64_t(shape.width) * shape.height;
-  return {static_cast<std::uint32_t>(pixel % shape.width), static_cast<std::uint32_t>((pixel / shape.width) % shape.height),
+  return {static_cast<std::uint32_t>(pixel % shape.width),
+          static_cast<std::uint32_t>((pixel / shape.width) % shape.height),
           static_cast<std::uint32_t>(pixel / viewPixels), c};
 }
 
@@ -167,8 +168,8 @@ TEST_F(GpuCameraRays, LenticularEveryGen3CellPatternMode) {
 }
 
 TEST_F(GpuCameraRays, LenticularEightKClassicBgrFlipped) {
-  checkLenticular(*renderer_, settings_, "8k classic bgr flipX", test::eightKDisplay(0, true, true),
-                  bounds_, test::kSanitized ? 211 : 29);
+  checkLenticular(*renderer_, settings_, "8k classic bgr flipX", test::eightKDisplay(0, true, true), bounds_,
+                  test::kSanitized ? 211 : 29);
 }
 
 TEST_F(GpuCameraRays, QuiltEveryView) {
@@ -176,8 +177,7 @@ TEST_F(GpuCameraRays, QuiltEveryView) {
   const QuiltLayout layout = defaultQuiltLayout(config);
   const QuiltReference reference(config, bounds_, layout);
   const RayErrors e = measure(*renderer_, makeQuiltParams(config, bounds_, layout), settings_, allViews(layout.views()),
-                              test::kSanitized ? 23 : 3,
-                              viewReference(reference));
+                              test::kSanitized ? 23 : 3, viewReference(reference));
   expectWithinBounds("quilt 8x6", e);
 }
 
@@ -187,8 +187,7 @@ TEST_F(GpuCameraRays, ProjectorWallEveryProjector) {
   gpu::RenderSettings centre = settings_;
   centre.spp = 1;  // with spp > 1 the screen scattering rotates the ray (ProjectorScatteredRaysPassThroughTheScreen)
   const RayErrors e = measure(*renderer_, makeProjectorArrayParams(config, bounds_), centre, allViews(70),
-                              test::kSanitized ? 71 : 9,
-                              viewReference(reference));
+                              test::kSanitized ? 71 : 9, viewReference(reference));
   expectWithinBounds("projector wall 70", e);
 }
 
@@ -205,14 +204,14 @@ TEST_F(GpuCameraRays, ProjectorWallThroughDistortingLenses) {
     ASSERT_TRUE(gpu_shared::lens_has_distortion(params.distortion));
     gpu::RenderSettings centre = settings_;
     centre.spp = 1;
-    const RayErrors e = measure(*renderer_, params, centre, {0, 17, 35, 69}, test::kSanitized ? 71 : 9,
-                                viewReference(reference));
+    const RayErrors e =
+        measure(*renderer_, params, centre, {0, 17, 35, 69}, test::kSanitized ? 71 : 9, viewReference(reference));
     expectWithinBounds(lens.k1 < 0 ? "projector wall, barrel lenses" : "projector wall, pincushion lenses", e);
   }
 }
 
 // Independent of the model code: a scattered ray still passes through its projector's screen point S (the rotation
-// axis is vertical through S) and keeps its vertical slope (the scattering is horizontal only, optics.md §6).
+// axis is vertical through S) and keeps its vertical slope (the scattering is horizontal only, docs/OPTICS.md §6).
 TEST_F(GpuCameraRays, ProjectorScatteredRaysPassThroughTheScreen) {
   const DisplayConfig config = builtinDisplay("holovizio-wall-70");
   const ProjectorArrayReference reference(config, bounds_);
@@ -227,10 +226,11 @@ TEST_F(GpuCameraRays, ProjectorScatteredRaysPassThroughTheScreen) {
   double maxMiss = 0.0, maxSlope = 0.0, maxAngle = 0.0;
   for (std::uint32_t x = 0; x < shape.width; ++x) {
     for (std::uint32_t s = 0; s < scattered.spp; ++s) {
-      const glm::vec2 xi = gpu_shared::footprint_sample(static_cast<std::uint32_t>(first + x), s, scattered.spp,
-                                                        scattered.seed, 0u);
+      const glm::vec2 xi =
+          gpu_shared::footprint_sample(static_cast<std::uint32_t>(first + x), s, scattered.spp, scattered.seed, 0u);
       const ReferenceRay straight = reference.ray(x, y, view, glm::dvec2(xi));
-      const glm::dvec3 screen = place.target + reference.screenPoint(view, glm::dvec2(x, y) + glm::dvec2(xi)) * place.scale;
+      const glm::dvec3 screen =
+          place.target + reference.screenPoint(view, glm::dvec2(x, y) + glm::dvec2(xi)) * place.scale;
       const gpu_shared::HtRay& r = rays[std::size_t(x) * scattered.spp + s];
       const glm::dvec3 o(r.origin), d(r.dir);
       const double t = (screen.z - o.z) / d.z;
@@ -241,7 +241,8 @@ TEST_F(GpuCameraRays, ProjectorScatteredRaysPassThroughTheScreen) {
       maxAngle = std::max(maxAngle, test::angleBetween(d, straight.dir));
     }
   }
-  std::printf("[ scattered ] miss %.3g of distance, slope error %.3g, max scatter angle %.3g rad\n", maxMiss, maxSlope, maxAngle);
+  std::printf("[ scattered ] miss %.3g of distance, slope error %.3g, max scatter angle %.3g rad\n", maxMiss, maxSlope,
+              maxAngle);
   EXPECT_LT(maxMiss, 2e-6);
   EXPECT_LT(maxSlope, 2e-6);
   EXPECT_GT(maxAngle, 1e-3);  // the samples really are scattered
@@ -250,15 +251,15 @@ TEST_F(GpuCameraRays, ProjectorScatteredRaysPassThroughTheScreen) {
 TEST_F(GpuCameraRays, IntegralPanelRows) {
   const DisplayConfig config = builtinDisplay("integral-15-4k");
   const IntegralReference reference(config, bounds_);
-  const RayErrors e = measure(*renderer_, makeIntegralParams(config, bounds_), settings_, {0},
-                              test::kSanitized ? 41 : 5,
-                              [&](const TargetIndex& t, glm::dvec2 xi) -> std::optional<ReferenceRay> {
-                                // On a lens border either lens is right (like the lenticular phase wrap).
-                                if (reference.lensBorderDistance(reference.samplePosition(t.x, t.y, t.c, xi)) < 1e-5) {
-                                  return std::nullopt;
-                                }
-                                return reference.ray(t.x, t.y, t.c, xi);
-                              });
+  const RayErrors e =
+      measure(*renderer_, makeIntegralParams(config, bounds_), settings_, {0}, test::kSanitized ? 41 : 5,
+              [&](const TargetIndex& t, glm::dvec2 xi) -> std::optional<ReferenceRay> {
+                // On a lens border either lens is right (like the lenticular phase wrap).
+                if (reference.lensBorderDistance(reference.samplePosition(t.x, t.y, t.c, xi)) < 1e-5) {
+                  return std::nullopt;
+                }
+                return reference.ray(t.x, t.y, t.c, xi);
+              });
   expectWithinBounds("integral 4k", e);
 }
 
@@ -267,8 +268,7 @@ TEST_F(GpuCameraRays, CaptureGridEveryView) {
   const CaptureGridReference reference(config, bounds_);
   const gpu_shared::CaptureGridParams params = makeCaptureGridParams(config, bounds_);
   const RayErrors e = measure(*renderer_, params, settings_, allViews(gpu::frameShape(params).views),
-                              test::kSanitized ? 53 : 7,
-                              viewReference(reference));
+                              test::kSanitized ? 53 : 7, viewReference(reference));
   expectWithinBounds("capture 8x6", e);
 }
 
@@ -283,12 +283,11 @@ TEST_F(GpuCameraRays, FiltersWarpTheFootprintAndStayExact) {
     s.spp = 8;
     s.filter = filter;
     double minXi = 1.0, maxXi = 0.0;
-    const RayErrors e = measure(*renderer_, params, s, {0, 47}, 239,
-                                [&](const TargetIndex& t, glm::dvec2 xi) {
-                                  minXi = std::min({minXi, xi.x, xi.y});
-                                  maxXi = std::max({maxXi, xi.x, xi.y});
-                                  return viewReference(reference)(t, xi);
-                                });
+    const RayErrors e = measure(*renderer_, params, s, {0, 47}, 239, [&](const TargetIndex& t, glm::dvec2 xi) {
+      minXi = std::min({minXi, xi.x, xi.y});
+      maxXi = std::max({maxXi, xi.x, xi.y});
+      return viewReference(reference)(t, xi);
+    });
     expectWithinBounds(filter == gpu::SampleFilter::Tent ? "capture, tent" : "capture, gaussian", e);
     EXPECT_LT(minXi, -0.2);  // the filter reaches into the neighbours
     EXPECT_GT(maxXi, 1.2);
@@ -355,9 +354,11 @@ struct DistortedPinholeReference {
 TEST_F(GpuCameraRays, PinholeThroughADistortingLens) {
   for (const char* lens : {"{}", R"({"k1": -0.28, "k2": 0.07, "p1": 0.0005, "p2": -0.0003})",
                            R"({"k1": 0.12, "k2": 0.03, "k3": 0.001, "p1": -0.001, "p2": 0.002})"}) {
-    const DisplayConfig config = parseDisplayConfig(
-        std::string(R"({"model": "pinhole", "pinhole": {"width": 640, "height": 360, "fovyDeg": 60,
-            "eye": [0.3, 0.2, 4], "lookAt": [0, 0, -5], "distortion": )") + lens + "}}", "lens", "");
+    const DisplayConfig config =
+        parseDisplayConfig(std::string(R"({"model": "pinhole", "pinhole": {"width": 640, "height": 360, "fovyDeg": 60,
+            "eye": [0.3, 0.2, 4], "lookAt": [0, 0, -5], "distortion": )") +
+                               lens + "}}",
+                           "lens", "");
     const DistortedPinholeReference reference(config, bounds_);
     const RayErrors e = measure(*renderer_, makePinholeParams(config, bounds_), settings_, {0},
                                 test::kSanitized ? 37 : 3, viewReference(reference));
@@ -387,10 +388,9 @@ TEST_F(GpuCameraRays, RayTableInterpolatesLikeTheReference) {
   gpu::RenderSettings s = settings_;
   s.spp = 8;
   s.filter = gpu::SampleFilter::Tent;  // reaches into the neighbours and past the border (clamped)
-  const RayErrors e = measure(*renderer_, camera, s, {0}, 1,
-                              [&](const TargetIndex& t, glm::dvec2 xi) -> std::optional<ReferenceRay> {
-                                return reference.ray(t.x, t.y, xi);
-                              });
+  const RayErrors e = measure(
+      *renderer_, camera, s, {0}, 1,
+      [&](const TargetIndex& t, glm::dvec2 xi) -> std::optional<ReferenceRay> { return reference.ray(t.x, t.y, xi); });
   expectWithinBounds("ray table 160x90", e);
   // spp 1: the table's own rays, bit for bit after the placement.
   gpu::RenderSettings one = settings_;

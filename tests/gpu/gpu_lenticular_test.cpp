@@ -69,7 +69,8 @@ TEST(GpuLenticular, PortraitSubpixelsShowTheSphereExactlyWhereTheReferenceRaysHi
       }
     }
   }
-  std::printf("subpixels %zu, covered %zu, exact sphere %zu, in tessellation band %zu\n", tested, covered, expected, ambiguous);
+  std::printf("subpixels %zu, covered %zu, exact sphere %zu, in tessellation band %zu\n", tested, covered, expected,
+              ambiguous);
   EXPECT_GT(expected, tested / 20);
   EXPECT_EQ(wrong, 0u);
   EXPECT_LE(std::abs(static_cast<double>(covered) - static_cast<double>(expected)), static_cast<double>(ambiguous));

@@ -23,7 +23,8 @@ ParityCounts compare(const std::vector<gpu_shared::HtHit>& gpu, const std::vecto
   for (size_t i = 0; i < gpu.size(); ++i) {
     bool gpuHit = gpu[i].triId != gpu_shared::HT_MISS, cpuHit = cpu[i].hit.triId != gpu_shared::HT_MISS;
     if (gpuHit != cpuHit) {
-      if (c.hitMissDisagreements++ < 5) std::printf("  ray %zu: gpu %s, cpu %s\n", i, gpuHit ? "hit" : "miss", cpuHit ? "hit" : "miss");
+      if (c.hitMissDisagreements++ < 5)
+        std::printf("  ray %zu: gpu %s, cpu %s\n", i, gpuHit ? "hit" : "miss", cpuHit ? "hit" : "miss");
       continue;
     }
     if (!gpuHit) continue;

@@ -78,7 +78,8 @@ SelectionCheck checkSelection(const gpu::RenderResult& base, std::uint32_t baseS
           for (std::uint32_t c = c0; c < c1; ++c) {
             const size_t at = pixel * 4 + c;
             isBase = isBase && adaptive.rgba[at] == base.rgba[at];
-            isRefined = isRefined && adaptive.rgba[at] == refinedValue(base.rgba[at], baseSpp, high.rgba[at], refineSpp);
+            isRefined =
+                isRefined && adaptive.rgba[at] == refinedValue(base.rgba[at], baseSpp, high.rgba[at], refineSpp);
           }
           ++out.targets;
           const bool cpuRefines = k >= threshold;
@@ -109,8 +110,8 @@ TEST(GpuRefinement, RefinedSubpixelsAreTheCpuSelectionAndTakeTheRefinedValues) {
               static_cast<unsigned long long>(adaptive.refinedTargets), check.refined, check.ambiguous);
   EXPECT_EQ(check.wrong, 0u);
   EXPECT_LE(std::abs(double(adaptive.refinedTargets) - double(check.refined)), double(check.ambiguous));
-  EXPECT_GT(check.refined, check.targets / 100);  // the scene has edges ...
-  EXPECT_LT(check.refined, check.targets / 2);    // ... and flat areas
+  EXPECT_GT(check.refined, check.targets / 100);                                  // the scene has edges ...
+  EXPECT_LT(check.refined, check.targets / 2);                                    // ... and flat areas
   EXPECT_GE(adaptive.raysTraced, base.raysTraced + adaptive.refinedTargets * 4);  // + 4 primaries per refined target
 }
 

@@ -36,11 +36,9 @@ TEST(GpuRobustness, StepLimitOverflowIsReportedNotDropped) {
   try {
     gpu::TraceStats stats;
     auto hits = renderer.traceClosest(rays, &stats);
-    FAIL() << "a ray visiting every node must trip the traversal step limit; max steps " << stats.maxSteps
-           << ", hit " << hits[0].triId << " bvh " << renderer.bvhReport().summary();
-  } catch (const GpuError& e) {
-    EXPECT_NE(std::string(e.what()).find("step limit"), std::string::npos) << e.what();
-  }
+    FAIL() << "a ray visiting every node must trip the traversal step limit; max steps " << stats.maxSteps << ", hit "
+           << hits[0].triId << " bvh " << renderer.bvhReport().summary();
+  } catch (const GpuError& e) { EXPECT_NE(std::string(e.what()).find("step limit"), std::string::npos) << e.what(); }
   // An ordinary ray beside the slivers is fine on the same renderer.
   std::vector<gpu_shared::HtRay> ok(1, gpu_shared::HtRay{{5.0f, 5.0f, 5.0f}, 0.0f, {0.0f, 0.0f, -1.0f}, 3.0e38f});
   EXPECT_EQ(renderer.traceClosest(ok)[0].triId, gpu_shared::HT_MISS);
@@ -66,9 +64,7 @@ TEST(GpuRobustness, ValidationLayerIsCleanOnAFrame) {
   std::unique_ptr<gpu::VulkanContext> context;
   try {
     context = std::make_unique<gpu::VulkanContext>(gpu::VulkanContext::Options{-1, true});
-  } catch (const GpuError& e) {
-    GTEST_SKIP() << e.what();
-  }
+  } catch (const GpuError& e) { GTEST_SKIP() << e.what(); }
   Scene scene = loadScene("builtin:showcase");
   {
     gpu::Renderer renderer(*context, scene);

@@ -33,7 +33,8 @@ double psnr(const std::vector<float>& seen, const std::vector<float>& reference)
   for (std::size_t i = 0; i + 3 < seen.size() && i + 3 < reference.size(); i += 4) {
     if (seen[i + 3] < 1.0f) continue;
     for (std::size_t c = 0; c < 3; ++c) {
-      const double d = double(gpu_shared::ht_srgb_encode(seen[i + c])) - double(gpu_shared::ht_srgb_encode(reference[i + c]));
+      const double d =
+          double(gpu_shared::ht_srgb_encode(seen[i + c])) - double(gpu_shared::ht_srgb_encode(reference[i + c]));
       sum += d * d;
       ++n;
     }
@@ -90,9 +91,7 @@ class SimulatedViewRender : public ::testing::Test {
       std::printf("%s eye (%.3g, %.3g, %.3g): %.2f dB, mirrored eye %.2f dB\n", model, eye.x, eye.y, eye.z, right,
                   wrong);
       EXPECT_GT(right, bound) << model << ", eye x " << eye.x;
-      if (std::fabs(eye.x) > mirrorAbove) {
-        EXPECT_GT(right, wrong + 5.0) << model << ", eye x " << eye.x;
-      }
+      if (std::fabs(eye.x) > mirrorAbove) { EXPECT_GT(right, wrong + 5.0) << model << ", eye x " << eye.x; }
     }
   }
 
@@ -112,11 +111,12 @@ TEST_F(SimulatedViewRender, LenticularPanelSeenFromAnEyeIsThePinholeRenderFromTh
   const std::vector<float> panel = renderer_->render(p, settings_).rgba;
   const auto w = std::uint32_t(p.panel.x), h = std::uint32_t(p.panel.y);
   const double size = p.camera.y, aspect = p.camera.z;
-  check("lenticular", lenticularViewConeEyes(p, 5), 0.5 * size, 33.0,
-        [&](glm::dvec3 eye) { return simulateLenticularView(p, panel, eye, 2); }, p.localToWorld, 1.0, w, h,
-        [&](std::uint32_t x, std::uint32_t y) {
-          return glm::dvec3(((x + 0.5) / w - 0.5) * aspect * size, ((y + 0.5) / h - 0.5) * size, 0.0);
-        });
+  check(
+      "lenticular", lenticularViewConeEyes(p, 5), 0.5 * size, 33.0,
+      [&](glm::dvec3 eye) { return simulateLenticularView(p, panel, eye, 2); }, p.localToWorld, 1.0, w, h,
+      [&](std::uint32_t x, std::uint32_t y) {
+        return glm::dvec3(((x + 0.5) / w - 0.5) * aspect * size, ((y + 0.5) / h - 0.5) * size, 0.0);
+      });
 }
 
 // 37 projectors of 64x36 behind a 160x90 screen. Measured: 39.75 dB ahead, 38.3-38.6 at x = +-97.5, 36.5-37.0 at
@@ -124,24 +124,26 @@ TEST_F(SimulatedViewRender, LenticularPanelSeenFromAnEyeIsThePinholeRenderFromTh
 TEST_F(SimulatedViewRender, ProjectorArraySeenFromAnEyeIsThePinholeRenderFromThere) {
   std::string projectors;
   for (int k = -18; k <= 18; ++k) {
-    projectors += std::string(projectors.empty() ? "" : ", ") + R"({"position": [)" + std::to_string(10 * k) +
-                  ", 0, -180]}";
+    projectors +=
+        std::string(projectors.empty() ? "" : ", ") + R"({"position": [)" + std::to_string(10 * k) + ", 0, -180]}";
   }
   const DisplayConfig config = parseDisplayConfig(R"({"name": "wall", "model": "projector-array", "projectorArray": {
       "screen": {"width": 160, "height": 90}, "observerDistance": 300, "angularScattering": "auto", "image": {"width":
-      64, "height": 36}, "projectors": [)" + projectors + "]}}",
+      64, "height": 36}, "projectors": [)" + projectors +
+                                                      "]}}",
                                                   "wall.json", "");
   const gpu_shared::ProjectorArrayParams p = makeProjectorArrayParams(config, scene_.bounds());
   const gpu::RenderResult images = renderer_->render(p, settings_);
   const std::uint32_t w = 160, h = 90;
-  check("projector array", projectorViewConeEyes(p, 5), 30.0, 35.5,
-        [&](glm::dvec3 eye) {
-          return simulateProjectorView(p, {160.0, 90.0}, images.width, images.height, images.rgba, eye, {w, h}, 2);
-        },
-        p.localToWorld, p.scale.x, w, h,
-        [&](std::uint32_t x, std::uint32_t y) {
-          return glm::dvec3(((x + 0.5) / w - 0.5) * 160.0, ((y + 0.5) / h - 0.5) * 90.0, 0.0);
-        });
+  check(
+      "projector array", projectorViewConeEyes(p, 5), 30.0, 35.5,
+      [&](glm::dvec3 eye) {
+        return simulateProjectorView(p, {160.0, 90.0}, images.width, images.height, images.rgba, eye, {w, h}, 2);
+      },
+      p.localToWorld, p.scale.x, w, h,
+      [&](std::uint32_t x, std::uint32_t y) {
+        return glm::dvec3(((x + 0.5) / w - 0.5) * 160.0, ((y + 0.5) / h - 0.5) * 90.0, 0.0);
+      });
 }
 
 // 240x160 LCD behind lenses of 10 pixels, LCD in the focal plane. Measured: 40.6-44.4 dB, mirrored 28.6-31.3 dB.
@@ -153,11 +155,12 @@ TEST_F(SimulatedViewRender, IntegralPanelSeenFromAnEyeIsThePinholeRenderThroughE
   const gpu_shared::IntegralParams p = makeIntegralParams(config, scene_.bounds());
   const std::vector<float> lcd = renderer_->render(p, settings_).rgba;
   const IntegralReference reference(config, scene_.bounds());
-  check("integral", integralViewConeEyes(p, 300.0, 5), 10.0, 39.5,
-        [&](glm::dvec3 eye) { return simulateIntegralView(p, lcd, eye, 2); }, p.localToWorld, p.scale.x, 240, 160,
-        [&](std::uint32_t x, std::uint32_t y) {
-          return glm::dvec3(reference.lensCentre(reference.pixelPosition(x, y, glm::dvec2(0.5))), 0.0);
-        });
+  check(
+      "integral", integralViewConeEyes(p, 300.0, 5), 10.0, 39.5,
+      [&](glm::dvec3 eye) { return simulateIntegralView(p, lcd, eye, 2); }, p.localToWorld, p.scale.x, 240, 160,
+      [&](std::uint32_t x, std::uint32_t y) {
+        return glm::dvec3(reference.lensCentre(reference.pixelPosition(x, y, glm::dvec2(0.5))), 0.0);
+      });
 }
 
 }  // namespace

@@ -22,11 +22,6 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from repo_files import list_files, read_text  # noqa: E402
 
-# Citations of the old, out-of-repository notes that the post-refactor sweep renames (issue 13: code comments are
-# swept after the frame_io / registry refactors merge, to avoid conflicts with them). Until then problems citing
-# these names are reported as pending, not as failures. Empty this set with the sweep: from then on they fail.
-PENDING_SWEEP_NAMES = {"optics.md", "bvh.md", "toolchain.md", "service.md"}
-
 # Written in pieces so that this file does not contain what it forbids.
 FORBIDDEN_PATHS = [
     ("workspace path", re.compile("/" + "work/")),
@@ -136,18 +131,9 @@ def main(argv):
     args = parser.parse_args(argv)
     root = os.path.abspath(args.root)
     problems = check(root)
-    def is_pending(problem):
-        return problem[3] is not None and problem[3].split("/")[-1] in PENDING_SWEEP_NAMES
-    failing = [p for p in problems if not is_pending(p)]
-    pending = [p for p in problems if is_pending(p)]
+    failing = problems
     for path, lineno, message, _ in failing:
         print("%s:%d: %s" % (path, lineno, message))
-    if pending:
-        print("pending the post-refactor citation sweep, not failures: %d citation(s) of %s in %d files"
-              % (len(pending), ", ".join(sorted(PENDING_SWEEP_NAMES)), len({p[0] for p in pending})))
-    elif PENDING_SWEEP_NAMES:
-        print("note: no citation of %s is left; empty PENDING_SWEEP_NAMES in %s"
-              % (", ".join(sorted(PENDING_SWEEP_NAMES)), os.path.basename(__file__)))
     if failing:
         print("%d problem(s): every § reference must name a file of the repository with that heading, and no path "
               "outside the repository may appear" % len(failing))

@@ -30,7 +30,7 @@ TEST(SceneGenerators, IcosphereIsClosedAndOutwardFacing) {
   Scene s;
   const glm::vec3 c(1, 2, 3);
   const TriangleRange r = makeIcosphere(s, c, 2.0f, 3, addMaterial(s, Material{}));
-  EXPECT_EQ(r.count, 20u * 64u);  // 20 * 4^3
+  EXPECT_EQ(r.count, 20u * 64u);                  // 20 * 4^3
   EXPECT_EQ(s.positions.size(), 10u * 64u + 2u);  // V = 10 * 4^n + 2 for a subdivided icosahedron
   expectClosedAndConsistent(s, r.first, r.count);
   for (const glm::vec3& p : s.positions) EXPECT_NEAR(glm::length(p - c), 2.0f, 1e-5f);
@@ -95,9 +95,7 @@ void expectWellFormed(const Scene& s) {
     for (int k = 0; k < 3; ++k) ASSERT_LT(t[k], s.positions.size());
   for (std::uint32_t m : s.triangleMaterial) ASSERT_LT(m, s.materials.size());
   for (const Material& m : s.materials)
-    if (m.baseColorTexture >= 0) {
-      EXPECT_LT(static_cast<std::size_t>(m.baseColorTexture), s.textures.size());
-    }
+    if (m.baseColorTexture >= 0) { EXPECT_LT(static_cast<std::size_t>(m.baseColorTexture), s.textures.size()); }
   for (const Light& l : s.lights) EXPECT_NEAR(glm::length(l.direction), 1.0f, 1e-5f);
 }
 
@@ -140,9 +138,7 @@ TEST(SceneBuiltin, ShowcaseHasEveryFeatureAndDepthOnBothSides) {
   }
   EXPECT_TRUE(front && behind);
   for (const Material& m : s.materials)
-    if (m.kind() == MaterialKind::Glass) {
-      EXPECT_FLOAT_EQ(m.ior, 1.5f);
-    }
+    if (m.kind() == MaterialKind::Glass) { EXPECT_FLOAT_EQ(m.ior, 1.5f); }
 }
 
 TEST(SceneBuiltin, PlainHasNoFeatures) {
@@ -191,7 +187,8 @@ struct Hit {
 std::optional<Hit> closestHit(const Scene& s, glm::vec3 o, glm::vec3 d) {
   std::optional<Hit> best;
   for (std::size_t i = 0; i < s.triangles.size(); ++i) {
-    const glm::vec3 a = s.positions[s.triangles[i].x], b = s.positions[s.triangles[i].y], c = s.positions[s.triangles[i].z];
+    const glm::vec3 a = s.positions[s.triangles[i].x], b = s.positions[s.triangles[i].y],
+                    c = s.positions[s.triangles[i].z];
     const glm::vec3 e1 = b - a, e2 = c - a, p = glm::cross(d, e2);
     const float det = glm::dot(e1, p);
     if (std::fabs(det) < 1e-12f) continue;
@@ -244,9 +241,7 @@ TEST(SceneBuiltin, MirrorTestEmitterIsVisibleOnlyThroughTheMirror) {
   for (float y = -1.0f; y <= 1.0f; y += 0.1f)
     for (float x = -0.75f; x <= 0.75f; x += 0.25f) {
       const auto hit = closestHit(s, eye, glm::normalize(glm::vec3(x, y, 0) - eye));
-      if (hit) {
-        EXPECT_EQ(materialOf(s, *hit).kind(), MaterialKind::Mirror);
-      }
+      if (hit) { EXPECT_EQ(materialOf(s, *hit).kind(), MaterialKind::Mirror); }
     }
 }
 

@@ -164,7 +164,10 @@ TEST(SceneGltfErrors, OversizedImageRefusedBeforeDecoding) {
   TempDir dir;
   GltfBuilder b = validTriangle();
   std::string png = test::encodePng(1, 1, 4, {1, 2, 3, 4});
-  png[16] = 0; png[17] = 0; png[18] = 0x4E; png[19] = 0x20;  // IHDR width = 20000 (CRC now wrong: never decoded)
+  png[16] = 0;
+  png[17] = 0;
+  png[18] = 0x4E;
+  png[19] = 0x20;  // IHDR width = 20000 (CRC now wrong: never decoded)
   b.doc["images"] = json::array({{{"bufferView", b.addBufferView(png)}, {"mimeType", "image/png"}}});
   b.doc["textures"] = json::array({{{"source", 0}}});
   b.doc["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});

@@ -38,8 +38,10 @@ TEST_P(SceneGltfIndexType, QuadIndicesOfEveryComponentType) {
   const int pos = b.addPositions(kQuad);
   const std::vector<std::uint32_t> idx = {0, 1, 2, 0, 2, 3};
   int indices = -1;
-  if (GetParam() == test::kUByte) indices = b.addData(std::vector<std::uint8_t>(idx.begin(), idx.end()), test::kUByte, "SCALAR", 1);
-  if (GetParam() == test::kUShort) indices = b.addData(std::vector<std::uint16_t>(idx.begin(), idx.end()), test::kUShort, "SCALAR", 1);
+  if (GetParam() == test::kUByte)
+    indices = b.addData(std::vector<std::uint8_t>(idx.begin(), idx.end()), test::kUByte, "SCALAR", 1);
+  if (GetParam() == test::kUShort)
+    indices = b.addData(std::vector<std::uint16_t>(idx.begin(), idx.end()), test::kUShort, "SCALAR", 1);
   if (GetParam() == test::kUInt) indices = b.addData(idx, test::kUInt, "SCALAR", 1);
   const std::string path = writeSingle(b, dir, {{"attributes", {{"POSITION", pos}}}, {"indices", indices}});
 
@@ -84,7 +86,8 @@ TEST(SceneGltf, TriangleFanAroundFirstVertex) {
   GltfBuilder b;
   const int pos = b.addPositions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-1, 1, 0}});
   const int idx = b.addData(std::vector<std::uint16_t>{0, 1, 2, 3, 4}, test::kUShort, "SCALAR", 1);
-  const Scene s = loadGltf(writeSingle(b, dir, {{"attributes", {{"POSITION", pos}}}, {"indices", idx}, {"mode", test::kFan}}));
+  const Scene s =
+      loadGltf(writeSingle(b, dir, {{"attributes", {{"POSITION", pos}}}, {"indices", idx}, {"mode", test::kFan}}));
   ASSERT_EQ(s.triangles.size(), 3u);
   EXPECT_EQ(s.triangles[0], glm::uvec3(1, 2, 0));
   EXPECT_EQ(s.triangles[1], glm::uvec3(2, 3, 0));
@@ -95,9 +98,10 @@ TEST(SceneGltf, PointAndLinePrimitivesAreSkippedAndCounted) {
   TempDir dir;
   GltfBuilder b;
   const int pos = b.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-  b.doc["meshes"].push_back({{"primitives", {{{"attributes", {{"POSITION", pos}}}, {"mode", test::kLines}},
-                                             {{"attributes", {{"POSITION", pos}}}, {"mode", test::kPoints}},
-                                             {{"attributes", {{"POSITION", pos}}}}}}});
+  b.doc["meshes"].push_back({{"primitives",
+                              {{{"attributes", {{"POSITION", pos}}}, {"mode", test::kLines}},
+                               {{"attributes", {{"POSITION", pos}}}, {"mode", test::kPoints}},
+                               {{"attributes", {{"POSITION", pos}}}}}}});
   b.setScene({b.addNode({{"mesh", 0}})});
   SceneLoadReport report;
   const Scene s = loadGltf(b.writeGltf(dir, "modes.gltf"), &report);
@@ -116,7 +120,8 @@ TEST(SceneGltf, NodeHierarchyComposesParentAndChildTrs) {
   const int pos = b.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 0, 1}});
   const int mesh = b.addMesh({{"attributes", {{"POSITION", pos}}}});
   const double s = std::sqrt(0.5);
-  const int child = b.addNode({{"mesh", mesh}, {"translation", {1, 0, 0}}, {"rotation", {0, 0, s, s}}, {"scale", {2, 2, 2}}});
+  const int child =
+      b.addNode({{"mesh", mesh}, {"translation", {1, 0, 0}}, {"rotation", {0, 0, s, s}}, {"scale", {2, 2, 2}}});
   const int parent = b.addNode({{"children", {child}}, {"translation", {0, 0, -5}}, {"rotation", {0, s, 0, s}}});
   b.setScene({parent});
   const Scene sc = loadGltf(b.writeGltf(dir, "tree.gltf"));
@@ -145,8 +150,8 @@ TEST(SceneGltf, NegativeScaleFlipsWindingToKeepFrontFaces) {
   GltfBuilder b;
   const int pos = b.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});  // counter-clockwise seen from +z
   const int nrm = b.addNormals({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
-  const std::string path = writeSingle(b, dir, {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}},
-                                       {{"scale", {-1, 1, 1}}});
+  const std::string path =
+      writeSingle(b, dir, {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}}, {{"scale", {-1, 1, 1}}});
   const Scene s = loadGltf(path);
   ASSERT_EQ(s.triangles.size(), 1u);
   expectVec3Near(s.positions[1], {-1, 0, 0});
@@ -164,8 +169,8 @@ TEST(SceneGltf, NormalsTransformByInverseTranspose) {
   const float r = std::sqrt(0.5f);
   const int pos = b.addPositions({{0, 0, 0}, {1, -1, 0}, {0, 0, 1}});
   const int nrm = b.addNormals({{r, r, 0}, {r, r, 0}, {r, r, 0}});
-  const std::string path = writeSingle(b, dir, {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}},
-                                       {{"scale", {2, 1, 1}}});
+  const std::string path =
+      writeSingle(b, dir, {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}}, {{"scale", {2, 1, 1}}});
   const Scene s = loadGltf(path);
   ASSERT_EQ(s.normals.size(), 3u);
   const float k = 1.0f / std::sqrt(5.0f);
@@ -180,8 +185,9 @@ TEST(SceneGltf, PrimitivesWithoutNormalsGetFlatNormalsWhenOthersHaveThem) {
   const int pos = b.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
   const int nrm = b.addNormals({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
   const int posB = b.addPositions({{0, 0, 0}, {0, 0, 1}, {1, 0, 0}});  // faces +y
-  b.doc["meshes"].push_back({{"primitives", {{{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}},
-                                             {{"attributes", {{"POSITION", posB}}}}}}});
+  b.doc["meshes"].push_back(
+      {{"primitives",
+        {{{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}}, {{"attributes", {{"POSITION", posB}}}}}}});
   b.setScene({b.addNode({{"mesh", 0}})});
   const Scene s = loadGltf(b.writeGltf(dir, "mixed.gltf"));
   ASSERT_EQ(s.normals.size(), s.positions.size());
@@ -193,7 +199,8 @@ TEST(SceneGltf, NormalizedIntegerTexcoords) {
   TempDir dir;
   GltfBuilder b;
   const int pos = b.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-  const int uv = b.addData(std::vector<std::uint16_t>{0, 65535, 32768, 0, 65535, 65535}, test::kUShort, "VEC2", 2, true);
+  const int uv =
+      b.addData(std::vector<std::uint16_t>{0, 65535, 32768, 0, 65535, 65535}, test::kUShort, "VEC2", 2, true);
   const Scene s = loadGltf(writeSingle(b, dir, {{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv}}}}));
   ASSERT_EQ(s.texcoords.size(), 3u);
   EXPECT_FLOAT_EQ(s.texcoords[0].x, 0.0f);
@@ -233,8 +240,8 @@ TEST(SceneGltf, DefaultSceneSelection) {
   GltfBuilder b;
   const int pos = b.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
   const int mesh = b.addMesh({{"attributes", {{"POSITION", pos}}}});
-  b.addNode({{"mesh", mesh}, {"translation", {10, 0, 0}}});   // node 0
-  b.addNode({{"mesh", mesh}, {"translation", {20, 0, 0}}});   // node 1
+  b.addNode({{"mesh", mesh}, {"translation", {10, 0, 0}}});                     // node 0
+  b.addNode({{"mesh", mesh}, {"translation", {20, 0, 0}}});                     // node 1
   b.addNode({{"mesh", mesh}, {"translation", {30, 0, 0}}, {"children", {1}}});  // node 2, parent of 1
   b.doc["scenes"] = json::array({{{"nodes", {0}}}, {{"nodes", {2}}}});
 

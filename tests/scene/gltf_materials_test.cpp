@@ -18,7 +18,8 @@ using test::TempDir;
 Scene loadWithMaterials(const json& materials, GltfBuilder& b, const TempDir& dir, SceneLoadReport* report = nullptr) {
   const int pos = b.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
   json prims = json::array();
-  for (std::size_t i = 0; i < materials.size(); ++i) prims.push_back({{"attributes", {{"POSITION", pos}}}, {"material", i}});
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    prims.push_back({{"attributes", {{"POSITION", pos}}}, {"material", i}});
   b.doc["materials"] = materials;
   b.doc["meshes"].push_back({{"primitives", prims}});
   b.setScene({b.addNode({{"mesh", 0}})});
@@ -29,11 +30,13 @@ TEST(SceneGltfMaterials, FactorsAndExtensionsMapToMaterialKinds) {
   TempDir dir;
   GltfBuilder b;
   const json materials = json::array({
-      {{"name", "paint"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.4, 0.6, 1.0}}, {"metallicFactor", 0.2}}}},
+      {{"name", "paint"},
+       {"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.4, 0.6, 1.0}}, {"metallicFactor", 0.2}}}},
       {{"name", "chrome"}, {"pbrMetallicRoughness", {{"metallicFactor", 1.0}, {"roughnessFactor", 0.1}}}},
       {{"name", "brushed"}, {"pbrMetallicRoughness", {{"metallicFactor", 1.0}, {"roughnessFactor", 0.6}}}},
       {{"name", "water"},
-       {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}, {"KHR_materials_ior", {{"ior", 1.33}}}}}},
+       {"extensions",
+        {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}, {"KHR_materials_ior", {{"ior", 1.33}}}}}},
       {{"name", "lamp"},
        {"emissiveFactor", {1.0, 0.5, 0.25}},
        {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}}},
@@ -50,9 +53,9 @@ TEST(SceneGltfMaterials, FactorsAndExtensionsMapToMaterialKinds) {
   EXPECT_EQ(s.materials[3].kind(), MaterialKind::Glass);
   EXPECT_FLOAT_EQ(s.materials[3].transmission, 1.0f);
   EXPECT_FLOAT_EQ(s.materials[3].ior, 1.33f);
-  EXPECT_FLOAT_EQ(s.materials[4].emissive.x, 4.0f);   // emissiveFactor * emissiveStrength
+  EXPECT_FLOAT_EQ(s.materials[4].emissive.x, 4.0f);  // emissiveFactor * emissiveStrength
   EXPECT_FLOAT_EQ(s.materials[4].emissive.z, 1.0f);
-  EXPECT_FLOAT_EQ(s.materials[1].ior, 1.5f);          // KHR_materials_ior default
+  EXPECT_FLOAT_EQ(s.materials[1].ior, 1.5f);  // KHR_materials_ior default
   EXPECT_EQ(s.triangleMaterial, std::vector<std::uint32_t>({0, 1, 2, 3, 4}));
   const SceneFeatures f = s.features();
   EXPECT_TRUE(f.mirrors && f.glass && f.emissive);
@@ -104,13 +107,17 @@ TEST(SceneGltfMaterials, PunctualLightsTakePositionAndDirectionFromNodes) {
   GltfBuilder b;
   b.doc["extensionsUsed"] = {"KHR_lights_punctual"};
   b.doc["extensions"]["KHR_lights_punctual"]["lights"] = json::array({
-      {{"type", "spot"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 20.0}, {"range", 7.0},
+      {{"type", "spot"},
+       {"color", {1.0, 0.5, 0.25}},
+       {"intensity", 20.0},
+       {"range", 7.0},
        {"spot", {{"innerConeAngle", 0.1}, {"outerConeAngle", 0.5}}}},
       {{"type", "directional"}, {"intensity", 3.0}},
       {{"type", "point"}},
   });
   const double s = std::sqrt(0.5);
-  const int spot = b.addNode({{"translation", {1, 2, 3}}, {"rotation", {s, 0, 0, s}},
+  const int spot = b.addNode({{"translation", {1, 2, 3}},
+                              {"rotation", {s, 0, 0, s}},
                               {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
   const int parent = b.addNode({{"translation", {10, 0, 0}}, {"children", {spot}}});
   const int sun = b.addNode({{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});  // identity: shines along -Z

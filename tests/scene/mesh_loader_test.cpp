@@ -22,11 +22,11 @@ TEST(SceneObj, VertexReferenceFormsNegativeIndicesAndPolygons) {
       "vt 0 0\nvt 1 0\nvt 1 1\n"
       "vn 0 0 1\n"
       "usemtl red\n"
-      "f 1/1/1 2/2/1 3/3/1\n"       // v/vt/vn
-      "f 1//1 3//1 4//1\n"          // v//vn
-      "f -4/1 -3/2 -1/3\n"          // v/vt, negative: -1 = vertex 4, -3 = 2, -4 = 1
+      "f 1/1/1 2/2/1 3/3/1\n"  // v/vt/vn
+      "f 1//1 3//1 4//1\n"     // v//vn
+      "f -4/1 -3/2 -1/3\n"     // v/vt, negative: -1 = vertex 4, -3 = 2, -4 = 1
       "v 2 0 0\n"
-      "f 1 2 5 3 4\r\n"             // pentagon, CRLF line end -> fan of 3
+      "f 1 2 5 3 4\r\n"  // pentagon, CRLF line end -> fan of 3
       "s off\n";
   SceneLoadReport report;
   const Scene s = parseObj(obj, "inline.obj", &report);
@@ -67,10 +67,10 @@ TEST(SceneObj, BadInputNamesTheLine) {
   EXPECT_NE(objError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n").find("line 4"), std::string::npos);   // out of range
   EXPECT_NE(objError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n").find("1-based"), std::string::npos);  // zero index
   EXPECT_NE(objError("v 0 0 0\nf -2 -1 1\n").find("line 2"), std::string::npos);                   // before first
-  objError("v 0 0\n");                            // too few coordinates
-  objError("v 0 0 0\nv 1 0 0\nf 1 2\n");          // too few face vertices
+  objError("v 0 0\n");                    // too few coordinates
+  objError("v 0 0 0\nv 1 0 0\nf 1 2\n");  // too few face vertices
   objError("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n");
-  objError("v 0 0 0\n");                          // no faces
+  objError("v 0 0 0\n");  // no faces
 }
 
 TEST(SceneOff, PolygonsCommentsAndColourVariant) {
@@ -96,14 +96,12 @@ TEST(SceneOff, CountsOnTheHeaderLine) {
 }
 
 TEST(SceneOff, BadInputIsRefused) {
-  const auto offError = [](const std::string& text) {
-    EXPECT_THROW(parseOff(text, "bad.off"), SceneError) << text;
-  };
+  const auto offError = [](const std::string& text) { EXPECT_THROW(parseOff(text, "bad.off"), SceneError) << text; };
   offError("PLY\n3 1 0\n");
-  offError("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");   // index out of range
-  offError("OFF\n3 1 0\n0 0 0\n1 0 0\n");                    // truncated
-  offError("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n");      // face shorter than its count
-  offError("OFF\n99999999 1 0\n0 0 0\n");                    // counts the file cannot hold
+  offError("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");  // index out of range
+  offError("OFF\n3 1 0\n0 0 0\n1 0 0\n");                  // truncated
+  offError("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n");    // face shorter than its count
+  offError("OFF\n99999999 1 0\n0 0 0\n");                  // counts the file cannot hold
   offError("4OFF\n3 1 0\n");
 }
 
@@ -117,9 +115,7 @@ TEST(SceneMeshFiles, LoadSceneDispatchesOnCaseInsensitiveExtension) {
   try {
     loadScene(dir.file("missing.obj"));
     ADD_FAILURE() << "expected SceneError";
-  } catch (const SceneError& e) {
-    EXPECT_EQ(e.file(), dir.file("missing.obj"));
-  }
+  } catch (const SceneError& e) { EXPECT_EQ(e.file(), dir.file("missing.obj")); }
 }
 
 TEST(SceneMeshFiles, Glmark2BunnyLoadsQuickly) {
@@ -129,7 +125,7 @@ TEST(SceneMeshFiles, Glmark2BunnyLoadsQuickly) {
   const std::clock_t c0 = std::clock();
   const Scene s = loadScene(bunny);
   const double ms = 1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
-  EXPECT_EQ(s.triangles.size(), 69666u);  // docs/toolchain.md §7: 34,835 v / 69,666 tris
+  EXPECT_EQ(s.triangles.size(), 69666u);  // docs/TOOLCHAIN.md §7: 34,835 v / 69,666 tris
   EXPECT_EQ(s.positions.size(), 34835u);
   EXPECT_FALSE(s.bounds().empty());
   std::printf("bunny: %zu triangles in %.1f ms CPU\n", s.triangles.size(), ms);

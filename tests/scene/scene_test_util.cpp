@@ -33,8 +33,8 @@ std::string base64(const std::string& bytes) {
   std::string out;
   std::size_t i = 0;
   for (; i + 2 < bytes.size(); i += 3) {
-    const std::uint32_t v = std::uint32_t(std::uint8_t(bytes[i])) << 16 | std::uint32_t(std::uint8_t(bytes[i + 1])) << 8 |
-                            std::uint8_t(bytes[i + 2]);
+    const std::uint32_t v = std::uint32_t(std::uint8_t(bytes[i])) << 16 |
+                            std::uint32_t(std::uint8_t(bytes[i + 1])) << 8 | std::uint8_t(bytes[i + 2]);
     for (int k = 3; k >= 0; --k) out += abc[(v >> (6 * k)) & 63];
   }
   const std::size_t rest = bytes.size() - i;
@@ -106,7 +106,8 @@ std::string zlibStored(const std::string& raw) {
 
 }  // namespace
 
-std::string encodePng(std::uint32_t width, std::uint32_t height, int channels, const std::vector<std::uint8_t>& pixels) {
+std::string encodePng(std::uint32_t width, std::uint32_t height, int channels,
+                      const std::vector<std::uint8_t>& pixels) {
   std::string png("\x89PNG\r\n\x1a\n", 8);
   std::string ihdr;
   putBe32(ihdr, width);
@@ -174,7 +175,8 @@ std::string GltfBuilder::writeGltf(const TempDir& dir, const std::string& name) 
   return dir.write(name, d.dump(2));
 }
 
-std::string GltfBuilder::writeGltfExternal(const TempDir& dir, const std::string& name, const std::string& binName) const {
+std::string GltfBuilder::writeGltfExternal(const TempDir& dir, const std::string& name,
+                                           const std::string& binName) const {
   nlohmann::json d = doc;
   d["buffers"] = nlohmann::json::array({{{"byteLength", bin.size()}, {"uri", binName}}});
   dir.write(binName, bin);

@@ -50,15 +50,17 @@ class GltfBuilder {
   int addData(const std::vector<T>& values, int componentType, const std::string& type, std::size_t components,
               bool normalized = false) {
     const std::string bytes(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-    const std::size_t componentBytes = componentType == kFloat || componentType == kUInt ? 4
-                                      : componentType == kShort || componentType == kUShort ? 2 : 1;
-    return addAccessor(addBufferView(bytes), componentType, bytes.size() / (componentBytes * components), type, normalized);
+    const std::size_t componentBytes = componentType == kFloat || componentType == kUInt     ? 4
+                                       : componentType == kShort || componentType == kUShort ? 2
+                                                                                             : 1;
+    return addAccessor(addBufferView(bytes), componentType, bytes.size() / (componentBytes * components), type,
+                       normalized);
   }
   int addPositions(const std::vector<glm::vec3>& p);
   int addNormals(const std::vector<glm::vec3>& n);
   // One mesh with one primitive {attributes, indices (optional), mode, material (optional)}; returns mesh index.
   int addMesh(const nlohmann::json& primitive);
-  int addNode(const nlohmann::json& node);  // returns node index
+  int addNode(const nlohmann::json& node);           // returns node index
   void setScene(const std::vector<int>& rootNodes);  // one scene, the default
 
   std::string writeGltf(const TempDir& dir, const std::string& name) const;  // data-URI buffer

@@ -35,9 +35,12 @@ std::vector<std::string> daemonEnvironment(Quarantine quarantine) {
 #ifdef HT_SANITIZED_BUILD
   if (quarantine == Quarantine::OffUnderAsan) {
     const std::string off = "quarantine_size_mb=0:thread_local_quarantine_size_kb=0";
-    auto it = std::find_if(env.begin(), env.end(), [](const std::string& v) { return v.rfind("ASAN_OPTIONS=", 0) == 0; });
-    if (it == env.end()) env.push_back("ASAN_OPTIONS=" + off);
-    else *it += (it->size() > 13 ? ":" : "") + off;
+    auto it =
+        std::find_if(env.begin(), env.end(), [](const std::string& v) { return v.rfind("ASAN_OPTIONS=", 0) == 0; });
+    if (it == env.end())
+      env.push_back("ASAN_OPTIONS=" + off);
+    else
+      *it += (it->size() > 13 ? ":" : "") + off;
   }
 #else
   (void)quarantine;
@@ -94,7 +97,8 @@ struct ProcessFixture {
   std::filesystem::path configFile = files.dir.path / "holotraced.json";
   ProcessFixture() {
     writeText(configFile, R"({"displays_dir": "displays", "scene_root": "scenes", "output_root": "out",
-      "listen": ["unix:)" + socket.string() + R"("], "limits": {"max_capture_frames": 500}})");
+      "listen": ["unix:)" + socket.string() +
+                              R"("], "limits": {"max_capture_frames": 500}})");
   }
   std::unique_ptr<v1::Holotrace::Stub> waitReady() const {
     const auto deadline = Clock::now() + std::chrono::seconds(30);
@@ -190,8 +194,7 @@ std::uint64_t streamFrames(const std::string& address, const v1::StreamRequest& 
     ReceivedFrame frame;
     for (int i = 0; i < perCall && got < static_cast<std::uint64_t>(frames) && readFrame(*reader, frame); ++i) ++got;
     context.TryCancel();
-    while (readFrame(*reader, frame)) {
-    }
+    while (readFrame(*reader, frame)) {}
     if (reader->Finish().error_code() != grpc::StatusCode::CANCELLED) return got;
   }
   return got;
@@ -225,8 +228,8 @@ TEST(DaemonProcessTest, ResidentMemoryStaysFlatOverHundredsOfFramesAndCalls) {
   const v1::StatusResponse end = daemonStatus(*stub);
   const auto growthKiB = static_cast<std::int64_t>(end.resident_kib()) - static_cast<std::int64_t>(warm.resident_kib());
   std::cout << "daemon VmRSS after warm-up " << warm.resident_kib() << " KiB, after 400 more frames "
-            << end.resident_kib() << " KiB (" << growthKiB << "); threads " << warm.threads() << " -> "
-            << end.threads() << "\n";
+            << end.resident_kib() << " KiB (" << growthKiB << "); threads " << warm.threads() << " -> " << end.threads()
+            << "\n";
   EXPECT_LT(growthKiB, 4 * 1024);
   EXPECT_EQ(end.pid(), static_cast<std::uint32_t>(daemon.pid()));
   EXPECT_GT(end.cpu_seconds(), warm.cpu_seconds());
@@ -270,8 +273,7 @@ TEST(DaemonProcessTest, SighupDuringAStreamDropsRemovedDisplaysAndSkipsBrokenOne
   ASSERT_TRUE(stub->ListDisplays(&list, {}, &displays).ok());
   for (const auto& d : displays.displays()) EXPECT_NE(d.id(), "broken");
   context.TryCancel();
-  while (readFrame(*reader, frame)) {
-  }
+  while (readFrame(*reader, frame)) {}
   reader->Finish();
   daemon.signal(SIGTERM);
   EXPECT_EQ(daemon.waitExit(std::chrono::seconds(20)), 0);

@@ -49,9 +49,7 @@ FileOps failingWrite(std::size_t okBytes, int err) {
 grpc::StatusCode codeOf(const std::function<void()>& f) {
   try {
     f();
-  } catch (...) {
-    return statusFromException(std::current_exception()).error_code();
-  }
+  } catch (...) { return statusFromException(std::current_exception()).error_code(); }
   return grpc::StatusCode::OK;
 }
 
@@ -84,9 +82,7 @@ TEST_F(FileSinkFailureTest, EdquotAtFsyncIsDiskFull) {
   try {
     sink.writeFile("frame.png", bytes_);
     FAIL() << "a failed fsync was ignored";
-  } catch (const DiskFull& e) {
-    EXPECT_NE(std::string(e.what()).find("frame.png"), std::string::npos) << e.what();
-  }
+  } catch (const DiskFull& e) { EXPECT_NE(std::string(e.what()).find("frame.png"), std::string::npos) << e.what(); }
   EXPECT_EQ(entries(root()), std::vector<std::string>{"frame.png"});
   EXPECT_EQ(readSinkFile(root() / "frame.png"), "old contents");
 }

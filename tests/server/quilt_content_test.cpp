@@ -75,9 +75,9 @@ TEST_F(QuiltContentTest, QuiltsThatCannotFitTheRequestFailNamingTheValue) {
     bool quiltPath;
     std::string message;
   };
-  for (const Case& c : {Case{"wide_qs4x3a1.777.png", "tiny", false, "quilt aspect"},
-                        Case{"holiday.png", "tiny", false, "quilt name"},
-                        Case{"ok_qs4x3a1.5.png", "wall", false, "model"}}) {
+  for (const Case& c :
+       {Case{"wide_qs4x3a1.777.png", "tiny", false, "quilt aspect"}, Case{"holiday.png", "tiny", false, "quilt name"},
+        Case{"ok_qs4x3a1.5.png", "wall", false, "model"}}) {
     v1::SceneHandle handle;
     ASSERT_TRUE(loadScene(*stub_, c.file, &handle).ok()) << c.file;
     v1::RenderRequest request = tinyRequest(handle.scene_id());

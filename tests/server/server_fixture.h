@@ -27,8 +27,8 @@ struct TempDir {
   std::filesystem::path path;
 };
 
-std::string tinyDisplayJson();         // lenticular, 96x64 panel, spp 1
-std::string cubeObj();                 // 12 triangles
+std::string tinyDisplayJson();  // lenticular, 96x64 panel, spp 1
+std::string cubeObj();          // 12 triangles
 void writeText(const std::filesystem::path& file, const std::string& text);
 
 // Everything a test daemon needs on disk; `config()` points at it.

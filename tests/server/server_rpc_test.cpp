@@ -298,8 +298,7 @@ TEST_F(ServerTest, StreamDeliversFramesUntilCancelledWhileOthersRender) {
   auto other = connect(files_->socketAddress());
   EXPECT_TRUE(renderOne(*other, tinyRequest(sceneId_)).ok());  // a second client is served meanwhile
   context.TryCancel();
-  while (readFrame(*reader, frame)) {
-  }
+  while (readFrame(*reader, frame)) {}
   EXPECT_EQ(reader->Finish().error_code(), StatusCode::CANCELLED);
 }
 
@@ -320,8 +319,7 @@ TEST_F(ServerTest, SlowConsumerGetsNewestFramesAndDoesNotBlockOthers) {
   for (int i = 0; i < 400 && dropped == 0 && readFrame(*reader, frame); ++i) dropped += frame.header.dropped_frames();
   EXPECT_GT(dropped, 0u);  // missed ticks were skipped, not queued
   context.TryCancel();
-  while (readFrame(*reader, frame)) {
-  }
+  while (readFrame(*reader, frame)) {}
   reader->Finish();
 }
 
@@ -437,20 +435,24 @@ TEST_F(ServerTest, MultiViewFramesCarryEveryViewAndPngIsTheQuilt) {
 TEST_F(ServerTest, CaptureWritesQuiltPerViewAndMultiViewFiles) {
   std::vector<std::string> files;
   ASSERT_TRUE(captureFrame(*stub_, "rigq", multiViewRequest(sceneId_, "rig", v1::PIXEL_FORMAT_RGBA8),
-                        v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_AUTO, files).ok());
+                           v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_AUTO, files)
+                  .ok());
   ASSERT_EQ(files, (std::vector<std::string>{"rigq_f0000_qs3x2a1.5.png", "rigq_f0000_qs3x2a1.5.json"}));
   EXPECT_TRUE(isCompletePng(files_->outputRoot() / files[0]));
   files.clear();
   ASSERT_TRUE(captureFrame(*stub_, "walls", multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8),
-                        v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_AUTO, files).ok());
+                           v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_AUTO, files)
+                  .ok());
   EXPECT_EQ(files, (std::vector<std::string>{"walls_f0000_v00.png", "walls_f0000_v01.png", "walls_f0000_v02.png"}));
   files.clear();
   ASSERT_TRUE(captureFrame(*stub_, "wallx", multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8),
-                        v1::CAPTURE_FORMAT_EXR, v1::CAPTURE_LAYOUT_AUTO, files).ok());
+                           v1::CAPTURE_FORMAT_EXR, v1::CAPTURE_LAYOUT_AUTO, files)
+                  .ok());
   EXPECT_EQ(files, (std::vector<std::string>{"wallx_f0000.exr"}));
   files.clear();
   EXPECT_EQ(captureFrame(*stub_, "wallq", multiViewRequest(sceneId_, "wall", v1::PIXEL_FORMAT_RGBA8),
-                      v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_QUILT, files).error_code(),
+                         v1::CAPTURE_FORMAT_PNG, v1::CAPTURE_LAYOUT_QUILT, files)
+                .error_code(),
             StatusCode::INVALID_ARGUMENT);
   EXPECT_FALSE(std::filesystem::exists(files_->outputRoot() / "wallq_f0000.png"));
 }

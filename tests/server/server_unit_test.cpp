@@ -108,9 +108,7 @@ TEST(DaemonConfigTest, RejectsBadValuesNamingTheField) {
   try {
     parseDaemonConfig(R"({"scene_root": "s", "output_root": "o", "limits": {"max_clients": -1}})", "t.json", "/");
     FAIL() << "accepted a negative limit";
-  } catch (const ConfigError& e) {
-    EXPECT_EQ(e.field(), "limits.max_clients");
-  }
+  } catch (const ConfigError& e) { EXPECT_EQ(e.field(), "limits.max_clients"); }
   EXPECT_THROW(parseDaemonConfig(R"({"output_root": "o"})", "t.json", "/"), ConfigError);
   EXPECT_THROW(parseDaemonConfig("{not json", "t.json", "/"), ConfigError);
 }

@@ -63,8 +63,7 @@ StreamCount readStreamFor(const std::string& address, const v1::StreamRequest& r
     count.dropped += frame.header.dropped_frames();
   }
   context.TryCancel();
-  while (readFrame(*reader, frame)) {
-  }
+  while (readFrame(*reader, frame)) {}
   reader->Finish();
   return count;
 }
@@ -110,8 +109,7 @@ TEST_F(StreamFairnessTest, StalledConsumerIsNotRenderedForGetsNewestFrameOnResum
   EXPECT_GE(static_cast<double>(dropped), 0.5 * kFps * stalledSeconds)
       << "after " << stalledSeconds << " s stalled only " << dropped << " ticks were dropped";
   context.TryCancel();
-  while (readFrame(*stalled, frame)) {
-  }
+  while (readFrame(*stalled, frame)) {}
   stalled->Finish();
 }
 
@@ -122,8 +120,7 @@ TEST_F(StreamFairnessTest, FloodingClientDoesNotHoldBackAnotherClientsRenders) {
   std::atomic<std::uint64_t> floodFrames{0};
   std::atomic<double> maxRenderMs{0};
   auto noteRender = [&](double ms) {
-    for (double seen = maxRenderMs.load(); ms > seen && !maxRenderMs.compare_exchange_weak(seen, ms);) {
-    }
+    for (double seen = maxRenderMs.load(); ms > seen && !maxRenderMs.compare_exchange_weak(seen, ms);) {}
   };
   std::vector<std::thread> threads;
   std::vector<std::unique_ptr<grpc::ClientContext>> contexts;

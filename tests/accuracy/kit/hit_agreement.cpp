@@ -34,7 +34,8 @@ Cause classify(const Geometry& g) {
 
 double maxAbsCoordinate(std::span<const glm::vec3> positions) {
   double m = 0.0;
-  for (const glm::vec3& p : positions) m = std::max({m, double(std::abs(p.x)), double(std::abs(p.y)), double(std::abs(p.z))});
+  for (const glm::vec3& p : positions)
+    m = std::max({m, double(std::abs(p.x)), double(std::abs(p.y)), double(std::abs(p.z))});
   return m;
 }
 
@@ -84,8 +85,8 @@ Agreement compareHits(std::span<const glm::vec3> positions, std::span<const glm:
 std::string describe(const Disagreement& d) {
   std::ostringstream s;
   s.precision(9);
-  s << "ray " << d.ray << (d.hitMiss ? " hit/miss" : " t") << " [" << causeName(d.cause)
-    << "] ours tri " << static_cast<int64_t>(d.ours.triId == HT_MISS ? -1 : int64_t(d.ours.triId)) << " t " << d.ours.t
+  s << "ray " << d.ray << (d.hitMiss ? " hit/miss" : " t") << " [" << causeName(d.cause) << "] ours tri "
+    << static_cast<int64_t>(d.ours.triId == HT_MISS ? -1 : int64_t(d.ours.triId)) << " t " << d.ours.t
     << ", embree tri " << (d.anchor.triId == HT_MISS ? -1 : int64_t(d.anchor.triId)) << " t " << d.anchor.t
     << ", min barycentric " << d.minBarycentric << ", |cos| " << d.cosine;
   return s.str();

@@ -38,7 +38,7 @@ struct Agreement {
   uint64_t hitMissDisagreements = 0;  // one side hit, the other missed
   uint64_t tDisagreements = 0;        // both hit, t outside the tolerance
   uint64_t byCause[static_cast<uint32_t>(Cause::Count)] = {};
-  std::vector<Disagreement> listed;   // at most `maxListed`
+  std::vector<Disagreement> listed;  // at most `maxListed`
   double agreementPercent() const;   // 100 * (1 - hitMiss / rays)
   uint64_t interior() const { return byCause[static_cast<uint32_t>(Cause::Interior)]; }
 };

@@ -56,8 +56,7 @@ glm::vec3 direction(const TestMesh& mesh, RayKind kind, glm::vec3 origin, std::m
       d[pickCorner(rng)] = 0.0f;
       return d;
     }
-    default:
-      return glm::vec3(uniformDirection(rng));
+    default: return glm::vec3(uniformDirection(rng));
   }
 }
 

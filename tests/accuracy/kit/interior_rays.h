@@ -1,7 +1,7 @@
 // interior_rays.h - rays that start strictly inside a closed TestMesh (every one must hit it).
 //
 // Kinds, after Embree verify's watertight test (random origins and directions inside a sphere) and tinybvh's
-// axis_ray_test (axis-aligned rays through shared edges and vertices), bvh.md §6:
+// axis_ray_test (axis-aligned rays through shared edges and vertices), docs/BVH.md §6:
 //   Random      uniform direction
 //   Vertex      aimed exactly at a mesh vertex (direction = vertex - origin, in float)
 //   Edge        aimed at the midpoint of a mesh edge

@@ -4,7 +4,7 @@
 // Möller & Trumbore, "Fast, Minimum Storage Ray/Triangle Intersection", JGT 2(1) 1997: det = e1 . (d x e2),
 // u = (o - v0) . (d x e2) / det, v = d . ((o - v0) x e1) / det, t = e2 . ((o - v0) x e1) / det, accepted
 // when u >= 0, v >= 0, u + v <= 1. The paper's code rejects |det| < EPSILON = 1e-6 (tinybvh's CPU version
-// too, bvh.md §5.4): an absolute threshold that depends on scale. Variant NoEpsilon rejects only det == 0.
+// too, docs/BVH.md §5.4): an absolute threshold that depends on scale. Variant NoEpsilon rejects only det == 0.
 #pragma once
 #include <cstdint>
 #include <span>

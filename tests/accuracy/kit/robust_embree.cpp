@@ -22,8 +22,8 @@ RobustEmbree::RobustEmbree(std::span<const glm::vec3> positions, std::span<const
   handles_->scene = rtcNewScene(handles_->device);
   rtcSetSceneFlags(handles_->scene, RTC_SCENE_FLAG_ROBUST);
   RTCGeometry geom = rtcNewGeometry(handles_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                        3 * sizeof(float), positions.size()));
+  auto* v = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), positions.size()));
   for (size_t i = 0; i < positions.size(); ++i) {
     for (int k = 0; k < 3; ++k) v[3 * i + k] = positions[i][k];
   }

@@ -1,5 +1,5 @@
 // robust_embree.h - Embree 3 with RTC_SCENE_FLAG_ROBUST (watertight Plücker test, conservative traversal;
-// bvh.md §2.1), the anchor of the differential tests. Single-ray rtcIntersect1 over all cores.
+// docs/BVH.md §2.1), the anchor of the differential tests. Single-ray rtcIntersect1 over all cores.
 #pragma once
 #include <memory>
 #include <span>

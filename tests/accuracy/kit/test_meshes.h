@@ -3,7 +3,7 @@
 // A closed mesh is one whose triangles share every edge with exactly one other triangle, so a ray starting
 // strictly inside must hit it: a miss is a leak of the intersection code. Placements follow Embree verify's
 // watertight test (tutorials/verify/verify.cpp: sphere of radius 2 centred at (148376, 1234, -223423),
-// bvh.md §6) and the scale sweep of bvh.md §6 ("scales from 1e-3 to 1e5", widened here to 1e-4 … 1e4).
+// docs/BVH.md §6) and the scale sweep of docs/BVH.md §6 ("scales from 1e-3 to 1e5", widened here to 1e-4 … 1e4).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -19,8 +19,8 @@ namespace ht::accuracy {
 // (torus), in the mesh's own units before placement.
 struct Interior {
   enum class Kind { Ball, Tube } kind = Kind::Ball;
-  float radius = 0.0f;       // ball radius, or tube radius around the centre circle
-  float circleRadius = 0.0f; // Tube only: radius of the centre circle
+  float radius = 0.0f;        // ball radius, or tube radius around the centre circle
+  float circleRadius = 0.0f;  // Tube only: radius of the centre circle
 };
 
 struct TestMesh {
@@ -28,8 +28,8 @@ struct TestMesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::uvec3> triangles;
   bool closed = true;
-  Interior interior;        // valid when closed
-  glm::vec3 offset{0.0f};   // placement: world = local * scale + offset
+  Interior interior;       // valid when closed
+  glm::vec3 offset{0.0f};  // placement: world = local * scale + offset
   float scale = 1.0f;
 };
 

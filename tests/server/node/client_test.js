@@ -1,5 +1,5 @@
 // client_test.js - an independent holotraced client: @grpc/grpc-js + @grpc/proto-loader load
-// protocol/holotrace/v1/holotrace.proto as-is (docs/service.md §5). Usage: node client_test.js HOLOTRACED_EXE
+// protocol/holotrace/v1/holotrace.proto as-is (docs/SERVICE.md §8). Usage: node client_test.js HOLOTRACED_EXE
 // Exit 0 = pass, 1 = fail, 77 = skipped (node_modules absent: run `npm ci` in tests/server/node).
 'use strict';
 const fs = require('fs');
