@@ -42,8 +42,20 @@ double readAngle(const JsonLocation& at, const json& object, std::string_view ke
   return value;
 }
 
+QuiltSize readQuiltSize(const JsonLocation& at, const json& quilt) {
+  detail::rejectUnknownKeys(at, quilt, {"columns", "rows", "width", "height"});
+  QuiltSize size;
+  size.columns = static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "columns", false, 1, 1024));
+  size.rows = static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "rows", false, 1, 1024));
+  size.width =
+      static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "width", false, size.columns, kMaxImageSize));
+  size.height =
+      static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "height", false, size.rows, kMaxImageSize));
+  return size;
+}
+
 CameraPlacement readCamera(const JsonLocation& at, const json& camera) {
-  detail::rejectUnknownKeys(at, camera, {"target", "size", "fovyDeg", "depthiness"});
+  detail::rejectUnknownKeys(at, camera, {"target", "size", "fovyDeg", "depthiness", "quilt"});
   CameraPlacement placement;
   placement.target = readPoint(at, camera, "target", true);
   const json* size = detail::findField(camera, "size");
@@ -59,6 +71,11 @@ CameraPlacement readCamera(const JsonLocation& at, const json& camera) {
       detail::optionalNumber(at, camera, "depthiness", false, depthExpected).value_or(placement.depthiness);
   if (!(placement.depthiness > 0.0))
     detail::throwFieldError(at, "depthiness", detail::findField(camera, "depthiness"), depthExpected);
+  if (const json* quilt = detail::findField(camera, "quilt")) {
+    if (!quilt->is_object())
+      detail::throwFieldError(at, "quilt", quilt, "expected {\"columns\", \"rows\", \"width\", \"height\"}");
+    placement.quilt = readQuiltSize(at.child("quilt"), *quilt);
+  }
   return placement;
 }
 

@@ -25,6 +25,13 @@
 
 namespace ht {
 
+// A quilt size chosen in the config instead of the device default (quilt_layout.h defaultQuiltLayout): `columns` x
+// `rows` views tiled into a `width` x `height` quilt, e.g. a small quilt for tests or a 2x-pixel one for quality.
+struct QuiltSize {
+  std::uint32_t columns = 0, rows = 0;
+  std::uint32_t width = 0, height = 0;
+};
+
 // Where the display's focal rectangle sits in the scene (looking-glass-webxr camera, docs/OPTICS.md §4.3).
 // The display-local frame has its origin at `target` and world-aligned axes (+z toward the viewer).
 struct CameraPlacement {
@@ -32,6 +39,7 @@ struct CameraPlacement {
   std::optional<double> size;        // focal-rectangle height (webxr targetDiam), world units; nullopt = "auto"
   double fovyDeg = 14.0;             // vertical fov of the quilt cameras (looking-glass-webxr default), (0, 180)
   double depthiness = 1.0;           // multiplies viewCone (webxr uses 1.25 by default; we default to 1.0)
+  std::optional<QuiltSize> quilt;    // "quilt": {"columns", "rows", "width", "height"}; nullopt = device default
 };
 
 // Pinhole camera (model "pinhole", docs/OPTICS.md §9 M0); also the preview camera of a lenticular display.

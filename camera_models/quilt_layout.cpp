@@ -59,6 +59,11 @@ QuiltName parseQuiltName(std::string_view fileName) {
   return name;
 }
 
+bool hasQuiltTag(std::string_view fileName) {
+  static const std::regex tag(R"(_qs\d+x\d+)");
+  return std::regex_search(std::string(fileName), tag);
+}
+
 std::string formatQuiltName(std::uint32_t columns, std::uint32_t rows, double aspect) {
   // Fixed notation only: the parser reads digits and dots. The longest shortest-round-trip fixed form of a double is
   // 309 integer digits (DBL_MAX) or "0." + 323 zeros + "5" (the smallest denormal), so 400 chars always suffice;
@@ -91,6 +96,7 @@ QuiltLayout defaultQuiltLayout(const DisplayConfig& config) {
                       "expected a lenticular display (device default quilts exist only for Looking Glass panels)");
   const LookingGlassCalibration& c = *config.calibration;
   const double aspect = double(c.screenW) / double(c.screenH);
+  if (const auto& q = config.camera.quilt) return makeQuiltLayout(q->columns, q->rows, q->width, q->height, aspect);
   const bool gen3 = c.cellPatternMode != 0;
   const auto is = [&](std::uint32_t w, std::uint32_t h) { return c.screenW == w && c.screenH == h; };
   // docs/OPTICS.md §4.2 (LKG-Toolkit HardCodedLKGDeviceTemplates.cs; looking-glass-webxr quiltResolution).

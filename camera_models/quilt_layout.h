@@ -30,6 +30,10 @@ struct QuiltName {
 // a finite number > 0.
 QuiltName parseQuiltName(std::string_view fileName);
 
+// True if the name holds a quilt tag at all (`_qs{digits}x{digits}`), well-formed or not: parseQuiltName reads it
+// (and names what is wrong with it); a name without one carries no layout.
+bool hasQuiltTag(std::string_view fileName);
+
 // "_qs{cols}x{rows}a{aspect}" with the aspect in the shortest form that reads back to the same double.
 std::string formatQuiltName(std::uint32_t columns, std::uint32_t rows, double aspect);
 
@@ -45,7 +49,8 @@ struct QuiltLayout {
 QuiltLayout makeQuiltLayout(std::uint32_t columns, std::uint32_t rows, std::uint32_t quiltWidth,
                             std::uint32_t quiltHeight, double aspect);
 
-// Device default quilt (docs/OPTICS.md §4.2, LKG-Toolkit templates / webxr quiltResolution), chosen by panel size and
+// The config's camera.quilt when it has one, else the device default quilt (docs/OPTICS.md §4.2, LKG-Toolkit
+// templates / webxr quiltResolution), chosen by panel size and
 // generation (CellPatternMode != 0 = Gen3): Portrait 1536x2048 -> 3360^2 8x6; Go 1440x2560 -> 4092^2 11x6;
 // Gen3 16" 3840x2160 -> 6000^2 7x7, 2160x3840 -> 6000^2 11x6; Gen3 32" 7680x4320 -> 8190^2 7x7, 4320x7680 -> 8184^2
 // 11x6; Gen2 32" 7680x4320 -> 8192^2 5x9; other (8.9"/15.6"/16" Gen2) -> 4096^2 5x9. Aspect = screenW/screenH.

@@ -47,6 +47,12 @@ std::optional<std::string> ParsedArguments::text(const std::string& name) const 
   return it->second;
 }
 
+std::string ParsedArguments::required(const std::string& name) const {
+  auto value = text(name);
+  if (!value) throw UsageError(usageMessage(command_, "missing option '" + name + "'"));
+  return *value;
+}
+
 std::string ParsedArguments::textOr(const std::string& name, const std::string& fallback) const {
   return text(name).value_or(fallback);
 }

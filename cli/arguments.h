@@ -33,6 +33,8 @@ class ParsedArguments {
   std::optional<std::string> text(const std::string& name) const;
   // The option's value or the fallback.
   std::string textOr(const std::string& name, const std::string& fallback) const;
+  // The value of a required option; throws UsageError "<command>: missing option '<name>'" if it was not given.
+  std::string required(const std::string& name) const;
   // An unsigned integer within [lo, hi]; throws UsageError naming option, value and range otherwise.
   std::optional<std::uint32_t> unsignedValue(const std::string& name, std::uint32_t lo, std::uint32_t hi) const;
   // A finite decimal number within [lo, hi]; throws UsageError naming option, value and range otherwise.

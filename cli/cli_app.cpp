@@ -14,10 +14,12 @@
 #include "cli/command.h"
 #include "cli/devices_command.h"
 #include "cli/info_command.h"
+#include "cli/interleave_command.h"
 #include "cli/raycast_command.h"
 #include "cli/rays_command.h"
 #include "cli/render_command.h"
 #include "cli/show_command.h"
+#include "cli/simulate_command.h"
 #include "common/error.h"
 
 #ifndef HT_VERSION
@@ -38,6 +40,10 @@ constexpr std::array kCommands = {
             runRaycast},
     Command{"devices", "list the Looking Glass panels found and where their calibration came from", devicesHelp,
             runDevices},
+    Command{"interleave", "interleave a quilt image (_qs{c}x{r}a{aspect}) into a lenticular panel image",
+            interleaveHelp, runInterleave},
+    Command{"simulate", "what an eye sees of a rendered frame through the display's optics (one eye or a sweep)",
+            simulateHelp, runSimulate},
     Command{"rays", "write a display's per-(sub)pixel primary rays (+ view phase) as an EXR ray table", raysHelp,
             runRays},
 #ifdef HT_WITH_CLIENT
@@ -58,9 +64,9 @@ std::string mainHelp() {
   std::string text = "holotrace " HT_VERSION
                      " - light-field display renderer (Vulkan compute ray tracing)\n\n"
                      "Usage: holotrace <command> [options]\n\nCommands:\n";
-  for (const Command& c : kCommands) text += "  " + padRight(c.name, 8) + c.summary + "\n";
+  for (const Command& c : kCommands) text += "  " + padRight(c.name, 12) + c.summary + "\n";
   text +=
-      "  help    show this text, or `holotrace help <command>`\n\n"
+      "  help        show this text, or `holotrace help <command>`\n\n"
       "Options:\n  -h, --help     show this text\n  --version      print the version\n\n"
       "Run `holotrace <command> --help` for the options of a command.\n";
   return text;

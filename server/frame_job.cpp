@@ -29,9 +29,15 @@ gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client
   settings.seed = job.seed;
   settings.refineSpp = job.refineSpp;
   settings.refineContrast = job.refineContrast;
+  const SceneContent& content = *job.session->content;
+  if (content.quilt) {  // existing quilt content: interleaved for the display, nothing traced
+    if (job.path == gpu::CameraPath::Quilt) {
+      throw BadRequest("quilt", "scene '" + job.session->id + "' is already a quilt image; request its panel frames");
+    }
+    return content.quilt->frame(job.display->config);
+  }
   const gpu::DisplayCamera camera = jobCamera(job);
   gpu::RenderResult result;
-  const SceneContent& content = *job.session->content;
   worker.submit(client, [&](gpu::VulkanContext&) { result = content.renderer->render(camera.camera, settings); }).get();
   return result;
 }

@@ -54,6 +54,12 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
   auto content = std::make_shared<SceneContent>();
   content->contentKey = key;
   const auto start = std::chrono::steady_clock::now();
+  if (isQuiltSpec(source.name)) {  // a quilt image: shown by interleaving, nothing to trace
+    content->quilt = std::make_shared<const QuiltContent>(std::filesystem::path(source.name).filename().string(),
+                                                          asBytes(source.bytes));
+    content->loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return content;
+  }
   SceneLimits limits;  // counts refused from the file's headers, before the memory is allocated
   limits.maxTriangles = limits_.maxTriangles;
   limits.maxVertices = 3 * limits_.maxTriangles;
@@ -118,8 +124,10 @@ std::shared_ptr<SceneContent> SceneLibrary::contentFor(const std::string& client
 }
 
 std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client, const SceneSource& source) {
-  const std::string key = sourceKey(source);
+  std::string key = sourceKey(source);
   const bool builtin = key == source.name;
+  // A quilt's layout comes from its name as much as from its bytes (server/quilt_content.h).
+  if (!builtin && isQuiltSpec(source.name)) key += "\n" + std::filesystem::path(source.name).filename().string();
   bool reused = false;
   std::shared_ptr<SceneContent> content = contentFor(client, key, source, reused);
   std::lock_guard lock(mutex_);
@@ -290,6 +298,7 @@ SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, cons
                                                  const std::function<void(Scene&)>& edit) {
   std::lock_guard editing(editMutex_);  // one edit BVH build at a time, and edits of one session in order
   const std::shared_ptr<const SceneSession> session = find(id);
+  if (session->content->quilt) throw BadRequest("scene_id", "'" + id + "' is a quilt image: it has no nodes or lights");
   auto content = std::make_shared<SceneContent>(*session->content);  // copies the scene, shares the Renderer
   edit(content->scene);
   const bool newRenderer = content->editedBy != id;

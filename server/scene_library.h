@@ -25,6 +25,7 @@
 #include "scene/scene.h"
 #include "scene/scene_source.h"
 #include "server/errors.h"
+#include "server/quilt_content.h"
 #include "server/render_worker.h"
 
 namespace ht::server {
@@ -40,6 +41,7 @@ struct SceneContent {
   std::uint64_t memoryBytes = 0;  // estimate: sceneMemoryBytes(scene)
   std::string editedBy;  // "" = loaded content, shared by every session of the same bytes; else the one session
                          // whose edits (UpdateScene nodes / lights) it carries
+  std::shared_ptr<const QuiltContent> quilt;  // a quilt image (server/quilt_content.h): no scene, no renderer
 };
 
 struct SceneSession {

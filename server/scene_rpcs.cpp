@@ -19,8 +19,10 @@ namespace {
 void fillHandle(const SceneSession& session, v1::SceneHandle& out) {
   out.set_scene_id(session.id);
   out.set_triangles(session.content->scene.triangleCount());
-  out.set_bvh_build_ms(session.content->renderer->bvhReport().buildMs);
-  out.set_sah_cost(session.content->renderer->bvhReport().sahCost);
+  if (session.content->renderer) {  // a quilt image has none (server/quilt_content.h)
+    out.set_bvh_build_ms(session.content->renderer->bvhReport().buildMs);
+    out.set_sah_cost(session.content->renderer->bvhReport().sahCost);
+  }
   out.set_reused(session.reused);
   out.set_load_ms(session.content->loadMs);
   for (const SceneNode& node : session.content->scene.nodes) out.add_nodes(node.name);

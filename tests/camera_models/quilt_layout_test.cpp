@@ -111,5 +111,31 @@ TEST(QuiltLayout, DeviceDefaults) {
   EXPECT_THROW(defaultQuiltLayout(builtinDisplay("holovizio-wall-70")), ConfigError);
 }
 
+// camera.quilt replaces the device default; bad sizes are refused naming the field.
+TEST(QuiltLayout, ConfigQuiltSizeReplacesTheDeviceDefault) {
+  auto config = [](const std::string& quilt) {
+    return parseDisplayConfig(R"({"name": "q", "calibration": {"pitch": 52.59, "slope": -7.21, "center": 0.4,
+        "viewCone": 40, "invView": 1, "DPI": 324, "screenW": 1536, "screenH": 2048, "flipImageX": 0, "flipImageY": 0,
+        "flipSubp": 0}, "camera": {"quilt": )" +
+                                  quilt + "}}",
+                              "q.json", "");
+  };
+  const QuiltLayout small = defaultQuiltLayout(config(R"({"columns": 4, "rows": 3, "width": 200, "height": 150})"));
+  EXPECT_EQ(small.columns, 4u);
+  EXPECT_EQ(small.rows, 3u);
+  EXPECT_EQ(small.tileWidth, 50u);
+  EXPECT_EQ(small.tileHeight, 50u);
+  EXPECT_DOUBLE_EQ(small.aspect, 0.75);
+  for (const char* bad :
+       {R"({"columns": 4, "rows": 3, "width": 3, "height": 150})",
+        R"({"columns": 0, "rows": 3, "width": 200, "height": 150})", R"({"columns": 4, "rows": 3, "width": 200})",
+        R"({"columns": 4, "rows": 3, "width": 200, "height": 150, "depth": 1})", "[4, 3]"}) {
+    try {
+      config(bad);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const ConfigError& e) { EXPECT_NE(std::string(e.field()).find("quilt"), std::string::npos) << e.what(); }
+  }
+}
+
 }  // namespace
 }  // namespace ht

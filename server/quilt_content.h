@@ -1,0 +1,44 @@
+// quilt_content.h - a quilt image loaded as scene-like content (docs/SERVICE.md §12): LoadScene of a `.png` / `.exr`
+// quilt (a `_qs{c}x{r}a{aspect}` name or holotrace's embedded metadata) gives a session whose frames are the quilt
+// interleaved for the requested lenticular display with the vendor's view filter (frame_io/quilt_file.h), so
+// RenderFrame, StreamFrames, Capture and display sinks show existing quilt content unchanged. Nothing is traced; the
+// interleaved panel is computed once per display and kept with the content.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "camera_models/display_config.h"
+#include "frame_io/image_reading.h"
+#include "gpu/renderer.h"
+
+namespace ht::server {
+
+class QuiltContent {
+ public:
+  // Decodes the quilt. Throws IoError for an image that cannot be decoded.
+  QuiltContent(const std::string& fileName, std::span<const std::uint8_t> bytes);
+
+  // The quilt interleaved for `display`: one view of screenW x screenH. Throws ConfigError (naming the quilt file)
+  // when its layout is unknown or it cannot fit the display (not lenticular, aspect, tile count or size).
+  gpu::RenderResult frame(const DisplayConfig& display) const;
+
+  const std::string& fileName() const { return fileName_; }
+  std::uint32_t width() const { return image_.width; }
+  std::uint32_t height() const { return image_.height; }
+
+ private:
+  std::string fileName_;
+  frame_io::ImageFile image_;
+  mutable std::mutex mutex_;
+  mutable std::map<std::string, std::shared_ptr<const std::vector<float>>> panels_;  // by display name + source
+};
+
+// True if `spec` names an image file (.png or .exr, any case) that LoadScene should open as a quilt.
+bool isQuiltSpec(const std::string& spec);
+
+}  // namespace ht::server
