@@ -48,9 +48,9 @@ QuiltSize readQuiltSize(const JsonLocation& at, const json& quilt) {
   size.columns = static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "columns", false, 1, 1024));
   size.rows = static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "rows", false, 1, 1024));
   size.width =
-      static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "width", false, size.columns, kMaxImageSize));
+      static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "width", false, size.columns, kMaxImageSide));
   size.height =
-      static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "height", false, size.rows, kMaxImageSize));
+      static_cast<std::uint32_t>(detail::requireInteger(at, quilt, "height", false, size.rows, kMaxImageSide));
   return size;
 }
 

@@ -11,7 +11,7 @@ namespace ht::cluster {
 namespace {
 
 // A field added to these types must be added to put()/take() below too: the sizes fail to compile until it is.
-static_assert(sizeof(Light) == 56 && sizeof(SceneNode) == 176 && sizeof(Texture) == 64 && sizeof(Material) == 80 &&
+static_assert(sizeof(Light) == 56 && sizeof(SceneNode) == 184 && sizeof(Texture) == 64 && sizeof(Material) == 80 &&
                   sizeof(Scene) == 272,
               "Scene changed: update cluster/scene_bytes.cpp (encode and decode every field), then these sizes");
 
@@ -117,6 +117,7 @@ void node(Io& io, N& n) {
   io.raw(n.firstTriangle);
   io.raw(n.triangleCount);
   io.raw(n.world);
+  io.raw(n.mesh);
 }
 
 template <typename Io, typename S>

@@ -87,37 +87,39 @@ int parseDevice(const json& doc, const std::string& source) {
     throw ConfigError(source, "device", d.dump(), "a Vulkan device index >= 0, or -1 for automatic");
   }
   return d.get<int>();
-  bool readFlag(const json& object, const char* key, bool fallback, const std::string& source) {
-    if (!object.contains(key)) return fallback;
-    if (!object[key].is_boolean()) {
-      throw ConfigError(source, std::string("devices.") + key, object[key].dump(), "true or false");
-    }
-    return object[key].get<bool>();
-  }
+}
 
-  DeviceDiscoveryConfig parseDevices(const json& doc, const std::filesystem::path& baseDir, const std::string& source) {
-    DeviceDiscoveryConfig d;
-    if (!doc.contains("devices")) return d;
-    const json& j = doc["devices"];
-    if (!j.is_object()) throw ConfigError(source, "devices", j.dump(), "an object (docs/DISPLAY.md)");
-    for (const auto& [key, value] : j.items()) {
-      static const char* const kKeys[] = {"scan",      "calibration_file", "drives", "usb", "detach_kernel_driver",
-                                          "mountinfo", "by_label_dir"};
-      if (std::find(std::begin(kKeys), std::end(kKeys), key) == std::end(kKeys)) {
-        throw ConfigError(
-            source, "devices." + key, value.dump(),
-            "a known key: scan, calibration_file, drives, usb, detach_kernel_driver, mountinfo, by_label_dir");
-      }
-    }
-    d.scan = readFlag(j, "scan", d.scan, source);
-    d.drives = readFlag(j, "drives", d.drives, source);
-    d.usb = readFlag(j, "usb", d.usb, source);
-    d.detachKernelDriver = readFlag(j, "detach_kernel_driver", d.detachKernelDriver, source);
-    d.calibrationFile = resolvePath(j, "calibration_file", baseDir, source);
-    d.mountinfo = resolvePath(j, "mountinfo", baseDir, source);
-    d.byLabelDir = resolvePath(j, "by_label_dir", baseDir, source);
-    return d;
+bool readFlag(const json& object, const char* key, bool fallback, const std::string& source) {
+  if (!object.contains(key)) return fallback;
+  if (!object[key].is_boolean()) {
+    throw ConfigError(source, std::string("devices.") + key, object[key].dump(), "true or false");
   }
+  return object[key].get<bool>();
+}
+
+DeviceDiscoveryConfig parseDevices(const json& doc, const std::filesystem::path& baseDir, const std::string& source) {
+  DeviceDiscoveryConfig d;
+  if (!doc.contains("devices")) return d;
+  const json& j = doc["devices"];
+  if (!j.is_object()) throw ConfigError(source, "devices", j.dump(), "an object (docs/DISPLAY.md)");
+  for (const auto& [key, value] : j.items()) {
+    static const char* const kKeys[] = {"scan",      "calibration_file", "drives", "usb", "detach_kernel_driver",
+                                        "mountinfo", "by_label_dir"};
+    if (std::find(std::begin(kKeys), std::end(kKeys), key) == std::end(kKeys)) {
+      throw ConfigError(
+          source, "devices." + key, value.dump(),
+          "a known key: scan, calibration_file, drives, usb, detach_kernel_driver, mountinfo, by_label_dir");
+    }
+  }
+  d.scan = readFlag(j, "scan", d.scan, source);
+  d.drives = readFlag(j, "drives", d.drives, source);
+  d.usb = readFlag(j, "usb", d.usb, source);
+  d.detachKernelDriver = readFlag(j, "detach_kernel_driver", d.detachKernelDriver, source);
+  d.calibrationFile = resolvePath(j, "calibration_file", baseDir, source);
+  d.mountinfo = resolvePath(j, "mountinfo", baseDir, source);
+  d.byLabelDir = resolvePath(j, "by_label_dir", baseDir, source);
+  return d;
+}
 
 }  // namespace
 

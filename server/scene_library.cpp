@@ -35,6 +35,22 @@ std::uint64_t sceneMemoryBytes(const Scene& scene) {
   return host + device;
 }
 
+namespace {
+
+std::span<const std::uint8_t> asBytes(const std::string& text) {
+  return {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()};
+}
+
+}  // namespace
+
+std::string sourceKey(const SceneSource& source) {
+  if (source.bytes.empty() && source.name.rfind("builtin:", 0) == 0) return source.name;
+  std::string key = contentHash(asBytes(source.bytes)) + source.name.substr(source.name.rfind('.') + 1);
+  for (const auto& [uri, bytes] : source.externals)
+    key += "+" + contentHash(asBytes(uri)) + contentHash(asBytes(bytes));
+  return key;
+}
+
 SceneLibrary::SceneLibrary(RenderWorker& worker, SceneLibraryLimits limits) : worker_(worker), limits_(limits) {}
 
 SceneLibrary::~SceneLibrary() {
