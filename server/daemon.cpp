@@ -37,7 +37,6 @@ struct Daemon::Parts {
   std::unique_ptr<SceneLibrary> scenes;
   DisplayRegistry displays;
   FileSink outputSink;
-  FileSink uploadSink;
   UploadBudget uploads;
   CallWatchdog watchdog;
   ServiceState state;
@@ -57,10 +56,9 @@ struct Daemon::Parts {
         scenes(std::make_unique<SceneLibrary>(worker, sceneLimits(config.limits))),
         displays(config.displaysDir, deviceScanFor(config.devices)),
         outputSink(config.outputRoot),
-        uploadSink(config.workDir),
         uploads(config.limits.maxUploads, config.limits.maxUploadBytesInFlight),
         watchdog(l),
-        state{config, displays, *scenes, worker, outputSink, uploadSink, uploads, watchdog},
+        state{config, displays, *scenes, worker, outputSink, uploads, watchdog},
         service(state) {}
 };
 

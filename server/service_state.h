@@ -25,7 +25,6 @@ struct ServiceState {
   SceneLibrary& scenes;
   RenderWorker& worker;
   FileSink& outputSink;
-  FileSink& uploadSink;  // private work directory for uploaded scene bytes
   UploadBudget& uploads;
   CallWatchdog& watchdog;        // cancels stalled uploads and streams
   PanelSinks* panels = nullptr;  // display sinks of the config's "present" (server/panel_sinks.h); null = none
