@@ -18,6 +18,7 @@ std::vector<PanelTarget> autoTargets(const DisplayRegistry& displays) {
   return targets;
 }
 
+// The daemon config's output/geometry of the entry, else the display config's "panel" section (docs/SERVICE.md §11).
 present::PanelRequest panelRequest(const PanelTarget& target, const RegisteredDisplay& display,
                                    const std::string& source) {
   const gpu::FrameShape shape = displayFrameShape(display);
@@ -28,6 +29,7 @@ present::PanelRequest panelRequest(const PanelTarget& target, const RegisteredDi
   }
   present::PanelRequest request{shape.width, shape.height, target.output, std::nullopt};
   if (target.geometry) request.geometry = present::parseGeometry(*target.geometry);
+  if (!target.output && !target.geometry) request = present::withPlacement(request, display.config.panel);
   return request;
 }
 
