@@ -4,6 +4,8 @@
 // away the daemon keeps serving frames and the sink re-attaches when a server is back on that display.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "../server/server_fixture.h"
@@ -139,6 +141,86 @@ TEST(DaemonPresentXvfb, PresentShowsCapturesBytesStatusReportsAndXServerLossIsSu
   EXPECT_TRUE(s.attached()) << s.last_error();
   EXPECT_EQ(s.attachments(), 2u);
   EXPECT_EQ(mismatches(xvfb->connection(), rgbOfPng(files.outputRoot() / captured[0])), 0u);
+  daemon.shutdown(std::chrono::milliseconds(0));
+}
+
+// display id -> status of every panel sink the daemon reports.
+std::map<std::string, v1::PanelStatus> allPanels(v1::Holotrace::Stub& stub) {
+  grpc::ClientContext context;
+  v1::StatusResponse response;
+  EXPECT_TRUE(stub.Status(&context, v1::StatusRequest{}, &response).ok());
+  std::map<std::string, v1::PanelStatus> out;
+  for (const v1::PanelStatus& p : response.panels()) out[p.display_id()] = p;
+  return out;
+}
+
+template <typename Predicate>
+std::map<std::string, v1::PanelStatus> waitForPanels(v1::Holotrace::Stub& stub, Predicate done) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  auto panels = allPanels(stub);
+  while (!done(panels) && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    panels = allPanels(stub);
+  }
+  return panels;
+}
+
+bool attached(const std::map<std::string, v1::PanelStatus>& panels, const std::string& id) {
+  auto it = panels.find(id);
+  return it != panels.end() && it->second.attached();
+}
+
+// "present": "auto" and SIGHUP: a display config that appears in displays_dir (with a "panel" geometry) and a panel
+// whose calibration appears (device pick-up) get sinks; when they are gone their sinks go; the running sink of the
+// unchanged display keeps its window (one attachment) and its frames.
+TEST(DaemonPresentXvfb, SighupAddsAndRemovesSinksWithoutDisturbingRunningOnes) {
+  auto xvfb = startPanelServer();
+  xvfb->setMonitor("LEFT", {0, 0, server::test::kTinyWidth, server::test::kTinyHeight}, {});
+  DaemonFiles files;
+  server::DaemonConfig config = files.config();
+  const std::filesystem::path deviceFile = config.displaysDir.parent_path() / "panel-visual.json";
+  config.present.mode = server::PresentConfig::Mode::Auto;
+  config.present.xDisplay = xvfb->display();
+  config.devices = server::DeviceDiscoveryConfig{true, deviceFile, false, false, false, {}, {}};
+  server::Daemon daemon(config, std::cerr);
+  daemon.start();
+  auto stub = server::test::connect(files.socketAddress());
+  v1::SceneHandle scene;
+  ASSERT_TRUE(server::test::loadScene(*stub, "builtin:plain", &scene).ok());
+  auto panels = waitForPanels(*stub, [](const auto& p) { return attached(p, "tiny"); });
+  ASSERT_TRUE(attached(panels, "tiny"));
+  EXPECT_EQ(panels.count("left"), 0u);
+  v1::PresentProgress progress;
+  ASSERT_TRUE(presentOne(*stub, server::test::tinyRequest(scene.scene_id()), &progress).ok());
+
+  // A display config with a "panel" geometry and a plugged-in panel's calibration appear; SIGHUP.
+  nlohmann::json left = nlohmann::json::parse(server::test::tinyDisplayJson());
+  left["name"] = "left";
+  left["panel"] = {{"geometry", "96x64+0+0"}};
+  server::test::writeText(config.displaysDir / "left.json", left.dump());
+  nlohmann::json visual = left["calibration"];
+  visual["serial"] = "LKG-T0002";
+  server::test::writeText(deviceFile, visual.dump());
+  daemon.reloadDisplays();
+  panels = waitForPanels(*stub, [](const auto& p) { return attached(p, "left") && attached(p, "device:LKG-T0002"); });
+  ASSERT_TRUE(attached(panels, "left")) << panels["left"].last_error();
+  EXPECT_EQ(panels["left"].monitor(), "LEFT");  // by the display config's geometry, before the EDID rule
+  EXPECT_EQ(panels["left"].geometry(), "96x64+0+0");
+  EXPECT_TRUE(attached(panels, "device:LKG-T0002")) << panels["device:LKG-T0002"].last_error();
+  EXPECT_EQ(panels["device:LKG-T0002"].monitor(), "LKG-T");
+  EXPECT_EQ(panels["tiny"].attachments(), 1u) << "the running sink was not restarted";
+  EXPECT_EQ(panels["tiny"].submitted(), 1u);
+
+  // Both are gone again; SIGHUP removes their sinks, the running one stays.
+  std::filesystem::remove(config.displaysDir / "left.json");
+  std::filesystem::remove(deviceFile);
+  daemon.reloadDisplays();
+  panels = allPanels(*stub);
+  EXPECT_EQ(panels.count("left"), 0u);
+  EXPECT_EQ(panels.count("device:LKG-T0002"), 0u);
+  ASSERT_TRUE(attached(panels, "tiny"));
+  EXPECT_EQ(panels["tiny"].attachments(), 1u);
+  EXPECT_EQ(panels["tiny"].submitted(), 1u);
   daemon.shutdown(std::chrono::milliseconds(0));
 }
 
