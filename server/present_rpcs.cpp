@@ -5,6 +5,7 @@
 #include "present/panel_frame.h"
 #include "server/frame_job.h"
 #include "server/holotrace_service.h"
+#include "server/panel_feed.h"
 #include "server/panel_sinks.h"
 #include "server/present_status.h"
 #include "server/request_checks.h"
@@ -38,12 +39,6 @@ std::uint32_t checkedFrameCount(const ServiceState& state, const v1::PresentRequ
                                               "] (0 = as fast as frames render)");
   }
   return frames;
-}
-
-// The panel image of one rendered frame: the bytes the file sink's PNG holds.
-present::PanelFrame panelFrameOf(const gpu::RenderResult& frame, const FrameJob& job) {
-  const DisplayConfig display = displayForSession(job.display->config, *job.session);
-  return present::panelFrame({frame.width, frame.height, frame.views, frame.rgba}, {display, jobCamera(job).quilt});
 }
 
 }  // namespace
