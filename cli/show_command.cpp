@@ -75,6 +75,7 @@ ShowOptions parseShowOptions(std::span<const std::string> args) {
   if (parsed.has("--fullscreen")) o.sink.window = present::WindowMode::Fullscreen;
   if (parsed.has("--fifo")) o.sink.presentMode = present::PresentModeChoice::Fifo;
   o.sink.vulkanDevice = o.deviceIndex;
+  o.sink.transfer = present::frameTransferFromEnvironment();
   return o;
 }
 

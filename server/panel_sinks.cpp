@@ -45,7 +45,11 @@ bool sameRequest(const present::PanelRequest& a, const present::PanelRequest& b)
 
 PanelSinks::PanelSinks(PresentConfig config, const DisplayRegistry& displays, int vulkanDevice, std::string source,
                        std::ostream& log)
-    : config_(std::move(config)), vulkanDevice_(vulkanDevice), source_(std::move(source)), log_(log) {
+    : config_(std::move(config)),
+      transfer_(present::frameTransferFromEnvironment()),
+      vulkanDevice_(vulkanDevice),
+      source_(std::move(source)),
+      log_(log) {
   for (const auto& [id, request] : wanted(displays, true)) sinks_[id] = Entry{request, startSink(id, request)};
 }
 
@@ -89,6 +93,7 @@ std::shared_ptr<present::PanelSink> PanelSinks::startSink(const std::string& dis
   options.xDisplay = config_.xDisplay;
   options.panel = request;
   options.vulkanDevice = vulkanDevice_;
+  options.transfer = transfer_;
   options.log = [this, displayId](const std::string& line) { logLine("panel " + displayId + ": " + line); };
   return std::make_shared<present::PanelSink>(std::move(options));
 }

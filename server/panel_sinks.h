@@ -48,6 +48,7 @@ class PanelSinks {
   void logLine(const std::string& line);
 
   PresentConfig config_;
+  present::FrameTransferChoice transfer_;  // HOLOTRACE_PANEL_TRANSFER, read once at start
   int vulkanDevice_;
   std::string source_;
   std::ostream& log_;
