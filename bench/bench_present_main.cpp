@@ -3,8 +3,11 @@
 //      MAILBOX and FIFO, mean per frame of --frames presents; median/min/max of --runs runs;
 //   2. render-to-photon latency: a frame marked done and submitted to an idle PanelSink -> vkQueuePresentKHR returned
 //      in the present thread (PanelSinkStats::lastPresentLatencyMs); median of --frames frames per run, median of runs;
-//   3. drops at 1x, 2x and 4x the sink's own present rate (1000 / the median present cost): frames submitted on a
-//      steady clock for --drop-seconds, dropped / submitted; median of runs;
+//   3. drops at 1x, 2x and 4x the sink's present rate measured in the same phase: each run first feeds the sink
+//      closed-loop (the next frame, copied as a renderer would hand it over, is submitted when the previous one was
+//      presented) for --frames frames; that rate, taken under the same load as the drop window that follows at once,
+//      is the run's 1x. Then frames are submitted on a steady clock at factor x that rate for --drop-seconds;
+//      dropped / submitted, and the rate the sink presented at during the window; median of runs;
 //   4. resident memory (VmRSS) of this process over --rss-frames presented frames, sampled every 1000.
 // Frames are random bytes of the panel size (the present path does not look at content); no rendering is involved.
 //
@@ -158,28 +161,63 @@ std::vector<double> photonLatency(const PresentBenchOptions& o, present::PanelSi
   return perRun;
 }
 
-// 3. Drop fraction (%) when frames arrive at `rate` per second for the run time.
-std::vector<double> dropPercent(const PresentBenchOptions& o, present::PanelSink& sink, double rate,
-                                const std::vector<present::PanelFrame>& frames) {
-  std::vector<double> perRun;
-  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate));
-  for (std::uint32_t run = 0; run < o.runs; ++run) {
-    const present::PanelSinkStats before = sink.stats();
-    const auto start = Clock::now();
-    std::uint64_t k = 0;
-    while (Clock::now() - start < std::chrono::seconds(o.dropSeconds)) {
-      present::PanelFrame f = frames[k % frames.size()];  // the copy a renderer would hand over
-      f.done = Clock::now();
-      sink.submit(std::move(f));
-      ++k;
-      std::this_thread::sleep_until(start + period * static_cast<Clock::rep>(k));
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the last frame be shown
-    const present::PanelSinkStats after = sink.stats();
-    const double submitted = double(after.submitted - before.submitted);
-    perRun.push_back(submitted > 0 ? 100.0 * double(after.dropped - before.dropped) / submitted : 0.0);
+// 3. The sink's present rate with one frame in flight, closed loop (frames/s), under the submitter's own load.
+double closedLoopRate(const PresentBenchOptions& o, present::PanelSink& sink,
+                      const std::vector<present::PanelFrame>& frames) {
+  const auto start = Clock::now();
+  for (std::uint32_t i = 0; i < o.frames; ++i) submitAndWait(sink, frames[i % frames.size()]);
+  return 1000.0 * o.frames / msBetween(start, Clock::now());
+}
+
+struct DropRun {
+  double rate = 0.0;           // the run's 1x: closedLoopRate just before the window
+  double dropPercent = 0.0;    // dropped / submitted in the window
+  double presentedRate = 0.0;  // frames/s the sink presented during the window
+};
+
+// Frames at `factor` x the rate measured right before, for --drop-seconds.
+DropRun dropRun(const PresentBenchOptions& o, present::PanelSink& sink, double factor,
+                const std::vector<present::PanelFrame>& frames) {
+  DropRun r;
+  r.rate = closedLoopRate(o, sink, frames);
+  const auto period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / (factor * r.rate)));
+  const present::PanelSinkStats before = sink.stats();
+  const auto start = Clock::now();
+  std::uint64_t k = 0;
+  while (Clock::now() - start < std::chrono::seconds(o.dropSeconds)) {
+    present::PanelFrame f = frames[k % frames.size()];  // the copy a renderer would hand over
+    f.done = Clock::now();
+    sink.submit(std::move(f));
+    ++k;
+    std::this_thread::sleep_until(start + period * static_cast<Clock::rep>(k));
   }
-  return perRun;
+  const double seconds = msBetween(start, Clock::now()) / 1000.0;
+  const present::PanelSinkStats atEnd = sink.stats();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the last frame be shown (not a drop)
+  const present::PanelSinkStats after = sink.stats();
+  const double submitted = double(after.submitted - before.submitted);
+  r.dropPercent = submitted > 0 ? 100.0 * double(after.dropped - before.dropped) / submitted : 0.0;
+  r.presentedRate = double(atEnd.presented - before.presented) / seconds;
+  return r;
+}
+
+void printDrops(const PresentBenchOptions& o, present::PanelSink& sink,
+                const std::vector<present::PanelFrame>& frames) {
+  for (double factor : {1.0, 2.0, 4.0}) {
+    std::vector<double> rate, drops, presented;
+    for (std::uint32_t run = 0; run < o.runs; ++run) {
+      const DropRun r = dropRun(o, sink, factor, frames);
+      rate.push_back(r.rate);
+      drops.push_back(r.dropPercent);
+      presented.push_back(r.presentedRate);
+    }
+    char what[96];
+    std::snprintf(what, sizeof what, "dropped at %.0fx the present rate measured in the same run", factor);
+    printSeries(what, drops, "%");
+    printSeries("  that run's 1x rate (closed loop, frames/s)", rate, "");
+    printSeries("  presented during the window (frames/s)", presented, "");
+  }
 }
 
 // 4. VmRSS every 1000 presented frames, one frame in flight.
@@ -231,12 +269,7 @@ int run(const PresentBenchOptions& o) {
   waitAttached(sink);
   submitAndWait(sink, frames[0]);  // warm-up
   printSeries("render-to-photon latency (done -> presented)", photonLatency(o, sink, frames), "ms");
-  const double presentRate = 1000.0 / median(mailbox);
-  for (double factor : {1.0, 2.0, 4.0}) {
-    char what[96];
-    std::snprintf(what, sizeof what, "dropped at %.0fx the present rate (%.0f/s)", factor, factor * presentRate);
-    printSeries(what, dropPercent(o, sink, factor * presentRate, frames), "%");
-  }
+  printDrops(o, sink, frames);
   rssSeries(o, sink, frames);
   return 0;
 }
