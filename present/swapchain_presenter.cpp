@@ -286,6 +286,7 @@ void SwapchainPresenter::Impl::createSwapchain() {
   ci.oldSwapchain = swapchain;
   VkSwapchainKHR created = VK_NULL_HANDLE;
   gpu::checkVulkan(vkCreateSwapchainKHR(vk.device, &ci, nullptr, &created), "vkCreateSwapchainKHR");
+  storage.releaseImages();  // views of the old swapchain's images go before those images
   if (swapchain) vkDestroySwapchainKHR(vk.device, swapchain, nullptr);
   swapchain = created;
   std::uint32_t n = 0;
