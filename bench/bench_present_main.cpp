@@ -3,8 +3,12 @@
 //      MAILBOX and FIFO, mean per frame of --frames presents; median/min/max of --runs runs;
 //   2. render-to-photon latency: a frame marked done and submitted to an idle PanelSink -> vkQueuePresentKHR returned
 //      in the present thread (PanelSinkStats::lastPresentLatencyMs); median of --frames frames per run, median of runs;
-//   3. drops at 1x, 2x and 4x the sink's own present rate (1000 / the median present cost): frames submitted on a
-//      steady clock for --drop-seconds, dropped / submitted; median of runs;
+//   3. drops at 1x, 2x and 4x the sink's present rate measured in the same phase: frames (copied as a renderer would
+//      hand them over) are submitted on a clock for --drop-seconds at factor x the rate the sink is presenting at
+//      under that very load: the rate starts from a closed-loop estimate (one frame in flight) and is re-measured
+//      every 250 ms from the frames presented in the last 500 ms of the window. (Taking the rate from a separate
+//      phase fails on a loaded machine: the submitter's own copies slow the sink, so "1x" overran it and 54 % were
+//      dropped.) Printed: dropped / submitted, the sink's presented rate over the window, median of runs;
 //   4. resident memory (VmRSS) of this process over --rss-frames presented frames, sampled every 1000.
 // Frames are random bytes of the panel size (the present path does not look at content); no rendering is involved.
 //
@@ -158,28 +162,78 @@ std::vector<double> photonLatency(const PresentBenchOptions& o, present::PanelSi
   return perRun;
 }
 
-// 3. Drop fraction (%) when frames arrive at `rate` per second for the run time.
-std::vector<double> dropPercent(const PresentBenchOptions& o, present::PanelSink& sink, double rate,
-                                const std::vector<present::PanelFrame>& frames) {
-  std::vector<double> perRun;
-  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate));
-  for (std::uint32_t run = 0; run < o.runs; ++run) {
-    const present::PanelSinkStats before = sink.stats();
-    const auto start = Clock::now();
-    std::uint64_t k = 0;
-    while (Clock::now() - start < std::chrono::seconds(o.dropSeconds)) {
-      present::PanelFrame f = frames[k % frames.size()];  // the copy a renderer would hand over
-      f.done = Clock::now();
-      sink.submit(std::move(f));
-      ++k;
-      std::this_thread::sleep_until(start + period * static_cast<Clock::rep>(k));
+// 3. The sink's present rate with one frame in flight, closed loop (frames/s), under the submitter's own load.
+double closedLoopRate(const PresentBenchOptions& o, present::PanelSink& sink,
+                      const std::vector<present::PanelFrame>& frames) {
+  const auto start = Clock::now();
+  for (std::uint32_t i = 0; i < o.frames; ++i) submitAndWait(sink, frames[i % frames.size()]);
+  return 1000.0 * o.frames / msBetween(start, Clock::now());
+}
+
+struct DropRun {
+  double startRate = 0.0;      // the closed-loop estimate the window starts from
+  double dropPercent = 0.0;    // dropped / submitted in the window
+  double presentedRate = 0.0;  // frames/s the sink presented during the window (the 1x it was fed against)
+};
+
+// Frames at `factor` x the sink's current present rate for --drop-seconds; the rate follows what the sink presents
+// under this load (re-measured every 250 ms over the last 500 ms).
+DropRun dropRun(const PresentBenchOptions& o, present::PanelSink& sink, double factor,
+                const std::vector<present::PanelFrame>& frames) {
+  DropRun r;
+  r.startRate = closedLoopRate(o, sink, frames);
+  double rate = r.startRate;
+  const present::PanelSinkStats before = sink.stats();
+  const auto start = Clock::now();
+  struct Sample {
+    Clock::time_point at;
+    std::uint64_t presented;
+  };
+  std::vector<Sample> samples{{start, before.presented}};
+  auto nextSubmit = start, nextEstimate = start + std::chrono::milliseconds(250);
+  std::uint64_t k = 0;
+  while (Clock::now() - start < std::chrono::seconds(o.dropSeconds)) {
+    present::PanelFrame f = frames[k++ % frames.size()];  // the copy a renderer would hand over
+    f.done = Clock::now();
+    sink.submit(std::move(f));
+    if (Clock::now() >= nextEstimate) {
+      samples.push_back({Clock::now(), sink.stats().presented});
+      std::size_t from = samples.size() - 1;
+      while (from > 0 && samples.back().at - samples[from - 1].at <= std::chrono::milliseconds(500)) --from;
+      const double seconds = msBetween(samples[from].at, samples.back().at) / 1000.0;
+      const double presented = double(samples.back().presented - samples[from].presented);
+      if (seconds > 0.0 && presented > 0.0) rate = presented / seconds;
+      nextEstimate += std::chrono::milliseconds(250);
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the last frame be shown
-    const present::PanelSinkStats after = sink.stats();
-    const double submitted = double(after.submitted - before.submitted);
-    perRun.push_back(submitted > 0 ? 100.0 * double(after.dropped - before.dropped) / submitted : 0.0);
+    nextSubmit += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / (factor * rate)));
+    std::this_thread::sleep_until(nextSubmit);
   }
-  return perRun;
+  const double seconds = msBetween(start, Clock::now()) / 1000.0;
+  const present::PanelSinkStats atEnd = sink.stats();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the last frame be shown (not a drop)
+  const present::PanelSinkStats after = sink.stats();
+  const double submitted = double(after.submitted - before.submitted);
+  r.dropPercent = submitted > 0 ? 100.0 * double(after.dropped - before.dropped) / submitted : 0.0;
+  r.presentedRate = double(atEnd.presented - before.presented) / seconds;
+  return r;
+}
+
+void printDrops(const PresentBenchOptions& o, present::PanelSink& sink,
+                const std::vector<present::PanelFrame>& frames) {
+  for (double factor : {1.0, 2.0, 4.0}) {
+    std::vector<double> rate, drops, presented;
+    for (std::uint32_t run = 0; run < o.runs; ++run) {
+      const DropRun r = dropRun(o, sink, factor, frames);
+      rate.push_back(r.startRate);
+      drops.push_back(r.dropPercent);
+      presented.push_back(r.presentedRate);
+    }
+    char what[96];
+    std::snprintf(what, sizeof what, "dropped at %.0fx the same-phase present rate", factor);
+    printSeries(what, drops, "%");
+    printSeries("  sink presented during the window (frames/s)", presented, "");
+    printSeries("  closed-loop start estimate (frames/s)", rate, "");
+  }
 }
 
 // 4. VmRSS every 1000 presented frames, one frame in flight.
@@ -231,12 +285,7 @@ int run(const PresentBenchOptions& o) {
   waitAttached(sink);
   submitAndWait(sink, frames[0]);  // warm-up
   printSeries("render-to-photon latency (done -> presented)", photonLatency(o, sink, frames), "ms");
-  const double presentRate = 1000.0 / median(mailbox);
-  for (double factor : {1.0, 2.0, 4.0}) {
-    char what[96];
-    std::snprintf(what, sizeof what, "dropped at %.0fx the present rate (%.0f/s)", factor, factor * presentRate);
-    printSeries(what, dropPercent(o, sink, factor * presentRate, frames), "%");
-  }
+  printDrops(o, sink, frames);
   rssSeries(o, sink, frames);
   return 0;
 }

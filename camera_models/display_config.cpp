@@ -98,6 +98,39 @@ PinholeSettings readPinhole(const JsonLocation& at, const json& pinhole) {
   return settings;
 }
 
+// "panel": {"output": NAME} or {"geometry": "WxH+X+Y"} (panel_placement.h). The geometry must be the calibration's
+// screenW x screenH: the panel's pixels map 1:1 to the frame.
+PanelPlacement readPanel(const JsonLocation& at, const json& panel, const DisplayConfig& config) {
+  detail::rejectUnknownKeys(at, panel, {"output", "geometry"});
+  PanelPlacement placement;
+  const json* output = detail::findField(panel, "output");
+  if (output != nullptr) {
+    if (!output->is_string() || output->get<std::string>().empty())
+      detail::throwFieldError(at, "output", output,
+                              "expected a RandR output or monitor name as `xrandr --listmonitors` prints it, e.g. "
+                              "\"HDMI-1\"");
+    placement.output = output->get<std::string>();
+  }
+  const json* geometry = detail::findField(panel, "geometry");
+  if (geometry == nullptr) return placement;
+  const std::string expected =
+      "expected the panel's monitor as WIDTHxHEIGHT+X+Y (xrandr notation, e.g. \"1536x2048+1920+0\")";
+  if (!geometry->is_string()) detail::throwFieldError(at, "geometry", geometry, expected);
+  placement.geometryText = geometry->get<std::string>();
+  placement.geometry = parsePanelGeometry(placement.geometryText);
+  if (!placement.geometry) detail::throwFieldError(at, "geometry", geometry, expected);
+  if (placement.output)
+    detail::throwFieldError(at, "geometry", geometry, "expected an output or a geometry, not both (remove one)");
+  const LookingGlassCalibration& c = *config.calibration;
+  if (placement.geometry->width != c.screenW || placement.geometry->height != c.screenH) {
+    detail::throwFieldError(at, "geometry", geometry,
+                            "expected the calibration's screen size " + std::to_string(c.screenW) + "x" +
+                                std::to_string(c.screenH) + " (the panel shows the frame 1:1), e.g. \"" +
+                                std::to_string(c.screenW) + "x" + std::to_string(c.screenH) + "+0+0\"");
+  }
+  return placement;
+}
+
 DisplayModel readModel(const JsonLocation& at, const json& root) {
   const json* field = detail::findField(root, "model");
   if (field == nullptr) return DisplayModel::Lenticular;
@@ -187,7 +220,8 @@ DisplayConfig fromVisualJson(const json& root, const std::string& sourceName) {
 
 DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, const std::filesystem::path& baseDir) {
   const JsonLocation at{sourceName, ""};
-  std::vector<std::string_view> keys = {"name", "description", "model", "calibration", "camera", "spp", "pinhole"};
+  std::vector<std::string_view> keys = {"name",   "description", "model",   "calibration",
+                                        "camera", "spp",         "pinhole", "panel"};
   for (const DisplayModelRow& row : displayModels()) {
     if (!row.sectionKey.empty()) keys.push_back(row.sectionKey);
   }
@@ -210,6 +244,11 @@ DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, con
     row.parseSection(at.child(row.sectionKey), requireObject(at, root, row.sectionKey), baseDir, config);
   }
   validateCombination(at, root, config);
+  if (const json* panel = detail::findField(root, "panel")) {
+    if (config.model != DisplayModel::Lenticular)
+      detail::throwFieldError(at, "panel", panel, "expected no panel section unless model is \"lenticular\"");
+    config.panel = readPanel(at.child("panel"), requireObject(at, root, "panel"), config);
+  }
   return config;
 }
 

@@ -20,6 +20,7 @@
 #include "camera_models/looking_glass_calibration.h"
 #include "camera_models/model_list.h"
 #include "camera_models/oblique_config.h"
+#include "camera_models/panel_placement.h"
 #include "camera_models/projector_array_config.h"
 #include "camera_models/ray_table_config.h"
 
@@ -66,6 +67,7 @@ struct DisplayConfig {
   std::optional<CaptureGridConfig> captureGrid;        // required for (and only for) model "capture-grid"
   std::optional<ObliqueConfig> oblique;                // required for (and only for) model "oblique"
   std::optional<RayTableConfig> rayTable;              // required for (and only for) model "ray-table"
+  PanelPlacement panel;  // "panel": {"output"} or {"geometry"}: the panel's monitor (lenticular only; optional)
 };
 
 // Reads our format or a raw visual.json from disk. Throws ConfigError.

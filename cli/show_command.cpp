@@ -75,6 +75,7 @@ ShowOptions parseShowOptions(std::span<const std::string> args) {
   if (parsed.has("--fullscreen")) o.sink.window = present::WindowMode::Fullscreen;
   if (parsed.has("--fifo")) o.sink.presentMode = present::PresentModeChoice::Fifo;
   o.sink.vulkanDevice = o.deviceIndex;
+  o.sink.transfer = present::frameTransferFromEnvironment();
   return o;
 }
 
@@ -124,7 +125,8 @@ std::string showHelp() {
              "Usage: holotrace show [options]\n\n"
              "Renders the display's frame (as `holotrace render -o` would) and shows it 1:1 on the panel's monitor "
              "until\n"
-             "Ctrl-C or SIGTERM. The monitor is the one named by --monitor / --geometry, else the one whose EDID name\n"
+             "Ctrl-C or SIGTERM. The monitor is the one named by --monitor / --geometry, else by the display config's\n"
+             "\"panel\" section (output or geometry), else the one whose EDID name\n"
              "starts with LKG and whose size is the frame's, else the only monitor of that size (docs/DISPLAY.md).\n"
              "If the panel or the X server goes away, the frame comes back when they do.\n\nOptions:\n") +
          formatOptions(kSpecs);
@@ -141,6 +143,7 @@ int runShow(std::span<const std::string> args, std::ostream& out) {
   present::PanelFrame frame = renderPanelFrame(options, display, out);
   options.sink.panel.screenWidth = frame.width;
   options.sink.panel.screenHeight = frame.height;
+  options.sink.panel = present::withPlacement(options.sink.panel, display.panel);  // --monitor/--geometry win
 
   StopSignals signals;  // before the sink's thread starts, so it inherits the mask
   present::PanelSink sink(options.sink);

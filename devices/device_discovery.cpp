@@ -10,7 +10,7 @@ namespace {
 
 FoundDevice makeFound(CalibrationSource source, std::string location, std::optional<LoadedCalibration> calibration,
                       std::optional<DeviceError> error) {
-  FoundDevice found{source, std::move(location), "", "", std::move(calibration), std::move(error), ""};
+  FoundDevice found{source, std::move(location), "", "", std::move(calibration), std::move(error), "", ""};
   if (found.calibration) {
     found.serial = found.calibration->calibration.serial;
     if (const DeviceType* type = deviceTypeOfSerial(found.serial)) found.deviceType = std::string(type->name);
@@ -99,7 +99,10 @@ Discovery discoverDevices(const DiscoveryOptions& options) {
   addUsb(options, out, list);
   if (options.matchMonitor) {
     for (FoundDevice& device : out.devices) {
-      if (device.loaded()) device.matchedMonitor = options.matchMonitor(device);
+      if (!device.loaded()) continue;
+      MonitorMatch match = options.matchMonitor(device);
+      device.matchedMonitor = std::move(match.monitor);
+      device.monitorProblem = std::move(match.problem);
     }
   }
   return out;

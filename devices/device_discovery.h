@@ -29,9 +29,18 @@ struct FoundDevice {
   std::optional<DeviceError> error;              // why it did not load
   // The monitor showing this panel, from DiscoveryOptions::matchMonitor; `holotrace devices` prints "-" while empty.
   std::string matchedMonitor;
+  // Why no monitor was matched (no X server, no monitor of the panel's size, ambiguity, ...); "" when matched or
+  // when no matching was asked for. Not a device error: the calibration loaded all the same.
+  std::string monitorProblem;
 
   bool loaded() const { return calibration.has_value(); }
   std::string problem() const;  // the error text, "plugged in but not mounted", or ""
+};
+
+// What DiscoveryOptions::matchMonitor says about one panel: the monitor's name, or why there is none.
+struct MonitorMatch {
+  std::string monitor;
+  std::string problem;
 };
 
 struct DiscoveryOptions {
@@ -43,8 +52,8 @@ struct DiscoveryOptions {
   // Replaces the libusb scan (tests); unset = scanUsbHid(usb).
   std::function<UsbScan(const UsbScanOptions&)> usbScanner;
   // Hook for the display sink's monitor picker (RandR monitor by EDID name / panel size / configuration): called for
-  // every panel that loaded, returns the monitor's name or "" when none matches. Unset = no monitor matching yet.
-  std::function<std::string(const FoundDevice&)> matchMonitor;
+  // every panel that loaded. `holotrace devices` plugs in present::MonitorLookup; unset = no monitor matching.
+  std::function<MonitorMatch(const FoundDevice&)> matchMonitor;
 };
 
 struct Discovery {

@@ -330,6 +330,11 @@ VulkanContext::VulkanContext(const Options& options) : impl_(std::make_unique<Im
       throw GpuError("presenting to a display needs VK_KHR_swapchain, which " + v.info.name + " does not offer");
     }
     deviceExtensions.push_back(kSwapchainExtension);
+    // The display sink's storage-write path writes BGRA swapchain images from a shader without a format qualifier
+    // (present/frame_transfer.h); enabled where offered, the sink checks it before choosing that path.
+    VkPhysicalDeviceFeatures offered;
+    vkGetPhysicalDeviceFeatures(v.physical, &offered);
+    features.features.shaderStorageImageWriteWithoutFormat = offered.shaderStorageImageWriteWithoutFormat;
   }
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   dci.pNext = &features;

@@ -1,7 +1,8 @@
 // monitor_picker.cpp - the rules of monitor_picker.h, each a small filter over the snapshot's monitors.
 #include "present/monitor_picker.h"
 
-#include <regex>
+#include "camera_models/panel_placement.h"
+
 #include <vector>
 
 namespace ht::present {
@@ -127,16 +128,23 @@ PickedMonitor pickMonitor(const RandrSnapshot& snapshot, const PanelRequest& req
   refuse(snapshot, "no monitor of " + panelSize(request) + " and none with an LKG EDID name");
 }
 
-Rect parseGeometry(const std::string& text) {
-  static const std::regex kGeometry(R"((\d{1,5})x(\d{1,5})([+-]\d{1,5})([+-]\d{1,5}))");
-  std::smatch m;
-  if (!std::regex_match(text, m, kGeometry)) {
-    throw PresentError("geometry '" + text + "': expected WIDTHxHEIGHT+X+Y as xrandr prints it, e.g. 1536x2048+1920+0");
+PanelRequest withPlacement(PanelRequest request, const PanelPlacement& placement) {
+  if (request.output || request.geometry) return request;
+  request.output = placement.output;
+  if (placement.geometry) {
+    const PanelGeometry& g = *placement.geometry;
+    request.geometry = Rect{g.x, g.y, g.width, g.height};
   }
-  Rect rect{std::stoi(m[3]), std::stoi(m[4]), static_cast<std::uint32_t>(std::stoul(m[1])),
-            static_cast<std::uint32_t>(std::stoul(m[2]))};
-  if (rect.width == 0 || rect.height == 0) throw PresentError("geometry '" + text + "': width and height must be > 0");
-  return rect;
+  return request;
+}
+
+Rect parseGeometry(const std::string& text) {
+  const std::optional<PanelGeometry> g = parsePanelGeometry(text);
+  if (!g) {
+    throw PresentError("geometry '" + text +
+                       "': expected WIDTHxHEIGHT+X+Y as xrandr prints it, width and height > 0, e.g. 1536x2048+1920+0");
+  }
+  return Rect{g->x, g->y, g->width, g->height};
 }
 
 std::string describeMonitors(const RandrSnapshot& snapshot) {

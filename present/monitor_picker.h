@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "camera_models/panel_placement.h"
 #include "present/present_error.h"
 #include "present/randr_snapshot.h"
 
@@ -35,6 +36,10 @@ struct PickedMonitor {
 
 // Throws PresentError (see above).
 PickedMonitor pickMonitor(const RandrSnapshot& snapshot, const PanelRequest& request);
+
+// `request` with the output / geometry of a display config's "panel" section (camera_models/panel_placement.h); a
+// request that already names an output or geometry (command line, daemon config) is returned unchanged.
+PanelRequest withPlacement(PanelRequest request, const PanelPlacement& placement);
 
 // "WxH+X+Y" -> Rect; throws PresentError naming `text`.
 Rect parseGeometry(const std::string& text);

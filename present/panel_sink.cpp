@@ -106,7 +106,8 @@ void PanelSink::State::attach(Attachment& a) {
   a.randrEventBase = selectRandrEvents(*a.x);
   a.monitor = pickMonitor(readRandrSnapshot(*a.x), options.panel);
   a.window = std::make_unique<XWindow>(*a.x, a.monitor.rect, options.window);
-  a.presenter = std::make_unique<SwapchainPresenter>(*context, *a.x, a.window->id(), options.presentMode);
+  a.presenter =
+      std::make_unique<SwapchainPresenter>(*context, *a.x, a.window->id(), options.presentMode, options.transfer);
   std::lock_guard lock(mutex);
   window = a.window->id();
   stats.attached = true;
@@ -116,7 +117,8 @@ void PanelSink::State::attach(Attachment& a) {
   stats.lastError.clear();
   log("showing frames on monitor " + a.monitor.monitor + " " + describeRect(a.monitor.rect) + " of X display '" +
       a.x->name() + "' (" + a.monitor.rule + (a.monitor.edidName.empty() ? "" : ", EDID '" + a.monitor.edidName + "'") +
-      ", " + a.presenter->info().presentMode + ", " + a.presenter->info().format + ")");
+      ", " + a.presenter->info().presentMode + ", " + a.presenter->info().format + ", " + a.presenter->info().transfer +
+      ")");
 }
 
 void PanelSink::State::noteDetached(const std::string& reason) {

@@ -28,6 +28,9 @@ struct PanelSinkOptions {
   PanelRequest panel;    // screen size + optional output name / geometry
   WindowMode window = WindowMode::OverrideRedirect;
   PresentModeChoice presentMode = PresentModeChoice::Auto;
+  // Copy when the surface allows it, else storage write; ForceStorageWrite tests the storage path where a copy works
+  // (holotrace show and holotraced take it from HOLOTRACE_PANEL_TRANSFER=storage, frame_transfer.h).
+  FrameTransferChoice transfer = FrameTransferChoice::Auto;
   int vulkanDevice = -1;                            // --device; -1 automatic
   std::chrono::milliseconds retryInterval{1000};    // between attach attempts while detached
   std::chrono::milliseconds recheckInterval{1000};  // re-run the monitor picker while attached

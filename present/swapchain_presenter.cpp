@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gpu/vulkan_handles.h"
+#include "present/spirv/panel_store.spv.h"
 
 namespace ht::present {
 namespace {
@@ -37,19 +38,6 @@ std::string modeName(VkPresentModeKHR mode) {
     case VK_PRESENT_MODE_IMMEDIATE_KHR: return "IMMEDIATE";
     default: return "mode " + std::to_string(static_cast<int>(mode));
   }
-}
-
-std::string usageNames(VkImageUsageFlags usage) {
-  std::string text;
-  auto add = [&](VkImageUsageFlags bit, const char* name) {
-    if (usage & bit) text += (text.empty() ? "" : "|") + std::string(name);
-  };
-  add(VK_IMAGE_USAGE_TRANSFER_SRC_BIT, "TRANSFER_SRC");
-  add(VK_IMAGE_USAGE_TRANSFER_DST_BIT, "TRANSFER_DST");
-  add(VK_IMAGE_USAGE_SAMPLED_BIT, "SAMPLED");
-  add(VK_IMAGE_USAGE_STORAGE_BIT, "STORAGE");
-  add(VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "COLOR_ATTACHMENT");
-  return text.empty() ? "none" : text;
 }
 
 bool isByteFormat(VkFormat f, bool srgb) {
@@ -118,10 +106,120 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImag
 
 }  // namespace
 
+// The storage-write path's compute pipeline and, per swapchain image, a view and a descriptor set
+// (frame_transfer.h, shaders/panel_store.comp).
+struct StoragePath {
+  VkDevice device = VK_NULL_HANDLE;
+  VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  std::vector<VkImageView> views;
+  std::vector<VkDescriptorSet> sets;
+
+  void create(VkDevice d);
+  void bindImages(const std::vector<VkImage>& images, VkFormat format, VkBuffer pixels, VkDeviceSize bytes);
+  void releaseImages();
+  void destroy();
+};
+
+void StoragePath::create(VkDevice d) {
+  device = d;
+  VkDescriptorSetLayoutBinding bindings[2] = {
+      {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+  VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  li.bindingCount = 2;
+  li.pBindings = bindings;
+  gpu::checkVulkan(vkCreateDescriptorSetLayout(device, &li, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
+  VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, 2 * sizeof(std::uint32_t)};
+  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pli.setLayoutCount = 1;
+  pli.pSetLayouts = &setLayout;
+  pli.pushConstantRangeCount = 1;
+  pli.pPushConstantRanges = &range;
+  gpu::checkVulkan(vkCreatePipelineLayout(device, &pli, nullptr, &layout), "vkCreatePipelineLayout");
+  VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  mi.codeSize = sizeof(ht_spv_panel_store);
+  mi.pCode = ht_spv_panel_store;
+  VkShaderModule module = VK_NULL_HANDLE;
+  gpu::checkVulkan(vkCreateShaderModule(device, &mi, nullptr, &module), "vkCreateShaderModule");
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  ci.stage.module = module;
+  ci.stage.pName = "main";
+  ci.layout = layout;
+  const VkResult r = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline);
+  vkDestroyShaderModule(device, module, nullptr);
+  gpu::checkVulkan(r, "vkCreateComputePipelines");
+}
+
+void StoragePath::bindImages(const std::vector<VkImage>& images, VkFormat format, VkBuffer pixels, VkDeviceSize bytes) {
+  releaseImages();
+  const auto n = static_cast<std::uint32_t>(images.size());
+  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, n}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, n}};
+  VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pi.maxSets = n;
+  pi.poolSizeCount = 2;
+  pi.pPoolSizes = sizes;
+  gpu::checkVulkan(vkCreateDescriptorPool(device, &pi, nullptr, &pool), "vkCreateDescriptorPool");
+  std::vector<VkDescriptorSetLayout> layouts(n, setLayout);
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = pool;
+  ai.descriptorSetCount = n;
+  ai.pSetLayouts = layouts.data();
+  sets.resize(n);
+  gpu::checkVulkan(vkAllocateDescriptorSets(device, &ai, sets.data()), "vkAllocateDescriptorSets");
+  views.assign(n, VK_NULL_HANDLE);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    vi.image = images[i];
+    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.format = format;
+    vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    gpu::checkVulkan(vkCreateImageView(device, &vi, nullptr, &views[i]), "vkCreateImageView");
+    VkDescriptorBufferInfo buffer{pixels, 0, bytes};
+    VkDescriptorImageInfo image{VK_NULL_HANDLE, views[i], VK_IMAGE_LAYOUT_GENERAL};
+    VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
+                                      {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+    writes[0].dstSet = writes[1].dstSet = sets[i];
+    writes[0].dstBinding = 0;
+    writes[0].descriptorCount = 1;
+    writes[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[0].pBufferInfo = &buffer;
+    writes[1].dstBinding = 1;
+    writes[1].descriptorCount = 1;
+    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    writes[1].pImageInfo = &image;
+    vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
+  }
+}
+
+void StoragePath::releaseImages() {
+  for (VkImageView v : views) vkDestroyImageView(device, v, nullptr);
+  views.clear();
+  sets.clear();
+  if (pool) vkDestroyDescriptorPool(device, pool, nullptr);
+  pool = VK_NULL_HANDLE;
+}
+
+void StoragePath::destroy() {
+  if (!device) return;
+  releaseImages();
+  if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
+  if (layout) vkDestroyPipelineLayout(device, layout, nullptr);
+  if (setLayout) vkDestroyDescriptorSetLayout(device, setLayout, nullptr);
+  device = VK_NULL_HANDLE;
+}
+
 struct SwapchainPresenter::Impl {
   gpu::VulkanHandles vk;
   std::string display;
   PresentModeChoice choice = PresentModeChoice::Auto;
+  FrameTransferChoice transferChoice = FrameTransferChoice::Auto;
+  FrameTransfer transfer = FrameTransfer::Copy;
+  StoragePath storage;
   VkSurfaceKHR surface = VK_NULL_HANDLE;
   VkSwapchainKHR swapchain = VK_NULL_HANDLE;
   VkSurfaceFormatKHR format{};
@@ -143,6 +241,9 @@ struct SwapchainPresenter::Impl {
   void ensureStaging(VkDeviceSize size);
   void upload(const PanelFrame& frame);
   void recordCopy(VkImage image);
+  void recordStore(std::uint32_t index);
+  FrameTransfer chooseTransfer(const VkSurfaceCapabilitiesKHR& caps) const;
+  void bindStorage();
   void recreate();
   void destroy();
 };
@@ -161,13 +262,10 @@ void SwapchainPresenter::Impl::createSwapchain() {
   VkSurfaceCapabilitiesKHR caps;
   gpu::checkVulkan(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(vk.physical, surface, &caps),
                    "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
-  if (!(caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT)) {
-    throw PresentError("the display surface's images allow " + usageNames(caps.supportedUsageFlags) +
-                       "; holotrace copies frames into them and needs TRANSFER_DST (docs/DISPLAY.md)");
-  }
   if (caps.currentExtent.width == 0 || caps.currentExtent.height == 0)
     throw PresentError("the panel window has size 0");
   format = chooseFormat(vk.physical, surface);
+  transfer = chooseTransfer(caps);
   VkPresentModeKHR mode = chooseMode(vk.physical, surface, choice);
   std::uint32_t count = std::max(caps.minImageCount, 3u);
   if (caps.maxImageCount > 0) count = std::min(count, caps.maxImageCount);
@@ -178,7 +276,8 @@ void SwapchainPresenter::Impl::createSwapchain() {
   ci.imageColorSpace = format.colorSpace;
   ci.imageExtent = caps.currentExtent;
   ci.imageArrayLayers = 1;
-  ci.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  ci.imageUsage =
+      VkImageUsageFlags(transfer == FrameTransfer::Copy ? VK_IMAGE_USAGE_TRANSFER_DST_BIT : VK_IMAGE_USAGE_STORAGE_BIT);
   ci.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   ci.preTransform = caps.currentTransform;
   ci.compositeAlpha = chooseAlpha(caps.supportedCompositeAlpha);
@@ -187,6 +286,7 @@ void SwapchainPresenter::Impl::createSwapchain() {
   ci.oldSwapchain = swapchain;
   VkSwapchainKHR created = VK_NULL_HANDLE;
   gpu::checkVulkan(vkCreateSwapchainKHR(vk.device, &ci, nullptr, &created), "vkCreateSwapchainKHR");
+  storage.releaseImages();  // views of the old swapchain's images go before those images
   if (swapchain) vkDestroySwapchainKHR(vk.device, swapchain, nullptr);
   swapchain = created;
   std::uint32_t n = 0;
@@ -197,8 +297,31 @@ void SwapchainPresenter::Impl::createSwapchain() {
   VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
   copied.assign(n, VK_NULL_HANDLE);
   for (VkSemaphore& s : copied) gpu::checkVulkan(vkCreateSemaphore(vk.device, &si, nullptr, &s), "vkCreateSemaphore");
-  info =
-      SwapchainInfo{caps.currentExtent.width, caps.currentExtent.height, n, modeName(mode), formatName(format.format)};
+  info = SwapchainInfo{caps.currentExtent.width, caps.currentExtent.height, n,
+                       modeName(mode),           formatName(format.format), frameTransferName(transfer)};
+  bindStorage();
+}
+
+FrameTransfer SwapchainPresenter::Impl::chooseTransfer(const VkSurfaceCapabilitiesKHR& caps) const {
+  VkFormatProperties props;
+  vkGetPhysicalDeviceFormatProperties(vk.physical, format.format, &props);
+  VkPhysicalDeviceFeatures features;
+  vkGetPhysicalDeviceFeatures(vk.physical, &features);  // the presentation context enables it where offered
+  TransferAbilities a;
+  a.surfaceUsage = caps.supportedUsageFlags;
+  a.storageFormat =
+      isByteFormat(format.format, false) && (props.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0;
+  a.writeWithoutFormat = features.shaderStorageImageWriteWithoutFormat == VK_TRUE;
+  return chooseFrameTransfer(a, transferChoice);
+}
+
+// Storage path: the staging buffer (sized for this swapchain) and each image get their descriptor set.
+void SwapchainPresenter::Impl::bindStorage() {
+  if (transfer != FrameTransfer::StorageWrite) return;
+  if (!storage.pipeline) storage.create(vk.device);
+  const VkDeviceSize bytes = VkDeviceSize(info.width) * info.height * 4;
+  ensureStaging(bytes);
+  storage.bindImages(images, format.format, staging, bytes);
 }
 
 void SwapchainPresenter::Impl::destroyImageSemaphores() {
@@ -217,7 +340,7 @@ void SwapchainPresenter::Impl::ensureStaging(VkDeviceSize size) {
   }
   VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bi.size = size;
-  bi.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+  bi.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   gpu::checkVulkan(vkCreateBuffer(vk.device, &bi, nullptr, &staging), "vkCreateBuffer");
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(vk.device, staging, &req);
@@ -234,7 +357,9 @@ void SwapchainPresenter::Impl::ensureStaging(VkDeviceSize size) {
 void SwapchainPresenter::Impl::upload(const PanelFrame& frame) {
   ensureStaging(frame.rgba.size());
   auto* dst = static_cast<std::uint8_t*>(mapped);
-  const bool bgra = format.format == VK_FORMAT_B8G8R8A8_UNORM || format.format == VK_FORMAT_B8G8R8A8_SRGB;
+  // The storage write stores RGBA values and the image puts the channels in its own order.
+  const bool bgra = transfer == FrameTransfer::Copy &&
+                    (format.format == VK_FORMAT_B8G8R8A8_UNORM || format.format == VK_FORMAT_B8G8R8A8_SRGB);
   if (!bgra) {
     std::memcpy(dst, frame.rgba.data(), frame.rgba.size());
     return;
@@ -265,6 +390,23 @@ void SwapchainPresenter::Impl::recordCopy(VkImage image) {
   gpu::checkVulkan(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
 }
 
+void SwapchainPresenter::Impl::recordStore(std::uint32_t index) {
+  gpu::checkVulkan(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  gpu::checkVulkan(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+  imageBarrier(cmd, images[index], VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, 0, VK_ACCESS_SHADER_WRITE_BIT,
+               VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, storage.pipeline);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, storage.layout, 0, 1, &storage.sets[index], 0, nullptr);
+  const std::uint32_t size[2] = {info.width, info.height};
+  vkCmdPushConstants(cmd, storage.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof size, size);
+  vkCmdDispatch(cmd, (info.width + 7) / 8, (info.height + 7) / 8, 1);
+  imageBarrier(cmd, images[index], VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_ACCESS_SHADER_WRITE_BIT,
+               0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
+  gpu::checkVulkan(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+}
+
 void SwapchainPresenter::Impl::recreate() {
   vkDeviceWaitIdle(vk.device);
   createSwapchain();
@@ -275,6 +417,7 @@ void SwapchainPresenter::Impl::destroy() {
   if (!vk.device) return;
   vkDeviceWaitIdle(vk.device);
   destroyImageSemaphores();
+  storage.destroy();
   if (swapchain) vkDestroySwapchainKHR(vk.device, swapchain, nullptr);
   if (surface) vkDestroySurfaceKHR(vk.instance, surface, nullptr);
   if (staging) vkDestroyBuffer(vk.device, staging, nullptr);
@@ -285,12 +428,13 @@ void SwapchainPresenter::Impl::destroy() {
 }
 
 SwapchainPresenter::SwapchainPresenter(gpu::VulkanContext& context, const XConnection& x, xcb_window_t window,
-                                       PresentModeChoice mode)
+                                       PresentModeChoice mode, FrameTransferChoice transfer)
     : impl_(std::make_unique<Impl>()) {
   Impl& v = *impl_;
   v.vk = gpu::vulkanHandles(context);
   v.display = x.name();
   v.choice = mode;
+  v.transferChoice = transfer;
   try {
     v.createSurface(x, window);
     v.createSwapchain();
@@ -332,9 +476,13 @@ PresentOutcome SwapchainPresenter::present(const PanelFrame& frame) {
     if (r == VK_TIMEOUT || r == VK_NOT_READY) return PresentOutcome::Timeout;
     if (r != VK_SUBOPTIMAL_KHR) gpu::checkVulkan(r, "vkAcquireNextImageKHR");
     v.upload(frame);
-    v.recordCopy(v.images[index]);
+    const bool copy = v.transfer == FrameTransfer::Copy;
+    if (copy)
+      v.recordCopy(v.images[index]);
+    else
+      v.recordStore(index);
     gpu::checkVulkan(vkResetFences(v.vk.device, 1, &v.inFlight), "vkResetFences");
-    VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    VkPipelineStageFlags waitStage = copy ? VK_PIPELINE_STAGE_TRANSFER_BIT : VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
     VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     si.waitSemaphoreCount = 1;
     si.pWaitSemaphores = &v.acquired;

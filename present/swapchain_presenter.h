@@ -7,10 +7,9 @@
 //   the display decodes them as sRGB. (An _SRGB image would hold the same bytes after a copy, but a shader or blit
 //   writing to it would encode a second time; UNORM keeps every path right.) An _SRGB format is used only if the
 //   surface offers no UNORM one.
-// - Transfer: the frame goes from a host-visible staging buffer into the swapchain image with vkCmdCopyBufferToImage,
-//   which needs TRANSFER_DST in the surface's supportedUsageFlags (lavapipe and the desktop drivers have it; the
-//   specification guarantees only COLOR_ATTACHMENT). A surface without it is refused with a PresentError naming the
-//   flags (docs/DISPLAY.md).
+// - Transfer (frame_transfer.h): the frame goes from a host-visible staging buffer into the swapchain image with
+//   vkCmdCopyBufferToImage when the surface's supportedUsageFlags have TRANSFER_DST, else (or when forced) with a
+//   compute shader's storage write; a surface allowing neither is refused with a PresentError naming the flags.
 // - OUT_OF_DATE / SUBOPTIMAL: the swapchain is recreated and the frame shown again. SURFACE_LOST is reported to the
 //   caller, which drops the window and re-attaches.
 // Not thread-safe: one present thread owns it.
@@ -20,6 +19,7 @@
 #include <string>
 
 #include "gpu/vulkan_context.h"
+#include "present/frame_transfer.h"
 #include "present/panel_frame.h"
 #include "present/x_connection.h"
 
@@ -37,12 +37,14 @@ struct SwapchainInfo {
   std::uint32_t width = 0, height = 0, images = 0;
   std::string presentMode;  // "MAILBOX", "FIFO"
   std::string format;       // "B8G8R8A8_UNORM"
+  std::string transfer;     // "copy", "storage write"
 };
 
 class SwapchainPresenter {
  public:
   // `context` must be created with Options::presentation. Throws PresentError / GpuError.
-  SwapchainPresenter(gpu::VulkanContext& context, const XConnection& x, xcb_window_t window, PresentModeChoice mode);
+  SwapchainPresenter(gpu::VulkanContext& context, const XConnection& x, xcb_window_t window, PresentModeChoice mode,
+                     FrameTransferChoice transfer = FrameTransferChoice::Auto);
   ~SwapchainPresenter();
   SwapchainPresenter(const SwapchainPresenter&) = delete;
   SwapchainPresenter& operator=(const SwapchainPresenter&) = delete;

@@ -153,6 +153,12 @@ void Daemon::shutdown(std::chrono::milliseconds grace) {
   parts_->claims.clear();  // removes our sockets, releases the locks
 }
 
-std::size_t Daemon::reloadDisplays() { return parts_->displays.reload(parts_->log); }
+// Displays first, then the panels: a display that appeared (a panel plugged in, a config added) gets its sink, one
+// that is gone loses it; running sinks of unchanged displays are not touched.
+std::size_t Daemon::reloadDisplays() {
+  const std::size_t count = parts_->displays.reload(parts_->log);
+  parts_->panels->update(parts_->displays);
+  return count;
+}
 
 }  // namespace ht::server

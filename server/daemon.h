@@ -20,7 +20,7 @@ class Daemon {
   // Stops accepting, lets in-flight calls end at their next frame boundary (cancelled after `grace`), stops the
   // render worker. Idempotent.
   void shutdown(std::chrono::milliseconds grace = std::chrono::seconds(5));
-  std::size_t reloadDisplays();  // SIGHUP
+  std::size_t reloadDisplays();  // SIGHUP: displays re-read, panel sinks added / removed to match (docs/SERVICE.md §11)
 
  private:
   struct Parts;

@@ -57,6 +57,13 @@ class UnknownDisplay : public Error {
   using Error::Error;
 };
 
+// A request asks to show frames on a display that has no panel sink (not in the config's "present", or removed
+// by SIGHUP) (-> FAILED_PRECONDITION): the message names the display and the config field to change.
+class NoPanelSink : public Error {
+ public:
+  using Error::Error;
+};
+
 // The handle names no loaded scene (-> NOT_FOUND).
 class UnknownScene : public Error {
  public:

@@ -10,6 +10,7 @@
 #include "server/frame_job.h"
 #include "server/frame_sender.h"
 #include "server/holotrace_service.h"
+#include "server/panel_feed.h"
 #include "server/path_rules.h"
 #include "server/request_checks.h"
 #include "server/status_mapping.h"
@@ -50,11 +51,13 @@ v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame
 
 // Renders one frame and sends it; false when the client went away or stopped reading for longer than
 // limits.stream_stall_seconds (`watch` cancels the blocked Write).
+// `panel` (StreamRequest.present_on) also gets the frame, through its one-slot mailbox: never waits on the display.
 bool renderAndSend(ServiceState& state, const std::string& client, const FrameJob& job, v1::PixelFormat format,
                    std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer,
-                   CallWatchdog::Watch& watch) {
+                   CallWatchdog::Watch& watch, present::PanelSink* panel = nullptr) {
   const auto queued = Clock::now();
   const gpu::RenderResult frame = renderFrameJob(state.worker, client, job);
+  if (panel) panel->submit(panelFrameOf(frame, job));
   const double queueMs = std::max(0.0, msBetween(queued, Clock::now()) - frame.totalMs);
   const DisplayConfig display = displayForSession(job.display->config, *job.session);
   const EncodedFrame encoded = encodeFrame(frame, checkPixelFormat(format), {display, jobCamera(job).quilt});
@@ -129,6 +132,8 @@ grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const 
                                                 "] (limits.max_frames_per_second)");
     }
     FrameJob job = checkRenderRequest(state_, request->render());
+    std::shared_ptr<present::PanelSink> panel;
+    if (!request->present_on().empty()) panel = streamPanelSink(state_, request->present_on(), job);
     StreamSlot slot(state_);
     const SceneLibrary::Pin pin(state_.scenes, request->render().scene_id());  // not idled out between slow frames
     CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.streamStallSeconds, "StreamFrames");
@@ -141,7 +146,7 @@ grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const 
       if (state_.shuttingDown) throw ShuttingDown("holotraced is shutting down");
       job.session = state_.scenes.find(request->render().scene_id());  // picks up UpdateScene
       job.seed = request->render().seed() + static_cast<std::uint32_t>(tick);
-      if (!renderAndSend(state_, client, job, request->render().format(), dropped, *writer, watch)) break;
+      if (!renderAndSend(state_, client, job, request->render().format(), dropped, *writer, watch, panel.get())) break;
       const auto now = Clock::now();
       const auto due = static_cast<std::uint64_t>((now - start) / period) + 1;  // next tick not yet passed
       dropped = due > tick + 1 ? due - tick - 1 : 0;

@@ -5,6 +5,7 @@
 #include "present/panel_frame.h"
 #include "server/frame_job.h"
 #include "server/holotrace_service.h"
+#include "server/panel_feed.h"
 #include "server/panel_sinks.h"
 #include "server/present_status.h"
 #include "server/request_checks.h"
@@ -16,13 +17,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-present::PanelSink& sinkFor(const ServiceState& state, const std::string& displayId) {
-  present::PanelSink* sink = state.panels ? state.panels->find(displayId) : nullptr;
+// Shared: a sink removed by SIGHUP meanwhile stays alive until this call ends.
+std::shared_ptr<present::PanelSink> sinkFor(const ServiceState& state, const std::string& displayId) {
+  std::shared_ptr<present::PanelSink> sink = state.panels ? state.panels->find(displayId) : nullptr;
   if (!sink) {
     throw BadRequest("render.display_id",
                      "display '" + displayId + "' has no panel sink; list it in the daemon config's \"present\"");
   }
-  return *sink;
+  return sink;
 }
 
 std::uint32_t checkedFrameCount(const ServiceState& state, const v1::PresentRequest& request) {
@@ -39,12 +41,6 @@ std::uint32_t checkedFrameCount(const ServiceState& state, const v1::PresentRequ
   return frames;
 }
 
-// The panel image of one rendered frame: the bytes the file sink's PNG holds.
-present::PanelFrame panelFrameOf(const gpu::RenderResult& frame, const FrameJob& job) {
-  const DisplayConfig display = displayForSession(job.display->config, *job.session);
-  return present::panelFrame({frame.width, frame.height, frame.views, frame.rgba}, {display, jobCamera(job).quilt});
-}
-
 }  // namespace
 
 grpc::Status HolotraceService::Present(grpc::ServerContext* context, const v1::PresentRequest* request,
@@ -52,7 +48,7 @@ grpc::Status HolotraceService::Present(grpc::ServerContext* context, const v1::P
   return guarded([&] {
     const std::uint32_t frames = checkedFrameCount(state_, *request);
     FrameJob job = checkRenderRequest(state_, request->render());
-    present::PanelSink& sink = sinkFor(state_, job.display->id);
+    const std::shared_ptr<present::PanelSink> sink = sinkFor(state_, job.display->id);
     StreamSlot slot(state_);
     const std::string client = clientKey(*context);
     const auto start = Clock::now();
@@ -68,13 +64,13 @@ grpc::Status HolotraceService::Present(grpc::ServerContext* context, const v1::P
       job.session = state_.scenes.find(request->render().scene_id());  // picks up UpdateScene
       job.seed = request->render().seed() + i;
       const gpu::RenderResult frame = renderFrameJob(state_.worker, client, job);
-      sink.submit(panelFrameOf(frame, job));
+      sink->submit(panelFrameOf(frame, job));
       v1::PresentProgress progress;
       progress.set_frame_id(state_.nextFrameId++);
       progress.set_frames_done(i + 1);
       progress.set_frames_total(frames);
       progress.set_render_ms(frame.totalMs);
-      fillPanelStatus(job.display->id, sink.stats(), state_.panels->xDisplay(), *progress.mutable_panel());
+      fillPanelStatus(job.display->id, sink->stats(), state_.panels->xDisplay(), *progress.mutable_panel());
       writer->Write(progress);  // a gone client is noticed at the next frame (IsCancelled)
     }
     return grpc::Status::OK;

@@ -18,6 +18,7 @@ void fillPanelStatus(const std::string& displayId, const present::PanelSinkStats
     out.set_refresh_hz(stats.monitor->refreshHz);
   }
   out.set_present_mode(stats.swapchain.presentMode);
+  out.set_transfer(stats.swapchain.transfer);
   out.set_submitted(stats.submitted);
   out.set_presented(stats.presented);
   out.set_dropped(stats.dropped);

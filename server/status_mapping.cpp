@@ -31,6 +31,7 @@ constexpr std::array kRules = {
     StatusRule{is<DiskFull>, StatusCode::RESOURCE_EXHAUSTED},
     StatusRule{is<NameTaken>, StatusCode::ALREADY_EXISTS},
     StatusRule{is<OutputConflict>, StatusCode::FAILED_PRECONDITION},
+    StatusRule{is<NoPanelSink>, StatusCode::FAILED_PRECONDITION},
     StatusRule{is<UnknownDisplay>, StatusCode::NOT_FOUND},
     StatusRule{is<UnknownScene>, StatusCode::NOT_FOUND},
     StatusRule{is<ShuttingDown>, StatusCode::UNAVAILABLE},

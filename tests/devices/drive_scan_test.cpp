@@ -225,12 +225,15 @@ TEST_F(DiscoveryTest, TheMonitorHookNamesTheMonitorOfLoadedPanelsOnly) {
     return scan;
   };
   o.matchMonitor = [](const FoundDevice& d) {
-    return d.calibration->calibration.screenW == 1536 ? std::string("LKG-P (DP-1)") : std::string();
+    return d.calibration->calibration.screenW == 1536 ? MonitorMatch{"LKG-P (DP-1)", ""}
+                                                      : MonitorMatch{"", "no monitor"};
   };
   const Discovery d = discoverDevices(o);
   ASSERT_EQ(d.devices.size(), 2u);
   EXPECT_EQ(d.devices[0].matchedMonitor, "LKG-P (DP-1)");
+  EXPECT_EQ(d.devices[0].monitorProblem, "");
   EXPECT_EQ(d.devices[1].matchedMonitor, "");
+  EXPECT_EQ(d.devices[1].monitorProblem, "") << "the hook is not asked about panels that did not load";
   EXPECT_FALSE(d.devices[1].loaded());
 }
 

@@ -4,6 +4,9 @@
 // away the daemon keeps serving frames and the sink re-attaches when a server is back on that display.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "../server/server_fixture.h"
@@ -139,6 +142,153 @@ TEST(DaemonPresentXvfb, PresentShowsCapturesBytesStatusReportsAndXServerLossIsSu
   EXPECT_TRUE(s.attached()) << s.last_error();
   EXPECT_EQ(s.attachments(), 2u);
   EXPECT_EQ(mismatches(xvfb->connection(), rgbOfPng(files.outputRoot() / captured[0])), 0u);
+  daemon.shutdown(std::chrono::milliseconds(0));
+}
+
+// RGB of a PNG held in memory (a streamed PIXEL_FORMAT_PNG frame).
+std::vector<std::uint8_t> rgbOfPngBytes(const std::vector<std::uint8_t>& png) {
+  const auto file = std::filesystem::temp_directory_path() / ("ht_stream_" + std::to_string(getpid()) + ".png");
+  std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+  std::vector<std::uint8_t> rgb = rgbOfPng(file);
+  std::filesystem::remove(file);
+  return rgb;
+}
+
+// Streams `count` frames of `request` and cancels; returns the frames received and the final status.
+grpc::Status streamFrames(v1::Holotrace::Stub& stub, const v1::StreamRequest& request, int count,
+                          std::vector<server::test::ReceivedFrame>& frames) {
+  grpc::ClientContext context;
+  auto reader = stub.StreamFrames(&context, request);
+  server::test::ReceivedFrame frame;
+  bool open = true;
+  while (static_cast<int>(frames.size()) < count && (open = server::test::readFrame(*reader, frame)))
+    frames.push_back(frame);
+  if (!open) return reader->Finish();  // refused or ended by the daemon
+  context.TryCancel();
+  while (server::test::readFrame(*reader, frame)) {}
+  return reader->Finish();
+}
+
+// StreamFrames with present_on: every streamed frame also goes to the panel; the screen shows the last one's PNG
+// bytes. An unknown id and a display without a sink are refused before any frame, naming it.
+TEST(DaemonPresentXvfb, StreamFramesPresentOnShowsTheLastStreamedFrame) {
+  auto xvfb = startPanelServer();
+  DaemonFiles files;
+  server::DaemonConfig config = files.config();
+  config.present.mode = server::PresentConfig::Mode::List;
+  config.present.panels = {server::PanelTarget{"tiny", std::nullopt, std::nullopt}};
+  config.present.xDisplay = xvfb->display();
+  server::Daemon daemon(config, std::cerr);
+  daemon.start();
+  auto stub = server::test::connect(files.socketAddress());
+  v1::SceneHandle scene;
+  ASSERT_TRUE(server::test::loadScene(*stub, "builtin:plain", &scene).ok());
+  v1::StreamRequest request;
+  *request.mutable_render() = server::test::tinyRequest(scene.scene_id(), v1::PIXEL_FORMAT_PNG);
+  request.set_frames_per_second(4.0);  // slow: no third frame is rendered between the second and the cancel
+  std::vector<server::test::ReceivedFrame> frames;
+
+  request.set_present_on("nope");
+  grpc::Status unknown = streamFrames(*stub, request, 1, frames);
+  EXPECT_EQ(unknown.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(unknown.error_message().find("present_on: unknown display id 'nope'"), std::string::npos)
+      << unknown.error_message();
+  request.set_present_on("wall");
+  grpc::Status noSink = streamFrames(*stub, request, 1, frames);
+  EXPECT_EQ(noSink.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+  EXPECT_NE(noSink.error_message().find("display 'wall' has no panel sink"), std::string::npos)
+      << noSink.error_message();
+  EXPECT_TRUE(frames.empty());
+
+  ASSERT_TRUE(waitForPanel(*stub, [](const v1::PanelStatus& p) { return p.attached(); }).attached());
+  request.set_present_on("tiny");
+  EXPECT_EQ(streamFrames(*stub, request, 2, frames).error_code(), grpc::StatusCode::CANCELLED);
+  ASSERT_EQ(frames.size(), 2u);
+  const v1::PanelStatus s = waitForPanel(*stub, [](const v1::PanelStatus& p) { return p.submitted() >= 2; });
+  EXPECT_EQ(s.submitted(), 2u);
+  const std::vector<std::uint8_t> last = rgbOfPngBytes(frames[1].bytes);
+  ASSERT_EQ(last.size(), std::size_t(server::test::kTinyWidth) * server::test::kTinyHeight * 3);
+  EXPECT_EQ(mismatches(xvfb->connection(), last), 0u);
+  daemon.shutdown(std::chrono::milliseconds(0));
+}
+
+// display id -> status of every panel sink the daemon reports.
+std::map<std::string, v1::PanelStatus> allPanels(v1::Holotrace::Stub& stub) {
+  grpc::ClientContext context;
+  v1::StatusResponse response;
+  EXPECT_TRUE(stub.Status(&context, v1::StatusRequest{}, &response).ok());
+  std::map<std::string, v1::PanelStatus> out;
+  for (const v1::PanelStatus& p : response.panels()) out[p.display_id()] = p;
+  return out;
+}
+
+template <typename Predicate>
+std::map<std::string, v1::PanelStatus> waitForPanels(v1::Holotrace::Stub& stub, Predicate done) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  auto panels = allPanels(stub);
+  while (!done(panels) && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    panels = allPanels(stub);
+  }
+  return panels;
+}
+
+bool attached(const std::map<std::string, v1::PanelStatus>& panels, const std::string& id) {
+  auto it = panels.find(id);
+  return it != panels.end() && it->second.attached();
+}
+
+// "present": "auto" and SIGHUP: a display config that appears in displays_dir (with a "panel" geometry) and a panel
+// whose calibration appears (device pick-up) get sinks; when they are gone their sinks go; the running sink of the
+// unchanged display keeps its window (one attachment) and its frames.
+TEST(DaemonPresentXvfb, SighupAddsAndRemovesSinksWithoutDisturbingRunningOnes) {
+  auto xvfb = startPanelServer();
+  xvfb->setMonitor("LEFT", {0, 0, server::test::kTinyWidth, server::test::kTinyHeight}, {});
+  DaemonFiles files;
+  server::DaemonConfig config = files.config();
+  const std::filesystem::path deviceFile = config.displaysDir.parent_path() / "panel-visual.json";
+  config.present.mode = server::PresentConfig::Mode::Auto;
+  config.present.xDisplay = xvfb->display();
+  config.devices = server::DeviceDiscoveryConfig{true, deviceFile, false, false, false, {}, {}};
+  server::Daemon daemon(config, std::cerr);
+  daemon.start();
+  auto stub = server::test::connect(files.socketAddress());
+  v1::SceneHandle scene;
+  ASSERT_TRUE(server::test::loadScene(*stub, "builtin:plain", &scene).ok());
+  auto panels = waitForPanels(*stub, [](const auto& p) { return attached(p, "tiny"); });
+  ASSERT_TRUE(attached(panels, "tiny"));
+  EXPECT_EQ(panels.count("left"), 0u);
+  v1::PresentProgress progress;
+  ASSERT_TRUE(presentOne(*stub, server::test::tinyRequest(scene.scene_id()), &progress).ok());
+
+  // A display config with a "panel" geometry and a plugged-in panel's calibration appear; SIGHUP.
+  nlohmann::json left = nlohmann::json::parse(server::test::tinyDisplayJson());
+  left["name"] = "left";
+  left["panel"] = {{"geometry", "96x64+0+0"}};
+  server::test::writeText(config.displaysDir / "left.json", left.dump());
+  nlohmann::json visual = left["calibration"];
+  visual["serial"] = "LKG-T0002";
+  server::test::writeText(deviceFile, visual.dump());
+  daemon.reloadDisplays();
+  panels = waitForPanels(*stub, [](const auto& p) { return attached(p, "left") && attached(p, "device:LKG-T0002"); });
+  ASSERT_TRUE(attached(panels, "left")) << panels["left"].last_error();
+  EXPECT_EQ(panels["left"].monitor(), "LEFT");  // by the display config's geometry, before the EDID rule
+  EXPECT_EQ(panels["left"].geometry(), "96x64+0+0");
+  EXPECT_TRUE(attached(panels, "device:LKG-T0002")) << panels["device:LKG-T0002"].last_error();
+  EXPECT_EQ(panels["device:LKG-T0002"].monitor(), "LKG-T");
+  EXPECT_EQ(panels["tiny"].attachments(), 1u) << "the running sink was not restarted";
+  EXPECT_EQ(panels["tiny"].submitted(), 1u);
+
+  // Both are gone again; SIGHUP removes their sinks, the running one stays.
+  std::filesystem::remove(config.displaysDir / "left.json");
+  std::filesystem::remove(deviceFile);
+  daemon.reloadDisplays();
+  panels = allPanels(*stub);
+  EXPECT_EQ(panels.count("left"), 0u);
+  EXPECT_EQ(panels.count("device:LKG-T0002"), 0u);
+  ASSERT_TRUE(attached(panels, "tiny"));
+  EXPECT_EQ(panels["tiny"].attachments(), 1u);
+  EXPECT_EQ(panels["tiny"].submitted(), 1u);
   daemon.shutdown(std::chrono::milliseconds(0));
 }
 

@@ -143,6 +143,7 @@ TEST_F(PanelSinkXvfb, AutoSelectsThePanelAndShowsThePngBytesInAWindowOfItsSize) 
   EXPECT_EQ(s.swapchain.width, kPanelW);
   EXPECT_EQ(s.swapchain.height, kPanelH);
   EXPECT_EQ(s.swapchain.presentMode, "MAILBOX");  // lavapipe offers it on Xvfb
+  EXPECT_EQ(s.swapchain.transfer, "copy");
   EXPECT_EQ(mismatchesOnScreen(pngRgb(rgba)), 0u);
   // The window: exactly the monitor rectangle, override-redirect.
   XConnection x(xvfb_->display());
@@ -167,6 +168,22 @@ TEST_F(PanelSinkXvfb, FifoShowsTheSameBytes) {
   ASSERT_TRUE(s.attached) << s.lastError;
   EXPECT_EQ(s.swapchain.presentMode, "FIFO");
   EXPECT_EQ(mismatchesOnScreen(pngRgb(rgba)), 0u);
+}
+
+// The storage-write path (frame_transfer.h; a compute shader stores the pixels), forced because lavapipe's Xvfb surface
+// offers TRANSFER_DST as well as STORAGE: the same bytes as the PNG, in MAILBOX and FIFO.
+TEST_F(PanelSinkXvfb, StorageWriteShowsTheSameBytes) {
+  for (PresentModeChoice mode : {PresentModeChoice::Auto, PresentModeChoice::Fifo}) {
+    PanelSinkOptions o = options(mode);
+    o.transfer = FrameTransferChoice::ForceStorageWrite;
+    PanelSink sink(o);
+    auto rgba = noiseFrame(mode == PresentModeChoice::Fifo ? 4 : 3);
+    sink.submit(panelFrameOf(rgba));
+    PanelSinkStats s = waitFor(sink, [](const PanelSinkStats& st) { return st.presented >= 1; });
+    ASSERT_TRUE(s.attached) << s.lastError;
+    EXPECT_EQ(s.swapchain.transfer, "storage write");
+    EXPECT_EQ(mismatchesOnScreen(pngRgb(rgba)), 0u);
+  }
 }
 
 TEST_F(PanelSinkXvfb, TwentyFastFramesLeaveTheNewestOnScreenAndCountDrops) {
