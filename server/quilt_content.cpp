@@ -1,12 +1,8 @@
 // quilt_content.cpp - see quilt_content.h.
 #include "server/quilt_content.h"
 
-#include <algorithm>
-#include <cctype>
 #include <chrono>
-#include <filesystem>
 
-#include "camera_models/lenticular_params.h"
 #include "common/error.h"
 #include "common/parallel_chunks.h"
 #include "frame_io/quilt_file.h"
@@ -25,11 +21,9 @@ gpu::RenderResult QuiltContent::frame(const DisplayConfig& display) const {
     if (auto it = panels_.find(key); it != panels_.end()) panel = it->second;
   }
   if (!panel) {
-    const frame_io::QuiltFileLayout layout = frame_io::resolveQuiltLayout(image_, fileName_, {}, display);
-    checkQuiltFitsDisplay(layout.layout, display, fileName_);
-    const gpu_shared::LenticularParams params = makeLenticularParams(display, Bounds3{});
-    panel = std::make_shared<const std::vector<float>>(interleaveQuilt(
-        quiltImageViews(layout.layout, image_.rgba), params, QuiltViewFilter::VendorLerp, hardwareThreads()));
+    panel = std::make_shared<const std::vector<float>>(
+        frame_io::interleaveQuiltImage(image_, fileName_, display, {}, QuiltViewFilter::VendorLerp, hardwareThreads())
+            .rgba);
     std::lock_guard lock(mutex_);
     panels_.emplace(key, panel);
   }
@@ -40,12 +34,6 @@ gpu::RenderResult QuiltContent::frame(const DisplayConfig& display) const {
   result.totalMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   result.stages.push_back({"interleave", result.totalMs});
   return result;
-}
-
-bool isQuiltSpec(const std::string& spec) {
-  std::string ext = std::filesystem::path(spec).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext == ".png" || ext == ".exr";
 }
 
 }  // namespace ht::server

@@ -38,7 +38,4 @@ class QuiltContent {
   mutable std::map<std::string, std::shared_ptr<const std::vector<float>>> panels_;  // by display name + source
 };
 
-// True if `spec` names an image file (.png or .exr, any case) that LoadScene should open as a quilt.
-bool isQuiltSpec(const std::string& spec);
-
 }  // namespace ht::server

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "bvh/gpu_layout.h"
+#include "frame_io/quilt_file.h"
 #include "scene/load_scene.h"
 #include "server/path_rules.h"
 
@@ -70,7 +71,7 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
   auto content = std::make_shared<SceneContent>();
   content->contentKey = key;
   const auto start = std::chrono::steady_clock::now();
-  if (isQuiltSpec(source.name)) {  // a quilt image: shown by interleaving, nothing to trace
+  if (frame_io::isQuiltImageFile(source.name)) {  // a quilt image: shown by interleaving, nothing to trace
     content->quilt = std::make_shared<const QuiltContent>(std::filesystem::path(source.name).filename().string(),
                                                           asBytes(source.bytes));
     content->loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -143,7 +144,8 @@ std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client
   std::string key = sourceKey(source);
   const bool builtin = key == source.name;
   // A quilt's layout comes from its name as much as from its bytes (server/quilt_content.h).
-  if (!builtin && isQuiltSpec(source.name)) key += "\n" + std::filesystem::path(source.name).filename().string();
+  if (!builtin && frame_io::isQuiltImageFile(source.name))
+    key += "\n" + std::filesystem::path(source.name).filename().string();
   bool reused = false;
   std::shared_ptr<SceneContent> content = contentFor(client, key, source, reused);
   std::lock_guard lock(mutex_);
