@@ -4,13 +4,30 @@
 #include <chrono>
 
 #include "common/error.h"
+#include "common/image_limits.h"
 #include "common/parallel_chunks.h"
 #include "frame_io/quilt_file.h"
 
 namespace ht::server {
 
+namespace {
+
+frame_io::ImageFile decodeQuilt(std::span<const std::uint8_t> bytes, const std::string& fileName) {
+  try {
+    return frame_io::decodeImage(bytes, fileName);
+  } catch (const IoError& e) {
+    throw SceneError(fileName, std::string("not a quilt image holotrace can read: ") + e.what() +
+                                   " (send a PNG or OpenEXR quilt of at most " + std::to_string(kMaxImageSide) +
+                                   " pixels per side)");
+  }
+}
+
+}  // namespace
+
 QuiltContent::QuiltContent(const std::string& fileName, std::span<const std::uint8_t> bytes)
-    : fileName_(fileName), image_(frame_io::decodeImage(bytes, fileName)) {}
+    : fileName_(fileName), image_(decodeQuilt(bytes, fileName)) {
+  frame_io::quiltLayoutOfFile(image_, fileName_);  // refused at load, not at the first frame
+}
 
 gpu::RenderResult QuiltContent::frame(const DisplayConfig& display) const {
   const auto start = std::chrono::steady_clock::now();
