@@ -32,7 +32,8 @@ constexpr std::uint32_t kMaxSeconds = 86400 * 365;
 const std::array<OptionSpec, 11> kSpecs = {{
     {"--display", "", "SPEC", "display: config.json, visual.json or builtin:NAME (default builtin:portrait)"},
     {"--scene", "", "SPEC",
-     "scene: .gltf, .glb, .obj, .off or builtin:NAME (default builtin:showcase), or a quilt image .png / .exr"},
+     "scene: .gltf, .glb, .obj, .off or builtin:NAME (default builtin:showcase), or a quilt image .png / .exr "
+     "(e.g. hologram_qs8x6a0.75.png: shown interleaved as `holotrace interleave` writes it; --spp, --seed unused)"},
     {"--spp", "", "N", "samples per subpixel / pixel, 1-4096 (default: the config's spp)"},
     {"--seed", "", "N", "sample-pattern seed (default 0, as `holotrace render`)"},
     {"--x-display", "", "NAME", "X display to show on, e.g. :0 (default $DISPLAY)"},
@@ -140,10 +141,8 @@ std::string showHelp() {
              "Usage: holotrace show [options]\n\n"
              "Renders the display's frame (as `holotrace render -o` would) and shows it 1:1 on the panel's monitor "
              "until\n"
-             "Ctrl-C or SIGTERM. A quilt image as --scene (e.g. hologram_qs8x6a0.75.png) is shown interleaved for the\n"
-             "panel, as `holotrace interleave` writes it (--spp and --seed do not apply).\n"
-             "The monitor is the one named by --monitor / --geometry, else the one whose EDID name starts with LKG\n"
-             "and whose size is the frame's, else the only monitor of that size (docs/DISPLAY.md).\n"
+             "Ctrl-C or SIGTERM. The monitor is the one named by --monitor / --geometry, else the one whose EDID name\n"
+             "starts with LKG and whose size is the frame's, else the only monitor of that size (docs/DISPLAY.md).\n"
              "If the panel or the X server goes away, the frame comes back when they do.\n\nOptions:\n") +
          formatOptions(kSpecs);
 }
