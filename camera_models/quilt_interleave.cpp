@@ -130,12 +130,8 @@ QuiltViews viewStackViews(std::uint32_t width, std::uint32_t height, std::uint32
   return q;
 }
 
-void checkQuiltFitsDisplay(const QuiltLayout& layout, const DisplayConfig& display, std::string_view quiltName) {
+void checkQuiltTiles(const QuiltLayout& layout, std::string_view quiltName) {
   const std::string name(quiltName);
-  if (display.model != DisplayModel::Lenticular || !display.calibration) {
-    throw ConfigError(display.sourcePath, "model", std::string(displayModelName(display.model)),
-                      "a quilt is interleaved for a lenticular (Looking Glass) display only");
-  }
   const std::string tiles = std::to_string(layout.columns) + "x" + std::to_string(layout.rows);
   if (layout.views() < 2 || layout.views() > kMaxQuiltViews) {
     throw ConfigError(name, "quilt tiles", tiles,
@@ -146,6 +142,15 @@ void checkQuiltFitsDisplay(const QuiltLayout& layout, const DisplayConfig& displ
                       "its " + tiles + " tiles are " + sizeText(layout.tileWidth, layout.tileHeight) +
                           " pixels; each view needs at least 2x2");
   }
+}
+
+void checkQuiltFitsDisplay(const QuiltLayout& layout, const DisplayConfig& display, std::string_view quiltName) {
+  const std::string name(quiltName);
+  if (display.model != DisplayModel::Lenticular || !display.calibration) {
+    throw ConfigError(display.sourcePath, "model", std::string(displayModelName(display.model)),
+                      "a quilt is interleaved for a lenticular (Looking Glass) display only");
+  }
+  checkQuiltTiles(layout, quiltName);
   const LookingGlassCalibration& c = *display.calibration;
   const double panelAspect = double(c.screenW) / double(c.screenH);
   if (!(std::fabs(layout.aspect / panelAspect - 1.0) <= kAspectTolerance)) {

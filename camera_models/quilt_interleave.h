@@ -62,6 +62,9 @@ QuiltViews viewStackViews(std::uint32_t width, std::uint32_t height, std::uint32
 // screenW/screenH (views rendered for another display: their pixels would land stretched on this one).
 void checkQuiltFitsDisplay(const QuiltLayout& layout, const DisplayConfig& display, std::string_view quiltName);
 
+// The part of checkQuiltFitsDisplay that needs no display: 2 to 4096 views, tiles of at least 2 x 2 pixels.
+void checkQuiltTiles(const QuiltLayout& layout, std::string_view quiltName);
+
 // The native panel image (screenW x screenH linear RGBA, row 0 = top, alpha 1; the layout of a direct lenticular
 // render) of the views under `params` (makeLenticularParams; only its phase, panel and flip fields are used).
 // Rows run on `threads` threads. Throws Error if the views are empty or do not fit their image.

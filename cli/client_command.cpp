@@ -26,7 +26,8 @@ constexpr const char* kCommand = "holotrace client";
 const std::array<OptionSpec, 14> kOptions = {{
     {"--socket", "", "ADDR", "daemon address (default unix:$XDG_RUNTIME_DIR/holotrace/holotraced.sock)"},
     {"--scene", "", "SPEC", "scene below the daemon's scene root, or builtin:NAME (default builtin:showcase)"},
-    {"--upload", "", "FILE", "send this local scene file's bytes instead of --scene"},
+    {"--upload", "", "FILE",
+     "send this local scene file's (or quilt image's, NAME_qs8x6a0.75.png) bytes instead of --scene"},
     {"--display", "", "ID", "display id from `client displays` (default builtin:portrait)"},
     {"--format", "", "FMT", "rgba8 | rgba16f | png (render/stream; default png for render)"},
     {"--spp", "", "N", "samples per subpixel (default: the display's)"},

@@ -13,6 +13,8 @@
 #include "cli/cli_app.h"
 #include "cli/render_report.h"
 #include "common/error.h"
+#include "common/parallel_chunks.h"
+#include "frame_io/quilt_file.h"
 #include "frame_io/ray_table_exr.h"
 #include "gpu/display_camera.h"
 #include "gpu/renderer.h"
@@ -29,7 +31,9 @@ constexpr std::uint32_t kMaxSeconds = 86400 * 365;
 
 const std::array<OptionSpec, 11> kSpecs = {{
     {"--display", "", "SPEC", "display: config.json, visual.json or builtin:NAME (default builtin:portrait)"},
-    {"--scene", "", "SPEC", "scene: .gltf, .glb, .obj, .off or builtin:NAME (default builtin:showcase)"},
+    {"--scene", "", "SPEC",
+     "scene: .gltf, .glb, .obj, .off or builtin:NAME (default builtin:showcase), or a quilt image .png / .exr "
+     "(e.g. hologram_qs8x6a0.75.png: shown interleaved as `holotrace interleave` writes it; --spp, --seed unused)"},
     {"--spp", "", "N", "samples per subpixel / pixel, 1-4096 (default: the config's spp)"},
     {"--seed", "", "N", "sample-pattern seed (default 0, as `holotrace render`)"},
     {"--x-display", "", "NAME", "X display to show on, e.g. :0 (default $DISPLAY)"},
@@ -79,7 +83,20 @@ ShowOptions parseShowOptions(std::span<const std::string> args) {
   return o;
 }
 
+// A quilt image interleaved for the panel, as `holotrace interleave` and the daemon's quilt content do it (the vendor's
+// view filter; frame_io/quilt_file.h).
+present::PanelFrame quiltPanelFrame(const ShowOptions& options, const DisplayConfig& display, std::ostream& out) {
+  const frame_io::InterleavedQuilt panel =
+      frame_io::interleaveQuiltFile(options.sceneSpec, display, {}, QuiltViewFilter::VendorLerp, hardwareThreads());
+  const QuiltLayout& layout = panel.layout.layout;
+  out << "quilt " << layout.columns << "x" << layout.rows << " of " << layout.tileWidth << "x" << layout.tileHeight
+      << " (layout from the " << panel.layout.source << ") interleaved for " << panel.width << "x" << panel.height
+      << "\n";
+  return present::panelFrame({panel.width, panel.height, 1, panel.rgba}, {display, std::nullopt});
+}
+
 present::PanelFrame renderPanelFrame(const ShowOptions& options, const DisplayConfig& display, std::ostream& out) {
+  if (frame_io::isQuiltImageFile(options.sceneSpec)) return quiltPanelFrame(options, display, out);
   const Scene scene = loadScene(options.sceneSpec);
   std::shared_ptr<const RayTable> rayTable;
   if (display.model == DisplayModel::RayTable)

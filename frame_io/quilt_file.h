@@ -51,4 +51,18 @@ struct InterleavedQuilt {
 InterleavedQuilt interleaveQuiltFile(const std::filesystem::path& path, const DisplayConfig& display,
                                      const QuiltLayoutHints& hints, QuiltViewFilter filter, unsigned threads);
 
+// The same for a quilt already decoded (`image`, named `fileName`): the one path from quilt pixels to a panel image
+// that `holotrace interleave`, `holotrace show` and the daemon's quilt content share.
+InterleavedQuilt interleaveQuiltImage(const ImageFile& image, const std::string& fileName, const DisplayConfig& display,
+                                      const QuiltLayoutHints& hints, QuiltViewFilter filter, unsigned threads);
+
+// Columns and rows of a quilt from what travels with the file alone (its name's tag or the embedded metadata; no
+// hints, no display), with the checks that need no display: name and metadata agree, 2 to kMaxQuiltViews views, tiles
+// of at least 2x2 pixels. What the daemon checks when a quilt arrives. Throws ConfigError naming the file and field.
+QuiltLayout quiltLayoutOfFile(const ImageHeader& header, const std::string& fileName);
+
+// True if `spec` names an image file (.png or .exr, any case) that holotrace shows as a quilt where a scene is asked
+// for (`holotrace show --scene`, the daemon's LoadScene and UploadScene).
+bool isQuiltImageFile(const std::string& spec);
+
 }  // namespace ht::frame_io

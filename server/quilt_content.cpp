@@ -1,20 +1,33 @@
 // quilt_content.cpp - see quilt_content.h.
 #include "server/quilt_content.h"
 
-#include <algorithm>
-#include <cctype>
 #include <chrono>
-#include <filesystem>
 
-#include "camera_models/lenticular_params.h"
 #include "common/error.h"
+#include "common/image_limits.h"
 #include "common/parallel_chunks.h"
 #include "frame_io/quilt_file.h"
 
 namespace ht::server {
 
+namespace {
+
+frame_io::ImageFile decodeQuilt(std::span<const std::uint8_t> bytes, const std::string& fileName) {
+  try {
+    return frame_io::decodeImage(bytes, fileName);
+  } catch (const IoError& e) {
+    throw SceneError(fileName, std::string("not a quilt image holotrace can read: ") + e.what() +
+                                   " (send a PNG or OpenEXR quilt of at most " + std::to_string(kMaxImageSide) +
+                                   " pixels per side)");
+  }
+}
+
+}  // namespace
+
 QuiltContent::QuiltContent(const std::string& fileName, std::span<const std::uint8_t> bytes)
-    : fileName_(fileName), image_(frame_io::decodeImage(bytes, fileName)) {}
+    : fileName_(fileName), image_(decodeQuilt(bytes, fileName)) {
+  frame_io::quiltLayoutOfFile(image_, fileName_);  // refused at load, not at the first frame
+}
 
 gpu::RenderResult QuiltContent::frame(const DisplayConfig& display) const {
   const auto start = std::chrono::steady_clock::now();
@@ -25,11 +38,9 @@ gpu::RenderResult QuiltContent::frame(const DisplayConfig& display) const {
     if (auto it = panels_.find(key); it != panels_.end()) panel = it->second;
   }
   if (!panel) {
-    const frame_io::QuiltFileLayout layout = frame_io::resolveQuiltLayout(image_, fileName_, {}, display);
-    checkQuiltFitsDisplay(layout.layout, display, fileName_);
-    const gpu_shared::LenticularParams params = makeLenticularParams(display, Bounds3{});
-    panel = std::make_shared<const std::vector<float>>(interleaveQuilt(
-        quiltImageViews(layout.layout, image_.rgba), params, QuiltViewFilter::VendorLerp, hardwareThreads()));
+    panel = std::make_shared<const std::vector<float>>(
+        frame_io::interleaveQuiltImage(image_, fileName_, display, {}, QuiltViewFilter::VendorLerp, hardwareThreads())
+            .rgba);
     std::lock_guard lock(mutex_);
     panels_.emplace(key, panel);
   }
@@ -40,12 +51,6 @@ gpu::RenderResult QuiltContent::frame(const DisplayConfig& display) const {
   result.totalMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   result.stages.push_back({"interleave", result.totalMs});
   return result;
-}
-
-bool isQuiltSpec(const std::string& spec) {
-  std::string ext = std::filesystem::path(spec).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext == ".png" || ext == ".exr";
 }
 
 }  // namespace ht::server

@@ -20,7 +20,10 @@ namespace ht::server {
 
 class QuiltContent {
  public:
-  // Decodes the quilt. Throws IoError for an image that cannot be decoded.
+  // Decodes the quilt and checks what needs no display (frame_io::quiltLayoutOfFile): a layout from the name's
+  // `_qs` tag or the embedded metadata, both agreeing, 2 to 4096 views, tiles of at least 2x2 pixels. Throws
+  // SceneError for bytes that are no readable PNG / EXR or exceed the image limits (common/image_limits.h), ConfigError
+  // naming the file and field for the layout.
   QuiltContent(const std::string& fileName, std::span<const std::uint8_t> bytes);
 
   // The quilt interleaved for `display`: one view of screenW x screenH. Throws ConfigError (naming the quilt file)
@@ -30,6 +33,8 @@ class QuiltContent {
   const std::string& fileName() const { return fileName_; }
   std::uint32_t width() const { return image_.width; }
   std::uint32_t height() const { return image_.height; }
+  // Host memory of the decoded quilt (linear float RGBA), for the daemon's scene memory budget.
+  std::uint64_t memoryBytes() const { return image_.rgba.size() * sizeof(float); }
 
  private:
   std::string fileName_;
@@ -37,8 +42,5 @@ class QuiltContent {
   mutable std::mutex mutex_;
   mutable std::map<std::string, std::shared_ptr<const std::vector<float>>> panels_;  // by display name + source
 };
-
-// True if `spec` names an image file (.png or .exr, any case) that LoadScene should open as a quilt.
-bool isQuiltSpec(const std::string& spec);
 
 }  // namespace ht::server

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "bvh/gpu_layout.h"
+#include "frame_io/quilt_file.h"
 #include "scene/load_scene.h"
 #include "server/path_rules.h"
 
@@ -65,15 +66,24 @@ std::shared_ptr<gpu::Renderer> SceneLibrary::adopt(gpu::Renderer* renderer) {
                                         [&worker = worker_](gpu::Renderer* r) { worker.dispose([r] { delete r; }); });
 }
 
+void SceneLibrary::checkMemoryBudget(std::uint64_t bytes) const {
+  if (bytes > limits_.memoryBudget) {
+    throw LimitExceeded("scene needs about " + std::to_string(bytes >> 20) + " MiB (limits.max_scene_memory_bytes = " +
+                        std::to_string(limits_.memoryBudget >> 20) + " MiB)");
+  }
+}
+
 std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, const std::string& key,
                                                   const SceneSource& source) {
   auto content = std::make_shared<SceneContent>();
   content->contentKey = key;
   const auto start = std::chrono::steady_clock::now();
-  if (isQuiltSpec(source.name)) {  // a quilt image: shown by interleaving, nothing to trace
+  if (frame_io::isQuiltImageFile(source.name)) {  // a quilt image: shown by interleaving, nothing to trace
     content->quilt = std::make_shared<const QuiltContent>(std::filesystem::path(source.name).filename().string(),
                                                           asBytes(source.bytes));
     content->loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    content->memoryBytes = content->quilt->memoryBytes();
+    checkMemoryBudget(content->memoryBytes);
     return content;
   }
   SceneLimits limits;  // counts refused from the file's headers, before the memory is allocated
@@ -87,11 +97,7 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
                         " triangles (limits.max_triangles = " + std::to_string(limits_.maxTriangles) + ")");
   }
   content->memoryBytes = sceneMemoryBytes(content->scene);
-  if (content->memoryBytes > limits_.memoryBudget) {
-    throw LimitExceeded("scene needs about " + std::to_string(content->memoryBytes >> 20) +
-                        " MiB (limits.max_scene_memory_bytes = " + std::to_string(limits_.memoryBudget >> 20) +
-                        " MiB)");
-  }
+  checkMemoryBudget(content->memoryBytes);
   // The BVH is built here, on the loading call's thread: the render worker only uploads it, so other clients'
   // frames wait for an upload, not for a build (loads never block other clients' frames, docs/SERVICE.md §5).
   bvh::GpuBvh bvh = bvh::buildGpuBvh(content->scene.positions, content->scene.triangles, {});
@@ -143,7 +149,8 @@ std::shared_ptr<const SceneSession> SceneLibrary::open(const std::string& client
   std::string key = sourceKey(source);
   const bool builtin = key == source.name;
   // A quilt's layout comes from its name as much as from its bytes (server/quilt_content.h).
-  if (!builtin && isQuiltSpec(source.name)) key += "\n" + std::filesystem::path(source.name).filename().string();
+  if (!builtin && frame_io::isQuiltImageFile(source.name))
+    key += "\n" + std::filesystem::path(source.name).filename().string();
   bool reused = false;
   std::shared_ptr<SceneContent> content = contentFor(client, key, source, reused);
   std::lock_guard lock(mutex_);

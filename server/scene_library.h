@@ -38,7 +38,7 @@ struct SceneContent {
                        // (a moved node must not re-centre the whole view, docs/REUSE.md §6 item 9)
   std::shared_ptr<gpu::Renderer> renderer;  // used on the render worker thread only, and destroyed there
   double loadMs = 0.0;
-  std::uint64_t memoryBytes = 0;  // estimate: sceneMemoryBytes(scene)
+  std::uint64_t memoryBytes = 0;  // estimate: sceneMemoryBytes(scene), or the decoded quilt image
   std::string editedBy;  // "" = loaded content, shared by every session of the same bytes; else the one session
                          // whose edits (UpdateScene nodes / lights) it carries
   std::shared_ptr<const QuiltContent> quilt;  // a quilt image (server/quilt_content.h): no scene, no renderer
@@ -133,6 +133,7 @@ class SceneLibrary {
   using Building = std::shared_future<std::shared_ptr<SceneContent>>;
 
   std::shared_ptr<SceneContent> build(const std::string& client, const std::string& key, const SceneSource& source);
+  void checkMemoryBudget(std::uint64_t bytes) const;  // LimitExceeded over limits.max_scene_memory_bytes
   std::shared_ptr<SceneContent> contentFor(const std::string& client, const std::string& key, const SceneSource& source,
                                            bool& reused);
   std::shared_ptr<gpu::Renderer> adopt(gpu::Renderer* renderer);  // owned, destroyed on the render worker

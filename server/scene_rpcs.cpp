@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "frame_io/quilt_file.h"
 #include "scene/scene_edits.h"
 #include "scene/scene_source.h"
 #include "server/display_messages.h"
@@ -33,8 +34,11 @@ void checkSceneExtension(const std::string& fileName) {
   checkFileNameComponent("info.file_name", fileName);
   const auto dot = fileName.rfind('.');
   const std::string ext = dot == std::string::npos ? "" : fileName.substr(dot);
-  if (ext != ".glb" && ext != ".gltf" && ext != ".obj" && ext != ".off") {
-    throw BadRequest("info.file_name", "'" + fileName + "' must end in .glb, .gltf, .obj or .off");
+  if (ext != ".glb" && ext != ".gltf" && ext != ".obj" && ext != ".off" && !frame_io::isQuiltImageFile(fileName)) {
+    throw BadRequest("info.file_name",
+                     "'" + fileName +
+                         "' must end in .glb, .gltf, .obj or .off (a scene), or .png or .exr (a quilt "
+                         "image named NAME_qs{columns}x{rows}a{aspect}.png)");
   }
 }
 
@@ -151,9 +155,14 @@ grpc::Status HolotraceService::UploadScene(grpc::ServerContext* context,
     if (watch.stalled()) throw ClientGone("upload stalled (limits.upload_idle_seconds)");
     if (context->IsCancelled()) throw ClientGone("upload cancelled");
     if (bytes.size() != total) throw BadRequest("data", "fewer bytes than info.total_bytes");
-    // Loaded from memory under the client's file name (an uploaded .gltf can only use data: URIs).
+    // Loaded from memory under the client's file name (an uploaded .gltf can only use data: URIs; a quilt's layout
+    // comes from the name's _qs tag or the file's metadata, docs/SERVICE.md §12).
     const SceneSource source{fileName, std::string(bytes.begin(), bytes.end()), {}, {}};
-    fillHandle(*state_.scenes.open(clientKey(*context), source), *response);
+    try {
+      fillHandle(*state_.scenes.open(clientKey(*context), source), *response);
+    } catch (const ConfigError& e) {  // a quilt without a usable layout: the name is the client's to fix
+      throw BadRequest("info.file_name", e.what());
+    }
     return grpc::Status::OK;
   });
 }

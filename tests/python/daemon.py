@@ -70,11 +70,12 @@ class Daemon:
     """`with Daemon() as d:` ... d.target, d.output_root, d.scene_root. Raises on leaving if the daemon did not exit 0
     on SIGTERM (the daemon's own clean-shutdown contract, docs/SERVICE.md "Signals")."""
 
-    def __init__(self, exe=None, limits=None, tcp=False):
+    def __init__(self, exe=None, limits=None, tcp=False, config=None):
         self.exe = exe or os.environ.get("HOLOTRACED")
         if not self.exe or not os.access(self.exe, os.X_OK):
             raise RuntimeError(f"no holotraced binary: set HOLOTRACED (got {self.exe!r})")
         self.limits = limits or {}
+        self.extra_config = config or {}  # more daemon config fields, e.g. {"present": ["tiny"], "x_display": ":5"}
         self.tcp_target = f"127.0.0.1:{free_loopback_port()}" if tcp else None
         self.process = None
         self.exit_code = None
@@ -97,7 +98,7 @@ class Daemon:
         self.target = "unix:" + self.socket
         listen = [self.target] + ([self.tcp_target] if self.tcp_target else [])
         config = {"displays_dir": "displays", "scene_root": "scenes", "output_root": "out", "listen": listen,
-                  "limits": self.limits}
+                  "limits": self.limits, **self.extra_config}
         config_path = os.path.join(self.dir, "holotraced.json")
         with open(config_path, "w") as f:
             json.dump(config, f)
@@ -156,4 +157,45 @@ class Daemon:
         self._cleanup()
         if exc_type is None and code != 0:
             raise AssertionError(f"holotraced exited with {code} on SIGTERM (expected 0):\n{log}")
+        return False
+
+
+class Xvfb:
+    """`with Xvfb(64, 48) as x:` ... x.display (":N"): a private X server with one screen of that size, whose RandR
+    monitor "screen" is the panel a daemon's display sink picks by size. Started on a free display number
+    (-displayfd), with -noreset, ended by its PID (SIGTERM, SIGKILL after 10 s)."""
+
+    def __init__(self, width, height):
+        self.size = f"{width}x{height}x24"
+        self.process = None
+
+    def __enter__(self):
+        read_end, write_end = os.pipe()
+        try:
+            self.process = subprocess.Popen(
+                ["Xvfb", "-displayfd", str(write_end), "-screen", "0", self.size, "-noreset", "-nolisten", "tcp"],
+                pass_fds=(write_end,), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL)
+        except FileNotFoundError:
+            os.close(read_end)
+            os.close(write_end)
+            raise RuntimeError("no Xvfb: install the xvfb package (scripts/install-deps.sh)") from None
+        os.close(write_end)
+        number = b""
+        with os.fdopen(read_end, "rb") as announced:  # Xvfb writes the display number once it accepts clients
+            number = announced.readline().strip()
+        if not number.isdigit():
+            self.__exit__(None, None, None)
+            raise RuntimeError("Xvfb did not start (no display number announced)")
+        self.display = ":" + number.decode()
+        return self
+
+    def __exit__(self, exc_type, exc, tb):
+        if self.process is not None and self.process.poll() is None:
+            self.process.send_signal(signal.SIGTERM)
+            try:
+                self.process.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait()
         return False

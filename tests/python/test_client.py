@@ -8,10 +8,20 @@ import unittest
 
 import numpy as np
 
-from daemon import Daemon
+from daemon import Daemon, Xvfb
 from demo_model import demo_glb
-from holotrace_client import (Client, InvalidArgument, NotFound, PermissionDenied, decode_png, read_png,
+from holotrace_client import (Client, InvalidArgument, NotFound, PermissionDenied, decode_png, encode_png, read_png,
                               rotation_y, srgb_encode, translation)
+
+QUILT_NAME = "take_qs4x3a1.333.png"  # the vendor's naming: 4 columns, 3 rows, rendered at the 64x48 panel's aspect
+
+
+def quilt_png():
+    """A 4x3 quilt of 16x12 views for the 64x48 panel, each view its own colour ramp (no holotrace metadata)."""
+    y, x = np.mgrid[0:36, 0:64]
+    view = (x // 16) + 4 * (2 - y // 12)  # view 0 bottom-left
+    rgb = np.stack([(x * 4 + view * 20) % 256, (y * 7) % 256, (view * 21) % 256], axis=-1)
+    return encode_png(rgb.astype(np.uint8))
 
 
 class DaemonTest(unittest.TestCase):
@@ -175,12 +185,83 @@ class DaemonTest(unittest.TestCase):
         with self.assertRaises(InvalidArgument):
             self.client.update_scene(scene, lights={5: {"intensity": 1.0}})
 
+    # ---- quilt images and panels (docs/SERVICE.md §11-12) -----------------------------------------------------
+
+    def test_upload_quilt_renders_as_the_loaded_file(self):
+        with open(os.path.join(self.daemon.scene_root, QUILT_NAME), "wb") as f:
+            f.write(quilt_png())
+        loaded = self.client.load_scene(QUILT_NAME)
+        uploaded = self.client.upload_scene(quilt_png(), QUILT_NAME)
+        self.assertEqual((uploaded.triangles, uploaded.reused), (0, True))  # the loaded content, shared
+        panel = self.client.render(uploaded, "tiny")
+        np.testing.assert_array_equal(panel, self.client.render(loaded, "tiny"))
+        self.assertGreater(len(np.unique(panel[0, :, :, 0])), 16)  # the views interleaved, not one flat view
+        with self.assertRaises(InvalidArgument) as caught:
+            self.client.upload_scene(quilt_png())  # a PNG without a _qs name or holotrace metadata: no layout
+        self.assertIn("info.file_name", caught.exception.details)
+        self.assertIn("_qs{columns}x{rows}a{aspect}", caught.exception.details)
+        wide = self.client.upload_scene(quilt_png(), "wide_qs4x3a1.777.png")  # made for a 16:9 panel
+        with self.assertRaises(InvalidArgument) as caught:
+            self.client.render(wide, "tiny")
+        self.assertIn("quilt aspect", caught.exception.details)
+
+    def test_present_needs_a_panel_sink(self):
+        with self.assertRaises(InvalidArgument) as caught:  # this daemon's config lists no "present" panels
+            self.client.present(self.scene, "tiny")
+        self.assertIn("has no panel sink", caught.exception.details)
+        self.assertEqual(self.client.status().panels, [])
+        for bad in ({"frames": 0}, {"frames": 1.5}, {"rate": -1.0}):
+            with self.assertRaises(ValueError):
+                self.client.present(self.scene, "tiny", **bad)
+
     def test_closed_client(self):
         with Client(self.daemon.target) as client:
             self.assertTrue(client.displays())
         self.assertTrue(client.closed)
         with self.assertRaises(ValueError):
             client.load_scene("cube.obj")
+
+
+class PresentOnXvfbTest(unittest.TestCase):
+    """present() against a daemon whose "tiny" display has a panel sink on a private Xvfb (a 64x48 screen: its one
+    RandR monitor is the panel, picked by size). The pixels on the monitor are compared with `holotrace interleave`'s
+    panel by the C++ test PresentQuiltTests; here the client's side: progress records, the sink's status."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.xvfb = Xvfb(64, 48).__enter__()
+        try:
+            cls.daemon = Daemon(config={"present": ["tiny"], "x_display": cls.xvfb.display}).__enter__()
+        except BaseException:
+            cls.xvfb.__exit__(None, None, None)
+            raise
+        cls.client = Client(cls.daemon.target)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.client.close()
+        cls.daemon.__exit__(None, None, None)
+        cls.xvfb.__exit__(None, None, None)
+
+    def test_present_an_uploaded_quilt_with_progress(self):
+        quilt = self.client.upload_scene(quilt_png(), QUILT_NAME)
+        seen = []
+        done = self.client.present(quilt, "tiny", frames=3, rate=30.0, progress=seen.append)
+        self.assertEqual(seen, done)
+        self.assertEqual([(p.frames_done, p.frames_total) for p in done], [(1, 3), (2, 3), (3, 3)])
+        self.assertEqual([p.panel.display_id for p in done], ["tiny"] * 3)
+        self.assertEqual(done[-1].panel.submitted, 3)
+        self.assertEqual([p.frame_id for p in done], sorted(set(p.frame_id for p in done)))
+        deadline = time.monotonic() + 20
+        panel = self.client.status().panels[0]
+        while not (panel.attached and panel.presented >= 1) and time.monotonic() < deadline:
+            time.sleep(0.05)
+            panel = self.client.status().panels[0]
+        self.assertTrue(panel.attached, panel.last_error)
+        self.assertGreaterEqual(panel.presented, 1)
+        self.assertEqual((panel.geometry, panel.x_display), ("64x48+0+0", self.xvfb.display))
+        with self.assertRaises(InvalidArgument):  # the wall has no sink (and no single panel image)
+            self.client.present(quilt, "wall")
 
 
 if __name__ == "__main__":

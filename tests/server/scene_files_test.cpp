@@ -141,32 +141,17 @@ TEST_F(SceneFilesTest, AnInstancedGlbIsRefusedBeforeLoading) {
   EXPECT_LT(after.resident_kib(), before.resident_kib() + 100'000);
 }
 
-grpc::Status uploadWhole(v1::Holotrace::Stub& stub, const std::string& name, const std::string& bytes,
-                         v1::SceneHandle* handle) {
-  grpc::ClientContext context;
-  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
-  auto writer = stub.UploadScene(&context, handle);
-  v1::UploadSceneChunk chunk;
-  chunk.mutable_info()->set_file_name(name);
-  chunk.mutable_info()->set_total_bytes(bytes.size());
-  writer->Write(chunk);
-  chunk.set_data(bytes);
-  writer->Write(chunk);
-  writer->WritesDone();
-  return writer->Finish();
-}
-
 // Item 10: upload errors printed the daemon's absolute work path, and a full work directory was reported as "output
 // disk full". Uploads load from memory now: errors name the client's file, and the work directory is not written
 // (here it is gone altogether).
 TEST_F(SceneFilesTest, UploadsNeitherWriteNorNameTheWorkDirectory) {
   std::filesystem::remove_all(files_->config().workDir);
   v1::SceneHandle handle;
-  const grpc::Status broken = uploadWhole(*stub_, "broken.obj", "v 0 0 0\nf 1 2 7\n", &handle);
+  const grpc::Status broken = uploadScene(*stub_, "broken.obj", "v 0 0 0\nf 1 2 7\n", &handle);
   EXPECT_EQ(broken.error_code(), StatusCode::INVALID_ARGUMENT) << broken.error_message();
   EXPECT_EQ(broken.error_message().rfind("broken.obj: ", 0), 0u) << broken.error_message();
   EXPECT_EQ(broken.error_message().find(files_->dir.path.string()), std::string::npos) << broken.error_message();
-  const grpc::Status good = uploadWhole(*stub_, "cube.obj", cubeObj(), &handle);
+  const grpc::Status good = uploadScene(*stub_, "cube.obj", cubeObj(), &handle);
   EXPECT_TRUE(good.ok()) << good.error_message();
   EXPECT_EQ(handle.triangles(), 12u);
 }

@@ -113,6 +113,22 @@ grpc::Status loadScene(v1::Holotrace::Stub& stub, const std::string& path, v1::S
   return stub.LoadScene(&context, request, handle ? handle : &ignored);
 }
 
+grpc::Status uploadScene(v1::Holotrace::Stub& stub, const std::string& name, const std::string& bytes,
+                         v1::SceneHandle* handle) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
+  v1::SceneHandle ignored;
+  auto writer = stub.UploadScene(&context, handle ? handle : &ignored);
+  v1::UploadSceneChunk chunk;
+  chunk.mutable_info()->set_file_name(name);
+  chunk.mutable_info()->set_total_bytes(bytes.size());
+  writer->Write(chunk);
+  chunk.set_data(bytes);
+  writer->Write(chunk);
+  writer->WritesDone();
+  return writer->Finish();
+}
+
 v1::RenderRequest tinyRequest(const std::string& sceneId, v1::PixelFormat format) {
   v1::RenderRequest request;
   request.set_scene_id(sceneId);

@@ -51,6 +51,9 @@ bool readFrame(grpc::ClientReaderInterface<v1::FramePart>& reader, ReceivedFrame
 
 std::unique_ptr<v1::Holotrace::Stub> connect(const std::string& address);
 grpc::Status loadScene(v1::Holotrace::Stub& stub, const std::string& path, v1::SceneHandle* handle = nullptr);
+// UploadScene of `bytes` named `name` in one data message; returns the final status.
+grpc::Status uploadScene(v1::Holotrace::Stub& stub, const std::string& name, const std::string& bytes,
+                         v1::SceneHandle* handle = nullptr);
 v1::RenderRequest tinyRequest(const std::string& sceneId, v1::PixelFormat format = v1::PIXEL_FORMAT_RGBA8);
 // Renders one frame; returns the final status.
 grpc::Status renderOne(v1::Holotrace::Stub& stub, const v1::RenderRequest& request, ReceivedFrame* frame = nullptr);

@@ -6,8 +6,8 @@
         frame = hc.render(scene, "builtin:portrait", spp=1)   # numpy uint8 (views, height, width, 4)
 """
 
-from .client import (CaptureProgress, Client, DaemonStatus, Display, DisplayInfo, Scene, SceneUpdate,
-                     default_target, normalize_target)
+from .client import (CaptureProgress, Client, DaemonStatus, Display, DisplayInfo, PanelStatus, PresentProgress, Scene,
+                     SceneUpdate, default_target, normalize_target)
 from .errors import (Cancelled, DeadlineExceeded, HolotraceError, Internal, InvalidArgument, NotFound,
                      PermissionDenied, ProtocolError, ResourceExhausted, Unavailable, Unimplemented)
 from .frames import Frame, FrameAssembler
@@ -19,8 +19,9 @@ __version__ = "0.1.0"
 
 __all__ = [
     "CaptureProgress", "Cancelled", "Client", "DaemonStatus", "DeadlineExceeded", "Display", "DisplayInfo", "Frame",
-    "FrameAssembler", "FrameStream", "HolotraceError", "Internal", "InvalidArgument", "NotFound", "PermissionDenied",
-    "ProtocolError", "ResourceExhausted", "Scene", "SceneUpdate", "Unavailable", "Unimplemented", "decode_png",
-    "default_target", "encode_png", "identity", "normalize_target", "read_png", "rotation_x", "rotation_y",
-    "rotation_z", "scaling", "srgb_encode", "translation", "world_values", "write_png",
+    "FrameAssembler", "FrameStream", "HolotraceError", "Internal", "InvalidArgument", "NotFound", "PanelStatus",
+    "PermissionDenied", "PresentProgress", "ProtocolError", "ResourceExhausted", "Scene", "SceneUpdate",
+    "Unavailable", "Unimplemented", "decode_png", "default_target", "encode_png", "identity", "normalize_target",
+    "read_png", "rotation_x", "rotation_y", "rotation_z", "scaling", "srgb_encode", "translation", "world_values",
+    "write_png",
 ]

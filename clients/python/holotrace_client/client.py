@@ -89,6 +89,31 @@ class CaptureProgress:
 
 
 @dataclass
+class PanelStatus:
+    """A display sink of the daemon (a panel it shows frames on, docs/SERVICE.md §11)."""
+    display_id: str
+    attached: bool            # a window + swapchain is up on the panel's monitor
+    monitor: str = ""         # RandR monitor name ("" while detached)
+    geometry: str = ""        # "WxH+X+Y" on the X screen
+    present_mode: str = ""    # "MAILBOX" or "FIFO"
+    submitted: int = 0        # frames given to the sink
+    presented: int = 0        # frames queued for display
+    dropped: int = 0          # frames replaced by newer ones before they were shown
+    last_error: str = ""      # why it is (or last was) detached
+    x_display: str = ""
+
+
+@dataclass
+class PresentProgress:
+    """One frame handed to a panel by present(): `panel` is the sink right after."""
+    frame_id: int
+    frames_done: int
+    frames_total: int
+    render_ms: float
+    panel: PanelStatus
+
+
+@dataclass
 class DaemonStatus:
     version: str
     active_streams: int
@@ -97,6 +122,7 @@ class DaemonStatus:
     pid: int = 0
     resident_kib: int = 0
     threads: int = 0
+    panels: list = field(default_factory=list)  # PanelStatus of each display sink
 
 
 def _id(thing, kind):
@@ -115,6 +141,25 @@ def _display(summary):
 def _scene(handle):
     return Scene(handle.scene_id, handle.triangles, list(handle.nodes), handle.lights, handle.reused,
                  handle.bvh_build_ms, handle.load_ms, handle.sah_cost)
+
+
+def _panel(p):
+    return PanelStatus(p.display_id, p.attached, p.monitor, p.geometry, p.present_mode, p.submitted, p.presented,
+                       p.dropped, p.last_error, p.x_display)
+
+
+# The first bytes of the files upload_scene recognises without a name: (magic, default name).
+_CONTENT_NAMES = ((b"glTF", "upload.glb"), (b"\x89PNG\r\n\x1a\n", "upload.png"), (b"\x76\x2f\x31\x01", "upload.exr"))
+
+
+def _upload_name(data):
+    for magic, name in _CONTENT_NAMES:
+        if data.startswith(magic):
+            return name
+    if data.lstrip()[:1] == b"{":
+        return "upload.gltf"
+    raise ValueError("upload_scene: name the file type with file_name='x.obj' (or .off/.glb/.gltf, or a quilt "
+                     "'name_qs8x6a0.75.png')")
 
 
 def _vec3(values, name):
@@ -188,7 +233,8 @@ class Client:
         r = self._unary("Status", pb.StatusRequest())
         devices = [{"name": d.name, "frames_rendered": d.frames_rendered, "last_frame_ms": d.last_frame_ms,
                     "mean_frame_ms": d.mean_frame_ms, "queued": d.queued} for d in r.devices]
-        return DaemonStatus(r.version, r.active_streams, r.scenes_loaded, devices, r.pid, r.resident_kib, r.threads)
+        return DaemonStatus(r.version, r.active_streams, r.scenes_loaded, devices, r.pid, r.resident_kib, r.threads,
+                            [_panel(p) for p in r.panels])
 
     # ---- displays and scenes ------------------------------------------------------------------------------------
 
@@ -213,21 +259,19 @@ class Client:
         return _scene(self._unary("LoadScene", pb.LoadSceneRequest(path=os.fspath(path))))
 
     def upload_scene(self, data, file_name=None):
-        """Sends scene bytes (.glb, .gltf with embedded buffers, .obj, .off) to the daemon. `data`: bytes, or a path
-        of a local file (then `file_name` defaults to its name). For bytes without `file_name` the type is taken
-        from the content: GLB ('glTF' magic) or glTF JSON ('{'); anything else needs `file_name`."""
+        """Sends scene bytes (.glb, .gltf with embedded buffers, .obj, .off) or a quilt image (.png, .exr) to the
+        daemon. `data`: bytes, or a path of a local file (then `file_name` defaults to its name). A quilt's layout comes
+        from the name's `_qs{columns}x{rows}a{aspect}` tag (`file_name="take_qs8x6a0.75.png"`) or the metadata
+        holotrace embeds in its quilts; its frames are the quilt interleaved for the display asked for. For bytes
+        without `file_name` the type is taken from the content: GLB ('glTF' magic), glTF JSON ('{'), PNG or EXR
+        (then only embedded metadata can give the layout); anything else needs `file_name`."""
         if isinstance(data, (str, os.PathLike)):
             file_name = file_name or os.path.basename(os.fspath(data))
             with open(data, "rb") as f:
                 data = f.read()
         data = bytes(data)
         if file_name is None:
-            if data[:4] == b"glTF":
-                file_name = "upload.glb"
-            elif data.lstrip()[:1] == b"{":
-                file_name = "upload.gltf"
-            else:
-                raise ValueError("upload_scene: name the file type with file_name='x.obj' (or .off/.glb/.gltf)")
+            file_name = _upload_name(data)
 
         def chunks():
             yield pb.UploadSceneChunk(info=pb.UploadInfo(file_name=file_name, total_bytes=len(data)))
@@ -343,15 +387,41 @@ class Client:
         request = pb.CaptureRequest(
             render=self._render_request(scene, display, spp, seed, quilt, "rgba8", refine_spp, refine_contrast),
             name=name, frames=int(frames), format=capture_format, layout=capture_layout)
+        return self._progress_call("Capture", request, lambda p: CaptureProgress(p.frames_done, p.frames_total, p.file),
+                                   progress)
+
+    def present(self, scene, display, frames=1, rate=0.0, spp=0, seed=0, refine_spp=0, refine_contrast=0.0,
+                progress=None):
+        """Present: the daemon renders `frames` frames (seed, seed + 1, ...) of `display` and shows each on that
+        display's panel, at `rate` frames per second (0 = as fast as they render); the last one stays up after the
+        call. The display needs a panel sink (the daemon config's "present", docs/SERVICE.md §11); without one the
+        daemon answers InvalidArgument. A quilt image session (load_scene / upload_scene of a quilt) plays the quilt.
+        progress(PresentProgress) is called as each frame reaches the sink. Returns the PresentProgress records."""
+        self._check_open()
+        if isinstance(frames, bool) or not isinstance(frames, int) or frames < 1:
+            raise ValueError(f"frames must be an integer >= 1, got {frames!r}")
+        if not rate >= 0:
+            raise ValueError(f"rate must be >= 0 frames per second (0 = as fast as they render), got {rate!r}")
+        request = pb.PresentRequest(
+            render=self._render_request(scene, display, spp, seed, False, "rgba8", refine_spp, refine_contrast),
+            frames=frames, frames_per_second=float(rate))
+        return self._progress_call(
+            "Present", request,
+            lambda p: PresentProgress(p.frame_id, p.frames_done, p.frames_total, p.render_ms, _panel(p.panel)),
+            progress)
+
+    def _progress_call(self, rpc, request, record_of, progress):
+        """A server-streaming call of progress messages: each becomes record_of(message), goes to progress(record)
+        (if given) as it arrives, and all are returned; a failure raises its typed error."""
         done = []
         try:
-            for p in self._stub.Capture(request):
-                record = CaptureProgress(p.frames_done, p.frames_total, p.file)
+            for message in getattr(self._stub, rpc)(request):
+                record = record_of(message)
                 done.append(record)
                 if progress is not None:
                     progress(record)
         except grpc.RpcError as error:
-            raise error_from_rpc(error, "Capture") from None
+            raise error_from_rpc(error, rpc) from None
         return done
 
 
@@ -369,5 +439,6 @@ class _Timeout(grpc.RpcError):
         return self._message
 
 
-__all__ = ["Client", "Display", "DisplayInfo", "Scene", "SceneUpdate", "CaptureProgress", "DaemonStatus",
+__all__ = ["Client", "Display", "DisplayInfo", "Scene", "SceneUpdate", "CaptureProgress", "DaemonStatus", "PanelStatus",
+           "PresentProgress",
            "HolotraceError", "default_target", "normalize_target"]
