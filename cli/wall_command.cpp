@@ -36,6 +36,7 @@ const char* const kCommand = "holotrace wall";
 constexpr std::uint32_t kMaxSpp = 4096, kMaxFrames = 100000000, kMaxSeconds = 86400 * 365;
 constexpr std::uint32_t kDefaultFrames = 100, kDefaultSwapTimeoutMs = 100;
 constexpr auto kAttachTimeout = std::chrono::seconds(30);
+constexpr auto kAttachGrace = std::chrono::milliseconds(2500);  // the sink retries every second
 constexpr auto kPresentTimeout = std::chrono::seconds(5);
 
 const std::array<OptionSpec, 16> kSpecs = {{
@@ -180,12 +181,17 @@ present::PanelSinkOptions sinkOptions(const WallOptions& o, const RankScreen& sc
   return s;
 }
 
+// Waits until the sink shows its window. A failed attach (no such monitor, no X server) ends the wait after the
+// sink's first retry, so a wrong layout fails in seconds, not after kAttachTimeout.
 void waitForAttach(const present::PanelSink& sink, const std::string& prefix) {
-  const auto until = std::chrono::steady_clock::now() + kAttachTimeout;
+  const auto start = std::chrono::steady_clock::now();
   while (!sink.stats().attached) {
-    if (std::chrono::steady_clock::now() > until) {
-      throw present::PresentError("no window on the wall's monitor after " + std::to_string(kAttachTimeout.count()) +
-                                  " s: " + sink.stats().lastError);
+    const auto waited = std::chrono::steady_clock::now() - start;
+    const std::string error = sink.stats().lastError;
+    if (waited > kAttachTimeout || (!error.empty() && waited > kAttachGrace)) {
+      throw present::PresentError(
+          "no window on the wall's monitor: " +
+          (error.empty() ? "none after " + std::to_string(kAttachTimeout.count()) + " s" : error));
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }

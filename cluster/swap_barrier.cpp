@@ -21,6 +21,7 @@ namespace ht::cluster {
 namespace {
 
 constexpr std::chrono::microseconds kPollSleep{10};
+constexpr int kClockTag = 7100;  // the clock exchange's messages (the wall uses no other point-to-point tag)
 
 void pollSleep() {
   static thread_local const bool slackSet = prctl(PR_SET_TIMERSLACK, 1000UL, 0, 0, 0) == 0;  // 1 us, this thread
@@ -29,6 +30,32 @@ void pollSleep() {
 }
 
 }  // namespace
+void synchronizeJobClock(Communicator& comm, JobClock& clock, int rounds) {
+  using SteadyClock = std::chrono::steady_clock;
+  comm.barrier();
+  if (comm.rank() == 0) {
+    clock.restart();
+    for (int r = 1; r < comm.size(); ++r) {
+      for (int k = 0; k < rounds; ++k) {
+        (void)receiveRecord<std::uint8_t>(comm, r, kClockTag);
+        sendRecord(comm, r, kClockTag, clock.nowUs());
+      }
+    }
+  } else {
+    auto best = SteadyClock::duration::max();
+    for (int k = 0; k < rounds; ++k) {
+      const auto sent = SteadyClock::now();
+      sendRecord(comm, 0, kClockTag, std::uint8_t{1});
+      const auto rootUs = receiveRecord<std::int64_t>(comm, 0, kClockTag);
+      const auto back = SteadyClock::now();
+      if (back - sent >= best) continue;
+      best = back - sent;
+      clock.setEpoch(sent + (back - sent) / 2 - std::chrono::microseconds(rootUs));
+    }
+  }
+  comm.barrier();
+}
+
 void SwapBarrier::enter(std::uint32_t frame, std::int64_t entryUs) {
   if (frame != entered_) {
     throw ClusterError("swap barrier: frame " + std::to_string(frame) + " entered after frame " +

@@ -15,13 +15,13 @@
 
 namespace ht::cluster {
 
-// Microseconds since the job's common start: every rank restarts it as it leaves the same blocking barrier, so the
-// clocks of the ranks agree to within that barrier's exit skew (microseconds over shared memory, about one message
-// latency over a network), whatever the hosts' clocks say.
+// Microseconds since the job's common start, on every rank: synchronizeJobClock() sets each rank's epoch to the local
+// time at which rank 0's clock started, so the ranks' timestamps compare whatever the hosts' clocks say.
 class JobClock {
  public:
   JobClock() : epoch_(std::chrono::steady_clock::now()) {}
   void restart() { epoch_ = std::chrono::steady_clock::now(); }
+  void setEpoch(std::chrono::steady_clock::time_point epoch) { epoch_ = epoch; }
   std::int64_t nowUs() const { return toUs(std::chrono::steady_clock::now()); }
   std::int64_t toUs(std::chrono::steady_clock::time_point t) const {
     return std::chrono::duration_cast<std::chrono::microseconds>(t - epoch_).count();
@@ -30,6 +30,12 @@ class JobClock {
  private:
   std::chrono::steady_clock::time_point epoch_;
 };
+
+// Starts rank 0's clock and aligns every other rank's to it (Cristian's method: the round trip to rank 0 with the
+// shortest time of `rounds` gives the offset to within half of it, microseconds over shared memory, so a rank the
+// scheduler delayed in one exchange does not shift its clock). Collective; ends with a barrier. A plain barrier exit
+// instead left the clocks up to 27 ms apart on the loaded 2-core test machine (docs/CLUSTER.md §7).
+void synchronizeJobClock(Communicator& comm, JobClock& clock, int rounds = 16);
 
 // What a completed swap barrier tells every rank about one frame.
 struct SwapEntries {

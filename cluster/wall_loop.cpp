@@ -25,8 +25,7 @@ class WallRun {
       : comm_(comm), options_(options), callbacks_(callbacks), clock_(clock), swap_(comm) {}
 
   std::vector<WallFrameRecord> run() {
-    comm_.barrier();
-    clock_.restart();
+    synchronizeJobClock(comm_, clock_);
     std::uint32_t next = 0;
     while (wantsFrame(next)) next = frame(next, isLast(next));
     const std::uint32_t end = agreeOnEnd(next);

@@ -64,7 +64,7 @@ struct WallCallbacks {
   std::function<void(const std::string& line)> warn;  // one line per timed-out or late frame
 };
 
-// Runs the loop on this rank; `clock` is restarted as all ranks leave a blocking barrier at the start. Returns one
+// Runs the loop on this rank; `clock` is synchronised with rank 0's at the start (synchronizeJobClock). Returns one
 // record per frame of the run (the same count on every rank).
 std::vector<WallFrameRecord> runWallLoop(Communicator& comm, const WallLoopOptions& options,
                                          const WallCallbacks& callbacks, JobClock& clock);
