@@ -4,9 +4,8 @@
 // Polling: a non-blocking collective progresses only inside MPI calls on every rank, so a waiting rank tests it
 // again every few microseconds. Measured on 2 cores with 2 ranks (docs/BENCHMARKS.md "Live wall"): sleeping 20 us
 // between tests with the default 50 us timer slack made the last rank's wait ~240 us; spinning with yield made it
-// ~50 us but the first rank, having burnt its CPU share while spinning, then saw the barrier complete ~7.6 ms late
-// (the scheduler ran the other rank's render threads first). So the polling thread sleeps 10 us with a 1 us timer
-// slack (prctl PR_SET_TIMERSLACK): cheap for the cores, and both ranks see the barrier within tens of microseconds.
+// ~50 us but takes a core from ranks still rendering (3 ranks on 2 cores). So the polling thread sleeps 10 us with a
+// 1 us timer slack (prctl PR_SET_TIMERSLACK): ~80-130 us, cheap for the cores.
 #include "cluster/swap_barrier.h"
 
 #include <sys/prctl.h>
