@@ -179,7 +179,14 @@ TEST_F(WallMpirun, AKilledRankEndsEveryRankWithinSeconds) {
   const ProcessResult m = launchMpirun(args);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_NE(m.exitCode, 0) << m.out;
-  EXPECT_LT(seconds, 30.0) << m.err;
+  EXPECT_LT(seconds, 60.0) << m.err;  // the whole job, start-up included (slow under the ASan suite's load)
+  // After the kill rank 0 flips alone, one timed-out frame per 100 ms swap timeout: the count of those lines bounds
+  // how long it outlived rank 1.
+  std::size_t alone = 0;
+  for (std::size_t at = m.err.find("presented without the late rank"); at != std::string::npos;
+       at = m.err.find("presented without the late rank", at + 1))
+    ++alone;
+  EXPECT_LT(alone, 50u) << "rank 0 kept flipping alone for more than 5 s after rank 1 died\n" << m.err;
 }
 
 }  // namespace
