@@ -20,6 +20,7 @@
 #include "cli/render_command.h"
 #include "cli/show_command.h"
 #include "cli/simulate_command.h"
+#include "cli/wall_command.h"
 #include "common/error.h"
 
 #ifndef HT_VERSION
@@ -33,6 +34,8 @@ constexpr std::array kCommands = {
     Command{"render", "render a display frame (native interleaved panel image) to PNG/EXR", renderHelp, runRender},
     Command{"show", "render a display frame and keep it on the panel's monitor until Ctrl-C (X11 + Vulkan)", showHelp,
             runShow},
+    Command{"wall", "live wall under mpirun: each rank shows its projectors, all flip together (swap barrier)",
+            wallHelp, runWall},
     Command{"capture", "render a sequence of frames to NAME_fNNNN files (spread over MPI ranks under mpirun)",
             captureHelp, runCapture},
     Command{"info", "list Vulkan devices, the one holotrace picks, builtin displays and scenes", infoHelp, runInfo},

@@ -32,28 +32,6 @@ double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// Rank 0 loads the scene and broadcasts its bytes; every other rank decodes them (no shared filesystem needed).
-struct SharedScene {
-  Scene scene;
-  std::string digest;  // SHA-256 of the bytes, for the start-up check
-  double loadMs = 0.0;
-};
-
-SharedScene shareScene(cluster::Communicator& comm, const std::string& spec) {
-  const auto start = Clock::now();
-  SharedScene shared;
-  std::vector<std::uint8_t> bytes;
-  if (comm.rank() == 0) {
-    shared.scene = loadScene(spec);
-    bytes = cluster::encodeScene(shared.scene);
-  }
-  comm.broadcast(bytes, 0);
-  if (comm.rank() != 0) shared.scene = cluster::decodeScene(bytes);
-  shared.digest = cluster::ContentHash().add(bytes).hex();
-  shared.loadMs = msSince(start);
-  return shared;
-}
-
 void printClusterReport(std::ostream& out, const cluster::DispatchReport& report, std::size_t units) {
   out << "cluster: " << report.ranks.size() << (report.ranks.size() == 1 ? " rank, " : " ranks, ") << units
       << " work units, " << formatMs(report.wallMs) << "\n";
@@ -133,18 +111,33 @@ int renderSequenceOnRank(cluster::Communicator& comm, const RenderOptions& optio
   return kExitOk;
 }
 
+}  // namespace
+
+SharedScene shareScene(cluster::Communicator& comm, const std::string& spec) {
+  const auto start = Clock::now();
+  SharedScene shared;
+  std::vector<std::uint8_t> bytes;
+  if (comm.rank() == 0) {
+    shared.scene = loadScene(spec);
+    bytes = cluster::encodeScene(shared.scene);
+  }
+  comm.broadcast(bytes, 0);
+  if (comm.rank() != 0) shared.scene = cluster::decodeScene(bytes);
+  shared.digest = cluster::ContentHash().add(bytes).hex();
+  shared.loadMs = msSince(start);
+  return shared;
+}
+
 std::string rankPrefix(const cluster::Communicator& comm) {
   if (comm.size() == 1) return "holotrace: ";
   return "holotrace: rank " + std::to_string(comm.rank()) + " of " + std::to_string(comm.size()) + ": ";
 }
 
-}  // namespace
-
-int runFrameSequence(const RenderOptions& options, const FrameSequence& sequence, std::ostream& out) {
+int runOnEveryRank(const std::function<int(cluster::Communicator& comm)>& body) {
   const std::unique_ptr<cluster::Communicator> comm = cluster::Communicator::forThisProcess();
-  if (comm->size() == 1) return renderSequenceOnRank(*comm, options, sequence, out);  // runCli maps errors
+  if (comm->size() == 1) return body(*comm);  // runCli maps errors
   try {
-    return renderSequenceOnRank(*comm, options, sequence, out);
+    return body(*comm);
   } catch (const cluster::RankMismatchError& e) {
     std::cerr << rankPrefix(*comm) << "error: " << e.what() << "\n";
     return kExitUsage;  // every rank got the same verdict: all end cleanly
@@ -156,6 +149,11 @@ int runFrameSequence(const RenderOptions& options, const FrameSequence& sequence
     comm->abort(kExitError);
   }
   return kExitError;  // not reached: abort() ends the process
+}
+
+int runFrameSequence(const RenderOptions& options, const FrameSequence& sequence, std::ostream& out) {
+  return runOnEveryRank(
+      [&](cluster::Communicator& comm) { return renderSequenceOnRank(comm, options, sequence, out); });
 }
 
 }  // namespace ht::cli

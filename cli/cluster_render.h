@@ -6,12 +6,15 @@
 #include <cstdint>
 #include <functional>
 #include <ostream>
+#include <string>
 
 #include "camera_models/display_config.h"
 #include "cli/render_options.h"
+#include "cluster/communicator.h"
 #include "frame_io/frame_package.h"
 #include "gpu/display_camera.h"
 #include "gpu/renderer.h"
+#include "scene/scene.h"
 
 namespace ht::cli {
 
@@ -30,5 +33,20 @@ struct FrameSequence {
 // An error on any rank ends the job on every rank (MPI_Abort with the error's exit code) after printing it; ranks
 // that disagree at the start-up check all exit with kExitUsage. Only rank 0 prints reports to `out`.
 int runFrameSequence(const RenderOptions& options, const FrameSequence& sequence, std::ostream& out);
+
+// Joins the job (or runs alone) and runs `body` on this rank. An error ends the job on every rank (MPI_Abort with
+// the error's exit code) after printing it with rankPrefix(); a RankMismatchError returns kExitUsage on every rank.
+// A single process lets errors through to runCli.
+int runOnEveryRank(const std::function<int(cluster::Communicator& comm)>& body);
+// "holotrace: rank R of N: " in a job of several ranks, "holotrace: " alone.
+std::string rankPrefix(const cluster::Communicator& comm);
+
+// Rank 0 loads the scene and broadcasts its bytes; every other rank decodes them (no shared filesystem needed).
+struct SharedScene {
+  Scene scene;
+  std::string digest;  // SHA-256 of the bytes, for the start-up check
+  double loadMs = 0.0;
+};
+SharedScene shareScene(cluster::Communicator& comm, const std::string& spec);
 
 }  // namespace ht::cli

@@ -12,6 +12,15 @@
 
 namespace ht::cluster {
 
+// A non-blocking reduction in flight (startMaxReduction()): test() polls it without blocking.
+class PendingReduction {
+ public:
+  virtual ~PendingReduction() = default;
+  // True once every rank has started its part and the result is here (then result() holds it).
+  virtual bool test() = 0;
+  virtual const std::vector<std::int64_t>& result() const = 0;
+};
+
 // A message waiting to be received (probe()).
 struct Incoming {
   int source = 0;
@@ -37,6 +46,11 @@ class Communicator {
   // Every rank's `mine` (all of the same size), concatenated in rank order, on every rank.
   virtual std::vector<std::uint8_t> allGather(std::span<const std::uint8_t> mine) = 0;
   virtual void barrier() = 0;
+  // The element-wise maximum of every rank's `values` (all of the same length), without blocking: MPI_Iallreduce on
+  // a duplicate of the world communicator of its own, so these never match the world's collectives. No rank's
+  // reduction completes before every rank has started it: a barrier that carries data (the live wall's swap
+  // barrier, cluster/swap_barrier.h). Every rank starts the same reductions in the same order.
+  virtual std::unique_ptr<PendingReduction> startMaxReduction(std::span<const std::int64_t> values) = 0;
 
   // Point to point (chunks of at most 1 GiB; the receiver must know the size).
   virtual void send(int destination, int tag, std::span<const std::uint8_t> bytes) = 0;

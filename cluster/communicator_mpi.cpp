@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <memory>
 #include <string>
 
 #include "cluster/cluster_error.h"
@@ -27,6 +28,40 @@ int chunkCount(std::size_t bytes, std::size_t offset) {
   return static_cast<int>(std::min(kChunkBytes, bytes - offset));
 }
 
+// MPI_Iallreduce (MAX) in flight. MPI forbids freeing or cancelling the request of a non-blocking collective, and
+// waiting for it could hang behind a rank that never comes: a reduction dropped while still pending (only on the way
+// to MPI_Abort after an error) leaves its buffers to MPI on purpose.
+class MpiReduction final : public PendingReduction {
+ public:
+  MpiReduction(MPI_Comm comm, std::span<const std::int64_t> values) : buffers_(std::make_unique<Buffers>()) {
+    buffers_->values.assign(values.begin(), values.end());
+    buffers_->result.resize(values.size());
+    check(MPI_Iallreduce(buffers_->values.data(), buffers_->result.data(), static_cast<int>(values.size()), MPI_INT64_T,
+                         MPI_MAX, comm, &request_),
+          "MPI_Iallreduce");
+  }
+  ~MpiReduction() override {
+    if (request_ != MPI_REQUEST_NULL) (void)buffers_.release();
+  }
+  MpiReduction(const MpiReduction&) = delete;
+  MpiReduction& operator=(const MpiReduction&) = delete;
+
+  bool test() override {
+    if (request_ == MPI_REQUEST_NULL) return true;
+    int done = 0;
+    check(MPI_Test(&request_, &done, MPI_STATUS_IGNORE), "MPI_Test (MPI_Iallreduce)");
+    return done != 0;
+  }
+  const std::vector<std::int64_t>& result() const override { return buffers_->result; }
+
+ private:
+  struct Buffers {
+    std::vector<std::int64_t> values, result;
+  };
+  std::unique_ptr<Buffers> buffers_;
+  MPI_Request request_ = MPI_REQUEST_NULL;
+};
+
 class MpiCommunicator final : public Communicator {
  public:
   MpiCommunicator() {
@@ -38,8 +73,13 @@ class MpiCommunicator final : public Communicator {
     }
     check(MPI_Comm_rank(MPI_COMM_WORLD, &rank_), "MPI_Comm_rank");
     check(MPI_Comm_size(MPI_COMM_WORLD, &size_), "MPI_Comm_size");
+    check(MPI_Comm_dup(MPI_COMM_WORLD, &reductions_), "MPI_Comm_dup");
+    check(MPI_Comm_set_errhandler(reductions_, MPI_ERRORS_RETURN), "MPI_Comm_set_errhandler");
   }
-  ~MpiCommunicator() override { MPI_Finalize(); }
+  ~MpiCommunicator() override {
+    MPI_Comm_free(&reductions_);
+    MPI_Finalize();
+  }
 
   int rank() const override { return rank_; }
   int size() const override { return size_; }
@@ -62,6 +102,10 @@ class MpiCommunicator final : public Communicator {
   }
 
   void barrier() override { check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier"); }
+
+  std::unique_ptr<PendingReduction> startMaxReduction(std::span<const std::int64_t> values) override {
+    return std::make_unique<MpiReduction>(reductions_, values);
+  }
 
   void send(int destination, int tag, std::span<const std::uint8_t> bytes) override {
     if (bytes.empty()) {
@@ -107,6 +151,7 @@ class MpiCommunicator final : public Communicator {
 
  private:
   int rank_ = 0, size_ = 1;
+  MPI_Comm reductions_ = MPI_COMM_NULL;  // startMaxReduction's own communicator (a duplicate of the world)
 };
 
 }  // namespace

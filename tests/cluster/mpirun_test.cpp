@@ -12,6 +12,7 @@
 #include <iterator>
 
 #include "tests/cli/process_runner.h"
+#include "tests/cluster/mpirun_launcher.h"
 #include "tests/common/temp_directory.h"
 
 namespace ht::test {
@@ -22,43 +23,9 @@ using cli::test::ProcessResult;
 using cli::test::runProcess;
 using ::testing::HasSubstr;
 
-// Launcher flags: oversubscribe the 2 cores, no core binding (a bound rank would share one core with lavapipe's
-// threads), shared memory and loopback only, CMA off (containers without ptrace rights), a hard time limit.
-const std::vector<std::string> kLauncherFlags = {"--oversubscribe",
-                                                 "--bind-to",
-                                                 "none",
-                                                 "--mca",
-                                                 "btl",
-                                                 "self,vader",
-                                                 "--mca",
-                                                 "btl_tcp_if_include",
-                                                 "lo",
-                                                 "--mca",
-                                                 "oob_tcp_if_include",
-                                                 "lo",
-                                                 "--mca",
-                                                 "btl_vader_single_copy_mechanism",
-                                                 "none",
-                                                 "--timeout",
-                                                 "120"};
-
 class ClusterMpirun : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);  // tests run as root in CI
-    setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
-#ifdef HT_SANITIZED_BUILD
-    // The ASan suite: the ranks keep ASan and UBSan but not the leak check, because Open MPI's components
-    // (dlopen'ed plugins without frame pointers) leave small allocations whose stacks LeakSanitizer cannot attribute
-    // to a module that tests/lsan.supp could name. holotrace's own leaks are checked by its single-process tests.
-    const char* asan = std::getenv("ASAN_OPTIONS");
-    const std::string options = std::string(asan ? asan : "") + (asan && *asan ? ":" : "") + "detect_leaks=0";
-    setenv("ASAN_OPTIONS", options.c_str(), 1);
-#endif
-    shaderCache_ = new fs::path(fs::temp_directory_path() / ("holotrace-mpirun-shaders-" + std::to_string(getpid())));
-    unsetenv("MESA_SHADER_CACHE_DISABLE");
-    setenv("MESA_SHADER_CACHE_DIR", shaderCache_->c_str(), 1);
-  }
+  static void SetUpTestSuite() { shaderCache_ = new fs::path(prepareMpirunEnvironment()); }
   static void TearDownTestSuite() {
     std::error_code ignored;
     fs::remove_all(*shaderCache_, ignored);
@@ -80,13 +47,7 @@ class ClusterMpirun : public ::testing::Test {
     all.insert(all.end(), args.begin(), args.end());
     return launch(all);
   }
-  // mpirun under a watchdog: Open MPI 4.1's mpirun was seen to stay up after every rank of a job with a killed rank
-  // had exited (its --timeout did not fire), which would hang the suite; `timeout` kills it after 150 s.
-  static ProcessResult launch(const std::vector<std::string>& mpirunArgs) {
-    std::vector<std::string> all = {"-s", "KILL", "150", MPIEXEC_EXE};
-    all.insert(all.end(), mpirunArgs.begin(), mpirunArgs.end());
-    return runProcess("/usr/bin/timeout", all);
-  }
+  static ProcessResult launch(const std::vector<std::string>& mpirunArgs) { return launchMpirun(mpirunArgs); }
   static std::string bytes(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
