@@ -23,6 +23,10 @@ struct JobHead {
   float refineContrast = 0.0f;
 };
 static_assert(std::is_trivially_copyable_v<JobHead>);
+// A field added to RenderSettings changes pixels on every rank only if the job carries it: add it to JobHead,
+// headOf() and jobOf(), then update this size.
+static_assert(sizeof(gpu::RenderSettings) == 80,
+              "gpu::RenderSettings changed: send the new field in the cluster job (server/cluster_job.cpp)");
 
 constexpr std::uint32_t kTarget = 1, kSize = 2, kObserverDistance = 4, kObserverHeight = 8;  // JobHead::present bits
 

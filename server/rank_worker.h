@@ -11,7 +11,7 @@ namespace ht::server {
 
 // How long a rank that got SIGTERM/SIGINT waits for rank 0's stop before it ends the job itself: mpirun forwards a
 // signal to every rank, and rank 0 then stops the others cleanly; a signal to this rank alone ends the job.
-inline constexpr double kStopWaitSeconds = 5.0;
+inline constexpr double kStopWaitSeconds = 15.0;  // > rank 0's drain: 5 s of stream grace + a frame
 
 // Serves until rank 0's stop (returns) or fails (throws; the caller ends the job on every rank). Signals SIGTERM,
 // SIGINT and SIGHUP must be blocked in the calling thread (they are polled).

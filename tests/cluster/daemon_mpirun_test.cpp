@@ -313,10 +313,33 @@ TEST_F(ClusterDaemon, AKilledRankEndsTheDaemonOnEveryRankWithinSeconds) {
   EXPECT_TRUE(ends(status.pid(), std::chrono::seconds(5))) << "rank 0 outlived mpirun";
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   EXPECT_LT(seconds, 15.0);
-  std::cout << "job ended " << seconds << " s after rank 1 was killed\n" << job->output();
+  std::cout << "job ended " << seconds << " s after rank 1 was killed\n";
   ReceivedFrame frame;
   const grpc::Status after = renderOne(*stub, tinyRequest(scene), &frame);
   EXPECT_EQ(after.error_code(), grpc::StatusCode::UNAVAILABLE) << after.error_message();
+}
+
+TEST_F(ClusterDaemon, ARankDyingInsideAFrameEndsTheJobAndTheClientSeesUnavailable) {
+  // Rank 1 raises SIGKILL after rendering its first unit, before sending it (cluster/work_dispatch.h): rank 0 is then
+  // waiting for those pixels inside a RenderFrame.
+  const auto job = startMpirun(
+      "mpi", {"-x", "HOLOTRACE_TEST_KILL_RANK=1", "-np", "2", HOLOTRACED_EXE, "--config", writeConfig("mpi").string()});
+  const auto stub = waitReady("mpi");
+  ASSERT_TRUE(stub) << job->output();
+  const std::string scene = sceneOf(*stub).scene_id();
+  const auto start = Clock::now();
+  grpc::Status failed;
+  for (int frame = 0; frame < 20 && failed.ok(); ++frame) {  // until rank 1 gets a unit (rank 0 may take all)
+    v1::RenderRequest request = tinyRequest(scene);
+    request.set_display_id("wall");  // one unit per projector
+    ReceivedFrame received;
+    failed = renderOne(*stub, request, &received);
+  }
+  EXPECT_EQ(failed.error_code(), grpc::StatusCode::UNAVAILABLE) << failed.error_message();
+  const int exit = job->waitExit(std::chrono::seconds(60));
+  EXPECT_NE(exit, 0) << job->output();
+  EXPECT_NE(exit, -1) << "still running 60 s after rank 1 died";
+  EXPECT_LT(Clock::now() - start, std::chrono::seconds(20)) << job->output();
 }
 
 TEST_F(ClusterDaemon, ARankWithAnotherDaemonConfigIsRefusedAtStart) {
