@@ -90,22 +90,26 @@ void append(std::vector<std::uint8_t>& out, const void* data, std::size_t bytes)
   std::memcpy(out.data() + at, data, bytes);
 }
 
-// Reads the parts after the head in order; every length was checked against what is left.
+// Reads the parts after the head in order; every length is checked against what is left before anything is sized.
 class Parts {
  public:
   explicit Parts(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
+  void need(std::uint64_t n, const char* what) const {
+    if (n <= bytes_.size() - at_) return;
+    throw cluster::ClusterError(std::string("rank 0's frame job ends inside its ") + what + " (" +
+                                std::to_string(bytes_.size()) + " bytes)");
+  }
   void copy(void* to, std::uint64_t n, const char* what) {
-    if (n > bytes_.size() - at_) {
-      throw cluster::ClusterError(std::string("rank 0's frame job ends inside its ") + what + " (" +
-                                  std::to_string(bytes_.size()) + " bytes)");
-    }
+    need(n, what);
     if (n > 0) std::memcpy(to, bytes_.data() + at_, static_cast<std::size_t>(n));
     at_ += static_cast<std::size_t>(n);
   }
-  void text(std::string& out, std::uint64_t n, const char* what) {
-    if (n > bytes_.size() - at_) copy(nullptr, n, what);  // throws
-    out.resize(static_cast<std::size_t>(n));
-    copy(out.data(), n, what);
+  template <typename Container>
+  void fill(Container& out, std::uint64_t count, const char* what) {
+    constexpr std::uint64_t kSize = sizeof(typename Container::value_type);
+    need(count > (bytes_.size() - at_) / kSize ? bytes_.size() - at_ + 1 : count * kSize, what);
+    out.resize(static_cast<std::size_t>(count));
+    copy(out.data(), count * kSize, what);
   }
   bool done() const { return at_ == bytes_.size(); }
 
@@ -149,14 +153,10 @@ ClusterJob decodeClusterJob(std::span<const std::uint8_t> bytes) {
     throw cluster::ClusterError("rank 0 sent a job of unknown kind " + std::to_string(head.kind));
   }
   ClusterJob job = jobOf(head);
-  parts.text(job.displayId, head.displayIdBytes, "display id");
-  parts.text(job.cameraDigest, head.digestBytes, "camera digest");
-  if (head.dropCount > bytes.size() / sizeof(std::uint64_t)) parts.copy(nullptr, bytes.size() + 1, "dropped versions");
-  job.dropVersions.resize(static_cast<std::size_t>(head.dropCount));
-  parts.copy(job.dropVersions.data(), head.dropCount * sizeof(std::uint64_t), "dropped versions");
-  if (head.sceneBytes > bytes.size()) parts.copy(nullptr, head.sceneBytes, "scene bytes");
-  job.sceneBytes.resize(static_cast<std::size_t>(head.sceneBytes));
-  parts.copy(job.sceneBytes.data(), head.sceneBytes, "scene bytes");
+  parts.fill(job.displayId, head.displayIdBytes, "display id");
+  parts.fill(job.cameraDigest, head.digestBytes, "camera digest");
+  parts.fill(job.dropVersions, head.dropCount, "dropped versions");
+  parts.fill(job.sceneBytes, head.sceneBytes, "scene bytes");
   if (!parts.done()) throw cluster::ClusterError("rank 0's frame job has bytes after its scene");
   return job;
 }
