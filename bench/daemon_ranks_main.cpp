@@ -1,5 +1,5 @@
 // daemon_ranks_main.cpp - holotrace-bench-daemon-ranks: what a frame costs a holotraced launched under mpirun
-// (docs/CLUSTER.md §7), seen from a client and from the daemon's Status: per frame the client's wall time, rank 0's
+// (docs/CLUSTER.md §8), seen from a client and from the daemon's Status: per frame the client's wall time, rank 0's
 // distributed-frame time, the job broadcast (time, bytes), the gather of the other ranks' pixels (time, bytes), and
 // every rank's busy time, idle time and work units. Medians over --frames RenderFrame calls after one warm-up frame
 // (which sends the scene to the ranks and builds their BVH). Against a single-process daemon it prints the client

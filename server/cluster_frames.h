@@ -1,4 +1,4 @@
-// cluster_frames.h - rank 0's side of holotraced under mpirun (docs/CLUSTER.md §7): every frame job is announced to
+// cluster_frames.h - rank 0's side of holotraced under mpirun (docs/CLUSTER.md §8): every frame job is announced to
 // the other ranks (a wake-up message each, then one broadcast of the ClusterJob, server/cluster_job.h), its work
 // units are handed out dynamically (cluster/work_dispatch.h; rank 0 renders units too) and assembled here
 // (cluster/frame_assembly.h) into the one frame that the RPC sends or writes as a single process would.

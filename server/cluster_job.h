@@ -1,4 +1,4 @@
-// cluster_job.h - what rank 0 of holotraced under mpirun sends every other rank for one frame (docs/CLUSTER.md §7):
+// cluster_job.h - what rank 0 of holotraced under mpirun sends every other rank for one frame (docs/CLUSTER.md §8):
 // the scene version to render (with the scene's bytes when the ranks do not have that version yet, and the versions
 // they may forget), the display, the session's camera placement, the camera path and the render settings; or "stop".
 // The ranks rebuild the camera from these with the same functions as rank 0 (server/frame_job.h) and compare its

@@ -1,4 +1,4 @@
-// cluster_start.h - the start of holotraced under mpirun, on every rank (docs/CLUSTER.md §7): the ranks check that
+// cluster_start.h - the start of holotraced under mpirun, on every rank (docs/CLUSTER.md §8): the ranks check that
 // they run the same build, the same display configs and the same daemon config file (cluster/rank_identity.h: one
 // exchange; a mismatch stops every rank with the same message before any device is opened), and learn each other's
 // host name and process id (for Status).

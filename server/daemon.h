@@ -12,7 +12,7 @@ namespace ht::server {
 
 class Daemon {
  public:
-  // Opens the device and roots; throws ht::Error. `cluster`: rank 0 of an MPI job (docs/CLUSTER.md §7): frames are
+  // Opens the device and roots; throws ht::Error. `cluster`: rank 0 of an MPI job (docs/CLUSTER.md §8): frames are
   // rendered by every rank through it, and shutdown() stops the other ranks after the render worker.
   Daemon(DaemonConfig config, std::ostream& log, std::unique_ptr<DistributedFrames> cluster = nullptr);
   ~Daemon();  // shutdown() if still running

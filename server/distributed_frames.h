@@ -1,4 +1,4 @@
-// distributed_frames.h - the frame path of holotraced launched under mpirun (docs/CLUSTER.md §7): the pixels of a
+// distributed_frames.h - the frame path of holotraced launched under mpirun (docs/CLUSTER.md §8): the pixels of a
 // frame job made by every rank of the MPI job instead of by this process's renderer alone. A FrameJob carries a
 // pointer to it (FrameJob::cluster; null in a single-process daemon, which renders exactly as before). The server
 // sees only this interface; server/cluster_frames.h implements it over ht_cluster's communicator (no MPI here).

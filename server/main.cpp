@@ -1,7 +1,7 @@
 // main.cpp - holotraced --config FILE. Signals are taken synchronously with sigwait() on the main thread (blocked
 // in every thread first): SIGTERM/SIGINT -> graceful shutdown, exit 0; SIGHUP -> reload display configs. SIGXFSZ is
 // ignored, so a file-size limit fails one Capture instead of killing the daemon.
-// Launched by mpirun (docs/CLUSTER.md §7), rank 0 is that daemon and renders every frame with the other ranks, which
+// Launched by mpirun (docs/CLUSTER.md §8), rank 0 is that daemon and renders every frame with the other ranks, which
 // run a render loop (server/rank_worker.h); an error on any rank ends every rank (MPI_Abort) with a message.
 
 #include <signal.h>

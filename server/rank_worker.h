@@ -1,4 +1,4 @@
-// rank_worker.h - a rank > 0 of holotraced under mpirun (docs/CLUSTER.md §7): no gRPC, no socket; it waits for rank
+// rank_worker.h - a rank > 0 of holotraced under mpirun (docs/CLUSTER.md §8): no gRPC, no socket; it waits for rank
 // 0's frame jobs (server/cluster_job.h), keeps the scene versions rank 0 sends (each with its own BVH, on its own
 // Vulkan device), renders the work units rank 0 hands it, and returns when rank 0 says stop.
 #pragma once

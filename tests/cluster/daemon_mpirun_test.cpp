@@ -3,7 +3,7 @@
 // two StreamFrames ticks, a 3-frame Capture and a RenderFrame after UpdateScene moved a node are byte-identical; Status
 // lists both ranks with their timings; SIGTERM to rank 0 stops both ranks with status 0; a killed rank 1 ends the job
 // on every rank within seconds and the client sees UNAVAILABLE; a rank started with another daemon config is refused at
-// start. docs/CLUSTER.md §7.
+// start. docs/CLUSTER.md §8.
 #include <fcntl.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
