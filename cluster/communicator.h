@@ -27,11 +27,16 @@ struct Incoming {
   int tag = 0;
 };
 
+// Which threads call MPI (MPI 3.1 §12.4.3): Funneled = only the thread that joined; Serialized = any thread, one at a
+// time (holotraced under mpirun: the render worker thread renders frames, the main thread starts and stops the job).
+enum class ThreadUse { Funneled, Serialized };
+
 class Communicator {
  public:
-  // Initialises MPI (thread level FUNNELED: only the thread that joined calls MPI) and sets MPI_ERRORS_RETURN on
-  // the world communicator. Throws ClusterError when MPI is missing from this build or cannot start.
-  static std::unique_ptr<Communicator> join();
+  // Initialises MPI (thread level FUNNELED or SERIALIZED; the joining thread must also destroy the communicator,
+  // which finalises MPI) and sets MPI_ERRORS_RETURN on the world communicator. Throws ClusterError when MPI is
+  // missing from this build or cannot start.
+  static std::unique_ptr<Communicator> join(ThreadUse threads = ThreadUse::Funneled);
   // A job of one rank without MPI (communicator_solo.cpp): the same code then runs in a plain process.
   static std::unique_ptr<Communicator> solo();
   // join() when an MPI launcher started this process (mpi_launch.h), else solo().

@@ -64,12 +64,15 @@ class MpiReduction final : public PendingReduction {
 
 class MpiCommunicator final : public Communicator {
  public:
-  MpiCommunicator() {
+  explicit MpiCommunicator(ThreadUse threads) {
+    const int wanted = threads == ThreadUse::Serialized ? MPI_THREAD_SERIALIZED : MPI_THREAD_FUNNELED;
     int provided = 0;
-    check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+    check(MPI_Init_thread(nullptr, nullptr, wanted, &provided), "MPI_Init_thread");
     check(MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN), "MPI_Comm_set_errhandler");
-    if (provided < MPI_THREAD_FUNNELED) {
-      throw ClusterError("MPI_Init_thread: the MPI library offers no MPI_THREAD_FUNNELED support");
+    if (provided < wanted) {
+      throw ClusterError(std::string("MPI_Init_thread: the MPI library offers no ") +
+                         (threads == ThreadUse::Serialized ? "MPI_THREAD_SERIALIZED" : "MPI_THREAD_FUNNELED") +
+                         " support");
     }
     check(MPI_Comm_rank(MPI_COMM_WORLD, &rank_), "MPI_Comm_rank");
     check(MPI_Comm_size(MPI_COMM_WORLD, &size_), "MPI_Comm_size");
@@ -156,6 +159,8 @@ class MpiCommunicator final : public Communicator {
 
 }  // namespace
 
-std::unique_ptr<Communicator> Communicator::join() { return std::make_unique<MpiCommunicator>(); }
+std::unique_ptr<Communicator> Communicator::join(ThreadUse threads) {
+  return std::make_unique<MpiCommunicator>(threads);
+}
 
 }  // namespace ht::cluster

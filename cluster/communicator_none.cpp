@@ -4,7 +4,7 @@
 
 namespace ht::cluster {
 
-std::unique_ptr<Communicator> Communicator::join() {
+std::unique_ptr<Communicator> Communicator::join(ThreadUse) {
   throw ClusterError(
       "this holotrace was built without MPI (configure with -DHOLOTRACE_WITH_MPI=ON and Open MPI installed: "
       "apt-get install libopenmpi-dev openmpi-bin); run it without mpirun to render in one process");

@@ -42,6 +42,7 @@ struct Daemon::Parts {
   ServiceState state;
   HolotraceService service;
   std::unique_ptr<PanelSinks> panels;  // display sinks ("present"); their threads end before the state they read
+  std::unique_ptr<DistributedFrames> cluster;
   std::unique_ptr<grpc::Server> server;
   std::thread janitor;  // ends idle scene sessions (SceneLibrary::sweep), cancels stalled calls (CallWatchdog)
   bool stopped = false;
@@ -89,7 +90,7 @@ DaemonConfig withWorkDir(DaemonConfig config, bool& owns) {
 
 }  // namespace
 
-Daemon::Daemon(DaemonConfig config, std::ostream& log) {
+Daemon::Daemon(DaemonConfig config, std::ostream& log, std::unique_ptr<DistributedFrames> cluster) {
   for (const std::string& address : config.listen) checkListenAddress(config.sourcePath, address);
   std::vector<ListenClaim> claims;
   for (const std::string& address : config.listen) claims.emplace_back(address);  // throws AddressInUse
@@ -101,6 +102,8 @@ Daemon::Daemon(DaemonConfig config, std::ostream& log) {
   const DaemonConfig& c = parts_->config;
   parts_->panels = std::make_unique<PanelSinks>(c.present, parts_->displays, c.deviceIndex, c.sourcePath, log);
   parts_->state.panels = parts_->panels.get();
+  parts_->cluster = std::move(cluster);
+  parts_->state.cluster = parts_->cluster.get();
   if (parts_->panels->size() > 0) log << "holotraced: " << parts_->panels->size() << " panel sink(s)\n";
 }
 
@@ -150,7 +153,8 @@ void Daemon::shutdown(std::chrono::milliseconds grace) {
     parts_->server->Wait();
   }
   parts_->worker.stop();
-  parts_->claims.clear();  // removes our sockets, releases the locks
+  if (parts_->cluster) parts_->cluster->stop();  // after the last frame: the other ranks end cleanly
+  parts_->claims.clear();                        // removes our sockets, releases the locks
 }
 
 // Displays first, then the panels: a display that appeared (a panel plugged in, a config added) gets its sink, one

@@ -6,13 +6,16 @@
 #include <ostream>
 
 #include "server/daemon_config.h"
+#include "server/distributed_frames.h"
 
 namespace ht::server {
 
 class Daemon {
  public:
-  Daemon(DaemonConfig config, std::ostream& log);  // opens the device and roots; throws ht::Error
-  ~Daemon();                                       // shutdown() if still running
+  // Opens the device and roots; throws ht::Error. `cluster`: rank 0 of an MPI job (docs/CLUSTER.md §8): frames are
+  // rendered by every rank through it, and shutdown() stops the other ranks after the render worker.
+  Daemon(DaemonConfig config, std::ostream& log, std::unique_ptr<DistributedFrames> cluster = nullptr);
+  ~Daemon();  // shutdown() if still running
   Daemon(const Daemon&) = delete;
   Daemon& operator=(const Daemon&) = delete;
 

@@ -1,6 +1,8 @@
 // frame_job.cpp - see frame_job.h. Same camera dispatch as `holotrace render` (gpu/display_camera.h).
 #include "server/frame_job.h"
 
+#include "server/distributed_frames.h"
+
 namespace ht::server {
 
 gpu::FrameShape displayFrameShape(const RegisteredDisplay& display, gpu::CameraPath path) {
@@ -38,7 +40,13 @@ gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client
   }
   const gpu::DisplayCamera camera = jobCamera(job);
   gpu::RenderResult result;
-  worker.submit(client, [&](gpu::VulkanContext&) { result = content.renderer->render(camera.camera, settings); }).get();
+  worker
+      .submit(client,
+              [&](gpu::VulkanContext&) {
+                result = job.cluster ? job.cluster->render(job, camera, settings)
+                                     : content.renderer->render(camera.camera, settings);
+              })
+      .get();
   return result;
 }
 

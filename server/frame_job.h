@@ -13,6 +13,8 @@
 
 namespace ht::server {
 
+class DistributedFrames;
+
 struct FrameJob {
   std::shared_ptr<const SceneSession> session;
   std::shared_ptr<const RegisteredDisplay> display;
@@ -21,6 +23,7 @@ struct FrameJob {
   float refineContrast = gpu::RenderSettings{}.refineContrast;
   std::uint32_t seed = 0;
   gpu::CameraPath path = gpu::CameraPath::Native;  // RenderRequest.quilt
+  DistributedFrames* cluster = nullptr;            // set under mpirun: every rank renders a share (docs/CLUSTER.md §8)
 };
 
 // What a frame of `display` is (views of width x height), independent of any scene. Throws ConfigError for

@@ -6,6 +6,7 @@
 #include "frame_io/quilt_file.h"
 #include "scene/scene_edits.h"
 #include "scene/scene_source.h"
+#include "server/cluster_status.h"
 #include "server/display_messages.h"
 #include "server/holotrace_service.h"
 #include "server/path_rules.h"
@@ -234,6 +235,7 @@ grpc::Status HolotraceService::Status(grpc::ServerContext*, const v1::StatusRequ
     response->set_cpu_seconds(self.cpuSeconds);
     response->set_threads(self.threads);
     addPanelStatuses(state_, *response);
+    addClusterStatus(state_, *response);
     const SceneLibraryStats scenes = state_.scenes.stats();
     response->set_scene_sessions(scenes.sessions);
     response->set_scene_memory_bytes(scenes.memoryBytes);

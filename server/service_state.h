@@ -18,6 +18,7 @@
 namespace ht::server {
 
 class PanelSinks;
+class DistributedFrames;
 
 struct ServiceState {
   const DaemonConfig& config;
@@ -26,8 +27,9 @@ struct ServiceState {
   RenderWorker& worker;
   FileSink& outputSink;
   UploadBudget& uploads;
-  CallWatchdog& watchdog;        // cancels stalled uploads and streams
-  PanelSinks* panels = nullptr;  // display sinks of the config's "present" (server/panel_sinks.h); null = none
+  CallWatchdog& watchdog;                // cancels stalled uploads and streams
+  PanelSinks* panels = nullptr;          // display sinks of the config's "present" (server/panel_sinks.h); null = none
+  DistributedFrames* cluster = nullptr;  // under mpirun: frames made by every rank (server/distributed_frames.h)
 
   std::atomic<std::uint32_t> activeStreams{0};
   std::atomic<std::uint64_t> nextFrameId{1};
