@@ -1,12 +1,14 @@
 // bench_bvh2_main.cpp - holotrace-bench-bvh2: two-level vs flattened BVH on the CPU (docs/BVH.md §9,
 // docs/BENCHMARKS.md "Two-level BVH").
 //  1. Trace cost on static scenes: the same pinhole rays traced through the flattened BVH (order-free closest hit,
-//     and today's ht_trace_closest for reference) and through the two-level BVH; median ms of --runs runs, the
-//     two-level/flattened ratio per run (same run), mean traversal steps, and the layout chooseBvhLayout picks.
+//     and the earlier tree-dependent ht_trace_closest for reference) and through the two-level BVH; median ms of --runs
+//     runs, the two-level/flattened ratio per run (same run), mean traversal steps, and the layout chooseBvhLayout
+//     picks.
 //  2. Update time for one moved node in a large instanced scene (default ~2M triangles in 1,000 instances, and 27
 //     instances of the bunny): full flattened rebuild vs top-level rebuild vs move update (refit of the moved
 //     instance + top level); medians.
 // Usage: holotrace-bench-bvh2 [--runs N (5)] [--size N (512)] [--meshes LIST] [--instances N (1000)] (--help)
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -17,6 +19,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -188,6 +191,22 @@ Scene triangleClump(uint32_t n) {
   return s;
 }
 
+// The tree-dependent closest hit the renderer used before the order-free one (bvh_traversal.h), for reference;
+// rays split over all cores in contiguous parts, like the batch traces it is compared with.
+void traceTreeDependentBatch(const GpuBvh& flat, const std::vector<HtRay>& rays) {
+  const gpu_shared::BvhView view{flat.nodes.data(), flat.triangles.data()};
+  std::vector<gpu_shared::HtTraceResult> results(rays.size());
+  const size_t workers = std::max(1u, std::thread::hardware_concurrency());
+  const size_t part = (rays.size() + workers - 1) / workers;
+  std::vector<std::thread> pool;
+  for (size_t w = 0; w < workers; ++w)
+    pool.emplace_back([&, w] {
+      for (size_t i = w * part; i < std::min(rays.size(), (w + 1) * part); ++i)
+        results[i] = gpu_shared::ht_trace_closest(view, rays[i], gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
+    });
+  for (std::thread& t : pool) t.join();
+}
+
 void traceCost(const Scene& scene, const Options& o) {
   const GpuBvh flat = bvh::buildGpuBvh(scene.positions, scene.triangles, bvh::BuildOptions{});
   const std::vector<bvh::InstanceRange> ranges = instanceRanges(scene);
@@ -197,8 +216,8 @@ void traceCost(const Scene& scene, const Options& o) {
   std::vector<double> ratio;
   std::vector<gpu_shared::HtTraceResult> a, b;
   for (uint32_t run = 0; run <= o.runs; ++run) {  // run 0 warms up
-    const double l = timeMs([&] { bvh::traceClosestBatch(flat, rays); });
-    const double f = timeMs([&] { a = bvh::traceClosestOrderedBatch(flat, rays); });
+    const double l = timeMs([&] { traceTreeDependentBatch(flat, rays); });
+    const double f = timeMs([&] { a = bvh::traceClosestBatch(flat, rays); });
     const double t = timeMs([&] { b = bvh::traceClosestTwoLevelBatch(twoLevel, rays); });
     if (run == 0) continue;
     legacy.ms.push_back(l);
