@@ -110,8 +110,10 @@ HT_INLINE uint ht_order_children(bool hit0, bool hit1, float tEnter0, float tEnt
 
 // Tests the `count` triangle slots of a leaf starting at global slot `slot0` and keeps the least (t, id), with
 // best.triId holding the slot of the best hit; `cull` follows the best hit (ht_ordered_cull_t).
-HT_INLINE void ht_ordered_leaf(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint slot0, uint count, HT_INOUT(HtHit) best,
-                               HT_INOUT(float) cull, HT_INOUT(uint) steps, uint stepLimit, HT_INOUT(bool) overflow) {
+// anyHit: stop at the first triangle hit within the ray's tmax (occlusion).
+HT_INLINE void ht_ordered_leaf(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint slot0, uint count, bool anyHit,
+                               HT_INOUT(HtHit) best, HT_INOUT(float) cull, HT_INOUT(uint) steps, uint stepLimit,
+                               HT_INOUT(bool) overflow) {
   uint slot = slot0 * HT_TRI_STRIDE;
   uint slotEnd = slot + count * HT_TRI_STRIDE;
   for (; slot < slotEnd; slot += HT_TRI_STRIDE) {
@@ -132,6 +134,7 @@ HT_INLINE void ht_ordered_leaf(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint slot0, u
       best.u = u;
       best.v = v;
       cull = ht_ordered_cull_t(best, r.tmax);
+      if (anyHit) break;
     }
   }
 }
@@ -142,8 +145,9 @@ HT_INLINE void ht_ordered_leaf(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint slot0, u
 // stay in the same phase longer than with one loop that alternates between nodes and leaves. Every iteration of
 // every loop counts a step, so a loop lavapipe ended early has counted more than the step limit.
 // Returns false when the walk did not finish (step limit, stack, or a driver that ended the loop).
-HT_INLINE bool ht_ordered_bvh(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint nodeBase, uint slotBase, HT_INOUT(HtHit) best,
-                              HT_INOUT(float) cull, HT_INOUT(uint) steps, uint stepLimit) {
+// anyHit: the walk ends at the first hit (best.triId != HT_MISS afterwards).
+HT_INLINE bool ht_ordered_bvh(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint nodeBase, uint slotBase, bool anyHit,
+                              HT_INOUT(HtHit) best, HT_INOUT(float) cull, HT_INOUT(uint) steps, uint stepLimit) {
   uint stack[HT_BVH_MAX_DEPTH];
   uint sp = 0u;
   uint cur = 0u;
@@ -191,10 +195,10 @@ HT_INLINE bool ht_ordered_bvh(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint nodeBase,
       finished = true;
       break;
     }
-    ht_ordered_leaf(HT_BVH_ARG r, slotBase + (cur & HT_REF_INDEX_MASK), cur >> HT_REF_COUNT_SHIFT, best, cull, steps,
-                    stepLimit, overflow);
+    ht_ordered_leaf(HT_BVH_ARG r, slotBase + (cur & HT_REF_INDEX_MASK), cur >> HT_REF_COUNT_SHIFT, anyHit, best, cull,
+                    steps, stepLimit, overflow);
     if (overflow) break;
-    if (sp == 0u) {
+    if (sp == 0u || (anyHit && best.triId != HT_MISS)) {
       finished = true;
       break;
     }
@@ -211,7 +215,7 @@ HT_INLINE HtTraceResult ht_trace_closest_ordered(HT_BVH_PARAM HT_IN(HtRay) ray, 
   HtOrderedRay r = ht_make_ordered_ray(ray);
   float cull = r.tmax;
   uint steps = 0u;
-  bool finished = ht_ordered_bvh(HT_BVH_ARG r, 0u, 0u, res.hit, cull, steps, stepLimit);
+  bool finished = ht_ordered_bvh(HT_BVH_ARG r, 0u, 0u, false, res.hit, cull, steps, stepLimit);
   ht_resolve_slot_id(HT_BVH_ARG res.hit);
   res.steps = steps;
   res.overflow = !finished;
@@ -219,9 +223,10 @@ HT_INLINE HtTraceResult ht_trace_closest_ordered(HT_BVH_PARAM HT_IN(HtRay) ray, 
 }
 
 #if !defined(HT_GLSL) || defined(HT_LOAD_TOP_NODE)
-// Least (t, id) hit of a two-level BVH: the top level over instance boxes, each instance's own BVH below.
-// (GLSL: only where the including shader defines HT_LOAD_TOP_NODE and HT_LOAD_INSTANCE.)
-HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
+// Walk of a two-level BVH: the top level over instance boxes, each instance's own BVH below; anyHit as in
+// ht_ordered_bvh. (GLSL: only where the including shader defines HT_LOAD_TOP_NODE and HT_LOAD_INSTANCE.)
+HT_INLINE HtTraceResult ht_two_level_walk(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
+                                          bool anyHit) {
   HtTraceResult res = ht_trace_miss(ray);
   if (!ht_ray_is_valid(ray)) return res;
   HtOrderedRay r = ht_make_ordered_ray(ray);
@@ -244,10 +249,11 @@ HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
       for (uint e = first; e < end && !overflow; e++) {
         steps++;  // this loop's iterations count too (lavapipe's loop budget, docs/TOOLCHAIN.md §0)
         uvec4 inst = HT_LOAD_INSTANCE(e);
-        overflow = !ht_ordered_bvh(HT_BVH_ARG r, inst.x, inst.y, res.hit, cull, steps, stepLimit);
+        overflow = !ht_ordered_bvh(HT_BVH_ARG r, inst.x, inst.y, anyHit, res.hit, cull, steps, stepLimit);
+        if (anyHit && res.hit.triId != HT_MISS) break;
       }
       if (overflow) break;
-      if (sp == 0u) {
+      if (sp == 0u || (anyHit && res.hit.triId != HT_MISS)) {
         finished = true;
         break;
       }
@@ -285,6 +291,17 @@ HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
   res.steps = steps;
   res.overflow = !finished;
   return res;
+}
+
+// Least (t, id) hit of a two-level BVH.
+HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
+  return ht_two_level_walk(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, false);
+}
+
+// Any hit of a two-level BVH within [tmin, tmax] (occlusion): the same triangles count as for ht_trace_any on the
+// flattened BVH (ht_intersect_triangle with the ray's tmax); which one is reported depends on the tree.
+HT_INLINE HtTraceResult ht_trace_two_level_any(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
+  return ht_two_level_walk(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, true);
 }
 #endif
 

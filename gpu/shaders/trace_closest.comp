@@ -17,7 +17,13 @@ void main() {
   uint steps = 0u;
   bool overflow = false;
   if (inQueue) {
-    HtTraceResult r = ht_trace_closest_ordered(load_ray(pc.queue, i), FRAME.scene.z);
+    HtRay ray = load_ray(pc.queue, i);
+    HtTraceResult r;
+    if (TWO_LEVEL) {
+      r = ht_trace_two_level_ordered(ray, FRAME.scene.z);
+    } else {
+      r = ht_trace_closest_ordered(ray, FRAME.scene.z);
+    }
     store_hit(i, r.hit);
     steps = r.steps;
     overflow = r.overflow;
