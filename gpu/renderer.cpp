@@ -123,9 +123,9 @@ void Renderer::Impl::bindRayTable(const std::shared_ptr<const RayTable>& table) 
   boundRayTable = table;
 }
 
-void Renderer::Impl::replaceScene(const Scene& s) {
+void Renderer::Impl::replaceScene(const Scene& s, BvhLayoutPolicy policy) {
   const auto start = std::chrono::steady_clock::now();
-  installScene(s, buildSceneBvh(s, buildOptions, BvhLayoutPolicy::Automatic));
+  installScene(s, buildSceneBvh(s, buildOptions, policy));
   bvhStats.lastUpdateMs = msSince(start);
 }
 
@@ -156,6 +156,8 @@ void Renderer::Impl::moveNodes(const Scene& s, std::span<const std::uint32_t> mo
     if (scene.moveInstances(s, moved)) bindScene();
     descriptors.flush();
     bvhStats.instanceUpdates++;
+    bvhStats.lastRefitMs = scene.twoLevel()->timings().refitMs;
+    bvhStats.lastTopLevelMs = scene.twoLevel()->timings().topLevelMs;
   }
   bvhStats.lastUpdateMs = msSince(start);
 }
@@ -279,7 +281,7 @@ Renderer::Renderer(VulkanContext& context, const Scene& scene, SceneBvh bvh, con
 Renderer::~Renderer() = default;
 
 const bvh::BuildReport& Renderer::bvhReport() const { return impl_->scene.bvhReport(); }
-void Renderer::replaceScene(const Scene& scene) { impl_->replaceScene(scene); }
+void Renderer::replaceScene(const Scene& scene, BvhLayoutPolicy policy) { impl_->replaceScene(scene, policy); }
 void Renderer::updateLights(const Scene& scene) { impl_->updateLights(scene); }
 void Renderer::moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes) { impl_->moveNodes(scene, nodes); }
 BvhStats Renderer::bvhStats() const { return impl_->bvhStats; }

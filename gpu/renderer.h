@@ -79,6 +79,8 @@ struct BvhStats {
   std::uint64_t fullBuilds = 0;       // BVHs built and uploaded whole (construction counts one)
   std::uint64_t instanceUpdates = 0;  // moveNodes served by refit + top-level rebuild + partial upload
   double lastUpdateMs = 0.0;          // host wall time of the last replaceScene / moveNodes, uploads included
+  double lastRefitMs = 0.0;           // of the last moveNodes on the two-level BVH: refit of the moved instances
+  double lastTopLevelMs = 0.0;        // and the top-level rebuild (both included in lastUpdateMs)
 };
 
 struct TraceStats {
@@ -101,9 +103,10 @@ class Renderer {
 
   const bvh::BuildReport& bvhReport() const;
   const SceneFeatures& features() const;
-  // Rebuilds the BVH and re-uploads the scene (an edited copy: moved nodes, changed lights) with the build options
-  // given at construction; the compiled pipelines are kept, so the next frame costs no shader compilation.
-  void replaceScene(const Scene& scene);
+  // Rebuilds the BVH (in the layout `policy` gives) and re-uploads the scene (an edited copy: moved nodes, changed
+  // lights) with the build options given at construction; the compiled pipelines are kept, so the next frame costs no
+  // shader compilation.
+  void replaceScene(const Scene& scene, BvhLayoutPolicy policy = BvhLayoutPolicy::Automatic);
   // Re-uploads only the lights of `scene`, which must be this Renderer's scene with edited light values (same light
   // count; throws GpuError otherwise): a light edit needs no BVH.
   void updateLights(const Scene& scene);

@@ -118,7 +118,7 @@ struct Renderer::Impl {
 
   // A new BVH and scene records, built and uploaded before the current ones are released (a failure leaves them);
   // pipelines, work and output buffers stay. Every frame waits for its own work, so nothing in flight reads them.
-  void replaceScene(const Scene& s);
+  void replaceScene(const Scene& s, BvhLayoutPolicy policy);
 
   // New light values (same count) into the bound light buffer: no BVH build, no descriptor change.
   void updateLights(const Scene& s);
