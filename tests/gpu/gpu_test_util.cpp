@@ -47,8 +47,8 @@ DiffuseMirrorGlass addDiffuseMirrorGlass(Scene& s) {
   Material glass;
   glass.transmission = 1.0f;
   glass.ior = 1.5f;
-  const std::uint32_t d = ht::addMaterial(s, diffuse), m = ht::addMaterial(s, mirror);
-  return {d, m, ht::addMaterial(s, glass)};
+  const std::uint32_t d = test::addMaterial(s, diffuse), m = test::addMaterial(s, mirror);
+  return {d, m, test::addMaterial(s, glass)};
 }
 
 std::uint32_t addMaterial(Scene& s, const Material& m) {
