@@ -133,21 +133,24 @@ void GpuScene::uploadRecords(const Scene& scene) {
   texels = uploadVector(vk, texelData);
 }
 
-bool GpuScene::uploadTopLevel() {
+bool GpuScene::uploadTopLevel(UploadBatch* batch) {
   bool reallocated = false;
   const auto put = [&](DeviceBuffer& buffer, const void* data, VkDeviceSize bytes) {
     if (buffer.size() < bytes) {
       buffer = DeviceBuffer(*vk_, bytes, MemoryPlace::Device);
       reallocated = true;
     }
-    buffer.upload(data, bytes);
+    if (batch)
+      batch->add(buffer, data, bytes);
+    else
+      buffer.upload(data, bytes);
   };
   put(topNodes, twoLevel_->topNodes().data(), twoLevel_->topNodes().size() * sizeof(gpu_shared::GpuBvhNode));
   put(instances, twoLevel_->instanceTable().data(), twoLevel_->instanceTable().size() * sizeof(glm::uvec4));
   return reallocated;
 }
 
-void GpuScene::uploadInstanceRecords(const Scene& scene, const SceneInstance& instance) {
+void GpuScene::uploadInstanceRecords(const Scene& scene, const SceneInstance& instance, UploadBatch& batch) {
   if (instance.triangleCount == 0) return;
   const size_t first = instance.firstTriangle, end = first + instance.triangleCount;
   std::vector<glm::uvec4> tris;
@@ -160,16 +163,16 @@ void GpuScene::uploadInstanceRecords(const Scene& scene, const SceneInstance& in
       hi = std::max(hi, scene.triangles[t][c]);
     }
   }
-  triangles.upload(tris.data(), tris.size() * sizeof(glm::uvec4), first * sizeof(glm::uvec4));
+  batch.add(triangles, tris.data(), tris.size() * sizeof(glm::uvec4), first * sizeof(glm::uvec4));
   // The node's vertices: the span its triangles index (a node's vertices are contiguous in a loaded scene).
   std::vector<glm::vec4> values;
   values.reserve(hi - lo + 1);
   for (std::uint32_t v = lo; v <= hi; ++v) values.emplace_back(scene.positions[v], 1.0f);
-  vertices.upload(values.data(), values.size() * sizeof(glm::vec4), lo * sizeof(glm::vec4));
+  batch.add(vertices, values.data(), values.size() * sizeof(glm::vec4), lo * sizeof(glm::vec4));
   if (!hasNormals) return;
   values.clear();
   for (std::uint32_t v = lo; v <= hi; ++v) values.emplace_back(scene.normals[v], 0.0f);
-  normals.upload(values.data(), values.size() * sizeof(glm::vec4), lo * sizeof(glm::vec4));
+  batch.add(normals, values.data(), values.size() * sizeof(glm::vec4), lo * sizeof(glm::vec4));
 }
 
 bool GpuScene::moveInstances(const Scene& scene, std::span<const std::uint32_t> moved) {
@@ -184,6 +187,7 @@ bool GpuScene::moveInstances(const Scene& scene, std::span<const std::uint32_t> 
   }
   twoLevel_->updateInstances(scene.positions, scene.triangles, moved);
   bool reallocated = false;
+  UploadBatch batch(*vk_);  // one staging buffer and one submission for every range below
   const auto& blasNodes = twoLevel_->blasNodes();
   const auto& blasTris = twoLevel_->blasTriangles();
   constexpr VkDeviceSize kNode = sizeof(gpu_shared::GpuBvhNode);
@@ -194,19 +198,20 @@ bool GpuScene::moveInstances(const Scene& scene, std::span<const std::uint32_t> 
       bvhTriangles = uploadVector(*vk_, blasTris);
       reallocated = true;
     } else {
-      nodes.upload(blasNodes.data(), blasNodes.size() * kNode);
-      bvhTriangles.upload(blasTris.data(), blasTris.size() * sizeof(glm::vec4));
+      batch.add(nodes, blasNodes.data(), blasNodes.size() * kNode);
+      batch.add(bvhTriangles, blasTris.data(), blasTris.size() * sizeof(glm::vec4));
     }
   } else {
     for (std::uint32_t i : moved) {
       const bvh::InstanceSlots r = twoLevel_->instanceSlots(i);
-      nodes.upload(blasNodes.data() + r.nodeBase, r.nodeCount * kNode, r.nodeBase * kNode);
-      bvhTriangles.upload(blasTris.data() + size_t{r.slotBase} * gpu_shared::HT_TRI_STRIDE, r.slotCount * kSlot,
-                          r.slotBase * kSlot);
+      batch.add(nodes, blasNodes.data() + r.nodeBase, r.nodeCount * kNode, r.nodeBase * kNode);
+      batch.add(bvhTriangles, blasTris.data() + size_t{r.slotBase} * gpu_shared::HT_TRI_STRIDE, r.slotCount * kSlot,
+                r.slotBase * kSlot);
     }
   }
-  reallocated |= uploadTopLevel();
-  for (std::uint32_t i : moved) uploadInstanceRecords(scene, sceneInstances[i]);
+  reallocated |= uploadTopLevel(&batch);
+  for (std::uint32_t i : moved) uploadInstanceRecords(scene, sceneInstances[i], batch);
+  batch.submit();
   return reallocated;
 }
 

@@ -47,9 +47,10 @@ class GpuScene {
 
  private:
   void uploadRecords(const Scene& scene);
-  // Uploads the two-level BVH's top level and instance table, reallocating a buffer that is too small; true then.
-  bool uploadTopLevel();
-  void uploadInstanceRecords(const Scene& scene, const SceneInstance& instance);
+  // Uploads the two-level BVH's top level and instance table (through `batch` when given), reallocating a buffer that
+  // is too small; true then.
+  bool uploadTopLevel(UploadBatch* batch = nullptr);
+  void uploadInstanceRecords(const Scene& scene, const SceneInstance& instance, UploadBatch& batch);
   VulkanContext::Impl* vk_;
   bvh::BvhLayout layout_ = bvh::BvhLayout::Flattened;
   std::unique_ptr<bvh::TwoLevelBvh> twoLevel_;
