@@ -2,6 +2,7 @@
 #include "gpu/gpu_scene.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -209,9 +210,11 @@ bool GpuScene::moveInstances(const Scene& scene, std::span<const std::uint32_t> 
                 r.slotBase * kSlot);
     }
   }
+  const auto start = std::chrono::steady_clock::now();
   reallocated |= uploadTopLevel(&batch);
   for (std::uint32_t i : moved) uploadInstanceRecords(scene, sceneInstances[i], batch);
   batch.submit();
+  lastUploadMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return reallocated;
 }
 

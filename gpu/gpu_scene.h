@@ -40,6 +40,7 @@ class GpuScene {
   // records. Returns true when a buffer had to be reallocated (its descriptors must be rebuilt). The caller makes
   // sure no frame in flight reads the buffers.
   bool moveInstances(const Scene& scene, std::span<const std::uint32_t> moved);
+  double lastUploadMs() const { return lastUploadMs_; }  // of the last moveInstances
 
   DeviceBuffer nodes, bvhTriangles, vertices, normals, texcoords, triangles, materials, lights, textures, texels;
   DeviceBuffer topNodes, instances;  // two-level BVH; a dummy entry with the flattened one
@@ -54,6 +55,7 @@ class GpuScene {
   VulkanContext::Impl* vk_;
   bvh::BvhLayout layout_ = bvh::BvhLayout::Flattened;
   std::unique_ptr<bvh::TwoLevelBvh> twoLevel_;
+  double lastUploadMs_ = 0.0;
   bvh::BuildReport bvhReport_;
   SceneFeatures features_;
   std::uint32_t lightCount_ = 0, textureCount_ = 0;

@@ -158,6 +158,7 @@ void Renderer::Impl::moveNodes(const Scene& s, std::span<const std::uint32_t> mo
     bvhStats.instanceUpdates++;
     bvhStats.lastRefitMs = scene.twoLevel()->timings().refitMs;
     bvhStats.lastTopLevelMs = scene.twoLevel()->timings().topLevelMs;
+    bvhStats.lastUploadMs = scene.lastUploadMs();
   }
   bvhStats.lastUpdateMs = msSince(start);
 }

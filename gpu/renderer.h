@@ -80,7 +80,8 @@ struct BvhStats {
   std::uint64_t instanceUpdates = 0;  // moveNodes served by refit + top-level rebuild + partial upload
   double lastUpdateMs = 0.0;          // host wall time of the last replaceScene / moveNodes, uploads included
   double lastRefitMs = 0.0;           // of the last moveNodes on the two-level BVH: refit of the moved instances
-  double lastTopLevelMs = 0.0;        // and the top-level rebuild (both included in lastUpdateMs)
+  double lastTopLevelMs = 0.0;        // the top-level rebuild
+  double lastUploadMs = 0.0;          // and the upload of the changed ranges (all three included in lastUpdateMs)
 };
 
 struct TraceStats {
