@@ -1,12 +1,14 @@
 // bench_bvh2_main.cpp - holotrace-bench-bvh2: two-level vs flattened BVH on the CPU (docs/BVH.md §9,
 // docs/BENCHMARKS.md "Two-level BVH").
 //  1. Trace cost on static scenes: the same pinhole rays traced through the flattened BVH (order-free closest hit,
-//     and today's ht_trace_closest for reference) and through the two-level BVH; median ms of --runs runs, the
-//     two-level/flattened ratio per run (same run), mean traversal steps, and the layout chooseBvhLayout picks.
+//     and the earlier tree-dependent ht_trace_closest for reference) and through the two-level BVH; median ms of --runs
+//     runs, the two-level/flattened ratio per run (same run), mean traversal steps, and the layout chooseBvhLayout
+//     picks.
 //  2. Update time for one moved node in a large instanced scene (default ~2M triangles in 1,000 instances, and 27
 //     instances of the bunny): full flattened rebuild vs top-level rebuild vs move update (refit of the moved
 //     instance + top level); medians.
 // Usage: holotrace-bench-bvh2 [--runs N (5)] [--size N (512)] [--meshes LIST] [--instances N (1000)] (--help)
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -17,6 +19,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -27,6 +30,9 @@
 #include "bvh/cpu_traversal.h"
 #include "bvh/two_level_bvh.h"
 #include "common/error.h"
+#include "gpu/renderer.h"
+#include "gpu/scene_bvh.h"
+#include "gpu/vulkan_context.h"
 #include "scene/scene.h"
 #include "scene/scene_edits.h"
 
@@ -39,6 +45,7 @@ using gpu_shared::HtRay;
 using Clock = std::chrono::steady_clock;
 
 struct Options {
+  bool gpu = false;  // also trace and update through the renderer on the Vulkan device (lavapipe here)
   uint32_t runs = 5;
   uint32_t size = 512;
   uint32_t instances = 1000;
@@ -71,10 +78,13 @@ std::vector<std::string> splitList(const std::string& list) {
 }
 
 constexpr const char* kHelp =
-    "Usage: holotrace-bench-bvh2 [--runs N (5)] [--size N (512)] [--meshes LIST] [--instances N (1000)]\n"
+    "Usage: holotrace-bench-bvh2 [--runs N (5)] [--size N (512)] [--meshes LIST] [--instances N (1000)] [--gpu]\n"
     "Two-level vs flattened BVH on the CPU: trace cost on static scenes (--meshes, each also as a\n"
     "grid of 27 instances) and the update time for one moved node in a ~2M-triangle scene of\n"
-    "--instances instances. Medians of --runs runs; ratios are per run.\n";
+    "--instances instances. Medians of --runs runs; ratios are per run.\n"
+    "--gpu: the same through gpu::Renderer on the Vulkan device: trace_closest time (GPU timestamps) of the\n"
+    "flattened vs the two-level BVH, and the end-to-end update for one moved node (flattened rebuild + upload\n"
+    "vs Renderer::moveNodes: refit + top level + partial upload).\n";
 
 std::optional<Options> parseOptions(const std::vector<std::string>& args, std::string* help) {
   Options o;
@@ -83,6 +93,10 @@ std::optional<Options> parseOptions(const std::vector<std::string>& args, std::s
     if (a == "--help" || a == "-h") {
       *help = kHelp;
       return std::nullopt;
+    }
+    if (a == "--gpu") {
+      o.gpu = true;
+      continue;
     }
     if (i + 1 >= args.size()) throw UsageError("holotrace-bench-bvh2: option '" + a + "' needs a value (see --help)");
     const std::string& v = args[++i];
@@ -104,12 +118,6 @@ double timeMs(const std::function<void()>& fn) {
   const auto start = Clock::now();
   fn();
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-std::vector<bvh::InstanceRange> instanceRanges(const Scene& scene) {
-  std::vector<bvh::InstanceRange> out;
-  for (const SceneInstance& i : scene.instances()) out.push_back({i.firstTriangle, i.triangleCount, i.mesh});
-  return out;
 }
 
 bvh::Aabb boundsOf(const Scene& scene) {
@@ -188,17 +196,33 @@ Scene triangleClump(uint32_t n) {
   return s;
 }
 
+// The tree-dependent closest hit the renderer used before the order-free one (bvh_traversal.h), for reference;
+// rays split over all cores in contiguous parts, like the batch traces it is compared with.
+void traceTreeDependentBatch(const GpuBvh& flat, const std::vector<HtRay>& rays) {
+  const gpu_shared::BvhView view{flat.nodes.data(), flat.triangles.data()};
+  std::vector<gpu_shared::HtTraceResult> results(rays.size());
+  const size_t workers = std::max(1u, std::thread::hardware_concurrency());
+  const size_t part = (rays.size() + workers - 1) / workers;
+  std::vector<std::thread> pool;
+  for (size_t w = 0; w < workers; ++w)
+    pool.emplace_back([&, w] {
+      for (size_t i = w * part; i < std::min(rays.size(), (w + 1) * part); ++i)
+        results[i] = gpu_shared::ht_trace_closest(view, rays[i], gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
+    });
+  for (std::thread& t : pool) t.join();
+}
+
 void traceCost(const Scene& scene, const Options& o) {
   const GpuBvh flat = bvh::buildGpuBvh(scene.positions, scene.triangles, bvh::BuildOptions{});
-  const std::vector<bvh::InstanceRange> ranges = instanceRanges(scene);
+  const std::vector<bvh::InstanceRange> ranges = gpu::instanceRanges(scene);
   const TwoLevelBvh twoLevel(scene.positions, scene.triangles, ranges);
   const std::vector<HtRay> rays = pinholeRays(boundsOf(scene), o.size);
   TimingSeries legacy, ordered, twoLevelMs;
   std::vector<double> ratio;
   std::vector<gpu_shared::HtTraceResult> a, b;
   for (uint32_t run = 0; run <= o.runs; ++run) {  // run 0 warms up
-    const double l = timeMs([&] { bvh::traceClosestBatch(flat, rays); });
-    const double f = timeMs([&] { a = bvh::traceClosestOrderedBatch(flat, rays); });
+    const double l = timeMs([&] { traceTreeDependentBatch(flat, rays); });
+    const double f = timeMs([&] { a = bvh::traceClosestBatch(flat, rays); });
     const double t = timeMs([&] { b = bvh::traceClosestTwoLevelBatch(twoLevel, rays); });
     if (run == 0) continue;
     legacy.ms.push_back(l);
@@ -221,7 +245,7 @@ void traceCost(const Scene& scene, const Options& o) {
 }
 
 void updateTime(Scene scene, const Options& o) {
-  const std::vector<bvh::InstanceRange> ranges = instanceRanges(scene);
+  const std::vector<bvh::InstanceRange> ranges = gpu::instanceRanges(scene);
   TimingSeries rebuild, top, move;
   double buildTwoLevelMs = timeMs([] {});
   std::unique_ptr<TwoLevelBvh> twoLevel;
@@ -249,6 +273,73 @@ void updateTime(Scene scene, const Options& o) {
               move.medianMs(), rebuild.medianMs() / move.medianMs());
 }
 
+// The same pinhole rays through gpu::Renderer::traceClosest on the flattened and the two-level BVH (trace_closest
+// GPU time), interleaved, after a warm-up; median ms, median of per-run ratios, rays whose hits differ in any bit.
+void gpuTraceCost(gpu::VulkanContext& context, const Scene& scene, const Options& o) {
+  gpu::Renderer flat(context, scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::Flattened));
+  gpu::Renderer twoLevel(context, scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::TwoLevel));
+  const std::vector<HtRay> rays = pinholeRays(boundsOf(scene), o.size);
+  TimingSeries flatMs, twoLevelMs;
+  std::vector<double> ratio;
+  std::vector<gpu_shared::HtHit> a, b;
+  for (uint32_t run = 0; run <= o.runs; ++run) {  // run 0 warms up (lavapipe compiles at the first dispatch)
+    gpu::TraceStats f, t;
+    a = flat.traceClosest(rays, &f);
+    b = twoLevel.traceClosest(rays, &t);
+    if (run == 0) continue;
+    flatMs.ms.push_back(f.gpuMs);
+    twoLevelMs.ms.push_back(t.gpuMs);
+    ratio.push_back(t.gpuMs / f.gpuMs);
+  }
+  uint64_t mismatches = 0;
+  for (size_t i = 0; i < rays.size(); ++i) mismatches += std::memcmp(&a[i], &b[i], sizeof(a[i])) != 0;
+  std::printf("%-34s %9zu %5zu %10.1f %10.1f %7.3f %6llu\n", scene.name.c_str(), scene.triangles.size(),
+              gpu::instanceRanges(scene).size(), flatMs.medianMs(), twoLevelMs.medianMs(), median(ratio),
+              static_cast<unsigned long long>(mismatches));
+}
+
+// One node moved back and forth: a flattened renderer rebuilds and re-uploads (replaceScene), a two-level renderer
+// takes Renderer::moveNodes; host wall time of each, with the two-level update's refit and top-level parts.
+void gpuUpdateTime(gpu::VulkanContext& context, Scene scene, const Options& o) {
+  gpu::Renderer flat(context, scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::Flattened));
+  gpu::Renderer twoLevel(context, scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::TwoLevel));
+  const uint32_t node = static_cast<uint32_t>(scene.nodes.size() / 2);
+  const std::vector<uint32_t> moved{node};
+  TimingSeries rebuild, move;
+  std::vector<double> refit, top, upload;
+  const uint32_t moveRuns = std::max(21u, o.runs);
+  for (uint32_t run = 0; run < moveRuns; ++run) {
+    const glm::dmat4 world = glm::translate(scene.nodes[node].world, glm::dvec3(run % 2 ? -0.25 : 0.25, 0.0, 0.0));
+    setNodeWorldMatrix(scene, scene.nodes[node].name, world);
+    twoLevel.moveNodes(scene, moved);
+    move.ms.push_back(twoLevel.bvhStats().lastUpdateMs);
+    refit.push_back(twoLevel.bvhStats().lastRefitMs);
+    top.push_back(twoLevel.bvhStats().lastTopLevelMs);
+    upload.push_back(twoLevel.bvhStats().lastUploadMs);
+    if (run < o.runs) rebuild.ms.push_back(timeMs([&] { flat.replaceScene(scene, gpu::BvhLayoutPolicy::Flattened); }));
+  }
+  if (twoLevel.bvhStats().fullBuilds != 1) throw Error("holotrace-bench-bvh2: a two-level move rebuilt the BVH");
+  std::printf("%-34s %9zu %5zu %12.1f %10.3f %10.3f %10.3f %12.3f %9.0fx\n", scene.name.c_str(), scene.triangles.size(),
+              gpu::instanceRanges(scene).size(), rebuild.medianMs(), median(top), median(refit), median(upload),
+              move.medianMs(), rebuild.medianMs() / move.medianMs());
+}
+
+void runGpu(const Options& o, const std::vector<Scene>& traceScenes, const std::vector<Scene>& updateScenes) {
+  gpu::VulkanContext context(gpu::VulkanContext::Options{});
+  std::printf(
+      "\nGPU (%s): trace_closest time, static scenes (GPU timestamp ms; ratio = two-level / flattened, median "
+      "of per-run ratios; diff = rays whose hits differ in any bit)\n",
+      context.device().name.c_str());
+  std::printf("%-34s %9s %5s %10s %10s %7s %6s\n", "scene", "tris", "inst", "flattened", "2-level", "ratio", "diff");
+  for (const Scene& scene : traceScenes) gpuTraceCost(context, scene, o);
+  std::printf(
+      "\nGPU: update after moving one node, end to end in the renderer (host ms; rebuild = flattened build + "
+      "upload; move = Renderer::moveNodes = refit + top + uploads)\n");
+  std::printf("%-34s %9s %5s %12s %10s %10s %10s %12s %10s\n", "scene", "tris", "inst", "rebuild", "top", "refit",
+              "upload", "move", "speedup");
+  for (const Scene& scene : updateScenes) gpuUpdateTime(context, scene, o);
+}
+
 int run(const Options& o) {
   std::printf("holotrace-bench-bvh2: %u runs (medians), %ux%u pinhole rays, all cores\n\n", o.runs, o.size, o.size);
   std::printf(
@@ -257,6 +348,7 @@ int run(const Options& o) {
   std::printf("%-34s %9s %5s %9s %9s %9s %7s %8s %8s %6s  %s\n", "scene", "tris", "inst", "legacy", "ordered",
               "2-level", "ratio", "steps-f", "steps-2", "diff", "choice");
   Scene bigMesh;
+  std::vector<Scene> traceScenes, updateScenes;
   for (const std::string& spec : o.meshes) {
     Scene scene;
     try {
@@ -268,6 +360,10 @@ int run(const Options& o) {
     traceCost(scene, o);
     Scene grid = instancedGrid(scene, 27, spec + " x27");
     traceCost(grid, o);
+    if (o.gpu) {
+      traceScenes.push_back(scene);
+      traceScenes.push_back(std::move(grid));
+    }
     if (scene.triangles.size() > bigMesh.triangles.size()) bigMesh = std::move(scene);
   }
   std::printf(
@@ -276,13 +372,15 @@ int run(const Options& o) {
   std::printf("%-34s %9s %5s %11s %11s %10s %10s %10s %10s\n", "scene", "tris", "inst", "rebuild", "2-lvl build", "top",
               "refit", "move", "speedup");
   const uint32_t perInstance = std::max<uint32_t>(1, 2000000 / o.instances);
-  updateTime(instancedGrid(triangleClump(perInstance), o.instances,
-                           "clump(" + std::to_string(perInstance) + ") x" + std::to_string(o.instances)),
-             o);
+  Scene clumps = instancedGrid(triangleClump(perInstance), o.instances,
+                               "clump(" + std::to_string(perInstance) + ") x" + std::to_string(o.instances));
+  updateTime(clumps, o);
+  if (o.gpu) updateScenes.push_back(std::move(clumps));
   if (!bigMesh.triangles.empty()) {
     const uint32_t copies = std::max<uint32_t>(1, static_cast<uint32_t>(2000000 / bigMesh.triangles.size()));
     updateTime(instancedGrid(bigMesh, copies, bigMesh.name + " x" + std::to_string(copies)), o);
   }
+  if (o.gpu) runGpu(o, traceScenes, updateScenes);
   return 0;
 }
 

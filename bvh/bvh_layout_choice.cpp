@@ -54,7 +54,7 @@ std::vector<gpu_shared::HtRay> layoutProbeRays(const Aabb& bounds, uint32_t coun
 LayoutCosts measureLayoutCosts(const GpuBvh& flattened, const TwoLevelBvh& twoLevel,
                                std::span<const gpu_shared::HtRay> probeRays) {
   LayoutCosts costs;
-  costs.flattenedStepsPerRay = meanSteps(traceClosestOrderedBatch(flattened, probeRays));
+  costs.flattenedStepsPerRay = meanSteps(traceClosestBatch(flattened, probeRays));
   costs.twoLevelStepsPerRay = meanSteps(traceClosestTwoLevelBatch(twoLevel, probeRays));
   return costs;
 }

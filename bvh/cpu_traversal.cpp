@@ -14,7 +14,8 @@ template <bool kAnyHit>
 HtTraceResult traceOne(const GpuBvh& bvh, const HtRay& ray, uint32_t stepLimit) {
   if (bvh.nodes.empty()) return gpu_shared::ht_trace_miss(ray);
   gpu_shared::BvhView view = viewOf(bvh);
-  return kAnyHit ? gpu_shared::ht_trace_any(view, ray, stepLimit) : gpu_shared::ht_trace_closest(view, ray, stepLimit);
+  return kAnyHit ? gpu_shared::ht_trace_any(view, ray, stepLimit)
+                 : gpu_shared::ht_trace_closest_ordered(view, ray, stepLimit);
 }
 
 // Workers take blocks of kBlock consecutive rays from a shared counter: neighbouring rays are coherent
@@ -61,19 +62,9 @@ std::vector<HtTraceResult> traceAnyBatch(const GpuBvh& bvh, std::span<const HtRa
   return traceBatch(rays, threads, [&](const HtRay& r) { return traceOne<true>(bvh, r, stepLimit); });
 }
 
-HtTraceResult traceClosestOrdered(const GpuBvh& bvh, const HtRay& ray, uint32_t stepLimit) {
-  if (bvh.nodes.empty()) return gpu_shared::ht_trace_miss(ray);
-  return gpu_shared::ht_trace_closest_ordered(viewOf(bvh), ray, stepLimit);
-}
-
 HtTraceResult traceClosestTwoLevel(const TwoLevelBvh& bvh, const HtRay& ray, uint32_t stepLimit) {
   const gpu_shared::TwoLevelView view = bvh.view();
   return gpu_shared::ht_trace_two_level_ordered(view, view.blas, ray, stepLimit);
-}
-
-std::vector<HtTraceResult> traceClosestOrderedBatch(const GpuBvh& bvh, std::span<const HtRay> rays, uint32_t stepLimit,
-                                                    uint32_t threads) {
-  return traceBatch(rays, threads, [&](const HtRay& r) { return traceClosestOrdered(bvh, r, stepLimit); });
 }
 
 std::vector<HtTraceResult> traceClosestTwoLevelBatch(const TwoLevelBvh& bvh, std::span<const HtRay> rays,

@@ -15,7 +15,9 @@ using gpu_shared::HtHit;
 using gpu_shared::HtRay;
 using gpu_shared::HtTraceResult;
 
-// Closest hit. A GpuBvh without nodes (default-constructed) returns a miss.
+// Closest hit, order-free (ordered_traversal.h, docs/BVH.md §9.3): the least (t, triangle id), identical for every
+// tree over the same triangles; the CPU reference of gpu/shaders/trace_closest.comp. A GpuBvh without nodes
+// (default-constructed) returns a miss.
 HtTraceResult traceClosest(const GpuBvh& bvh, const HtRay& ray,
                            uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
 // Any hit (occlusion): hit.triId != HT_MISS when something lies in [tmin, tmax].
@@ -29,16 +31,9 @@ std::vector<HtTraceResult> traceAnyBatch(const GpuBvh& bvh, std::span<const HtRa
                                          uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT,
                                          uint32_t threads = 0);
 
-// Order-free closest hit (ordered_traversal.h): the least (t, triangle id), identical for every tree over the
-// same triangles. traceClosestTwoLevel over a TwoLevelBvh equals traceClosestOrdered over the flattened BVH of
-// the same soup bit for bit.
-HtTraceResult traceClosestOrdered(const GpuBvh& bvh, const HtRay& ray,
-                                  uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
+// Closest hit through a two-level BVH: equals traceClosest over the flattened BVH of the same soup bit for bit.
 HtTraceResult traceClosestTwoLevel(const TwoLevelBvh& bvh, const HtRay& ray,
                                    uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
-std::vector<HtTraceResult> traceClosestOrderedBatch(const GpuBvh& bvh, std::span<const HtRay> rays,
-                                                    uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT,
-                                                    uint32_t threads = 0);
 std::vector<HtTraceResult> traceClosestTwoLevelBatch(const TwoLevelBvh& bvh, std::span<const HtRay> rays,
                                                      uint32_t stepLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT,
                                                      uint32_t threads = 0);

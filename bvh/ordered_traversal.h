@@ -66,6 +66,18 @@ HT_INLINE bool ht_hit_precedes(float t, uint id, HT_IN(HtHit) best) {
   return t < best.t || (t == best.t && id < best.triId);
 }
 
+// ht_hit_precedes during a walk, where best.triId holds the triangle *slot* (vec4 index) of the best hit: the
+// triangle ids are loaded only on a tie of t (rare), not for every candidate -- a load per candidate cost about
+// 10 % of trace time on lavapipe. The slot becomes the id once the walk ends (ht_resolve_slot_id).
+HT_INLINE bool ht_slot_hit_precedes(HT_BVH_PARAM float t, uint slot, HT_IN(HtHit) best) {
+  if (t != best.t) return t < best.t;
+  return best.triId == HT_MISS || HT_LOAD_TRI_ID(slot) < HT_LOAD_TRI_ID(best.triId);
+}
+
+HT_INLINE void ht_resolve_slot_id(HT_BVH_PARAM HT_INOUT(HtHit) best) {
+  if (best.triId != HT_MISS) best.triId = HT_LOAD_TRI_ID(best.triId);
+}
+
 // Ordered traversal state of one ray, carried across the BVHs of a two-level trace.
 struct HtOrderedRay {
   HtSlabRay slab;
@@ -96,9 +108,12 @@ HT_INLINE uint ht_order_children(bool hit0, bool hit1, float tEnter0, float tEnt
   return HT_REF_NONE;
 }
 
-// Tests the `count` triangle slots of a leaf starting at global slot `slot0` and keeps the least (t, id).
-HT_INLINE void ht_ordered_leaf(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint slot0, uint count, HT_INOUT(HtHit) best,
-                               HT_INOUT(uint) steps, uint stepLimit, HT_INOUT(bool) overflow) {
+// Tests the `count` triangle slots of a leaf starting at global slot `slot0` and keeps the least (t, id), with
+// best.triId holding the slot of the best hit; `cull` follows the best hit (ht_ordered_cull_t).
+// anyHit: stop at the first triangle hit within the ray's tmax (occlusion).
+HT_INLINE void ht_ordered_leaf(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint slot0, uint count, bool anyHit,
+                               HT_INOUT(HtHit) best, HT_INOUT(float) cull, HT_INOUT(uint) steps, uint stepLimit,
+                               HT_INOUT(bool) overflow) {
   uint slot = slot0 * HT_TRI_STRIDE;
   uint slotEnd = slot + count * HT_TRI_STRIDE;
   for (; slot < slotEnd; slot += HT_TRI_STRIDE) {
@@ -113,22 +128,26 @@ HT_INLINE void ht_ordered_leaf(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint slot0, u
     float t;
     float u;
     float v;
-    if (ht_intersect_triangle(r.tri, v0, v1, v2, ht_ordered_cull_t(best, r.tmax), t, u, v)) {
-      uint id = HT_LOAD_TRI_ID(slot);
-      if (ht_hit_precedes(t, id, best)) {
-        best.t = t;
-        best.triId = id;
-        best.u = u;
-        best.v = v;
-      }
+    if (ht_intersect_triangle(r.tri, v0, v1, v2, cull, t, u, v) && ht_slot_hit_precedes(HT_BVH_ARG t, slot, best)) {
+      best.t = t;
+      best.triId = slot;  // the id is looked up once the walk ends (ht_resolve_slot_id)
+      best.u = u;
+      best.v = v;
+      cull = ht_ordered_cull_t(best, r.tmax);
+      if (anyHit) break;
     }
   }
 }
 
-// Walks one BVH (root = local node 0 at nodeBase; leaves' slots offset by slotBase), updating best.
+// Walks one BVH (root = local node 0 at nodeBase; leaves' slots offset by slotBase), updating best and cull.
+// Aila & Laine's "while-while" form, as ht_trace (bvh_traversal.h): an inner loop descends through inner nodes
+// until it reaches a leaf, then the leaf's triangles are tested; SIMD lanes (lavapipe runs 8 rays per vector)
+// stay in the same phase longer than with one loop that alternates between nodes and leaves. Every iteration of
+// every loop counts a step, so a loop lavapipe ended early has counted more than the step limit.
 // Returns false when the walk did not finish (step limit, stack, or a driver that ended the loop).
-HT_INLINE bool ht_ordered_bvh(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint nodeBase, uint slotBase, HT_INOUT(HtHit) best,
-                              HT_INOUT(uint) steps, uint stepLimit) {
+// anyHit: the walk ends at the first hit (best.triId != HT_MISS afterwards).
+HT_INLINE bool ht_ordered_bvh(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint nodeBase, uint slotBase, bool anyHit,
+                              HT_INOUT(HtHit) best, HT_INOUT(float) cull, HT_INOUT(uint) steps, uint stepLimit) {
   uint stack[HT_BVH_MAX_DEPTH];
   uint sp = 0u;
   uint cur = 0u;
@@ -140,46 +159,51 @@ HT_INLINE bool ht_ordered_bvh(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint nodeBase,
       overflow = true;
       break;
     }
-    if ((cur >> HT_REF_COUNT_SHIFT) != 0u) {
-      ht_ordered_leaf(HT_BVH_ARG r, slotBase + (cur & HT_REF_INDEX_MASK), cur >> HT_REF_COUNT_SHIFT, best, steps,
-                      stepLimit, overflow);
-      if (overflow) break;
-      if (sp == 0u) {
-        finished = true;
-        break;
-      }
-      sp--;
-      cur = stack[sp];
-      continue;
-    }
-    uint node = nodeBase + cur;
-    bool hit0;
-    bool hit1;
-    float tEnter0;
-    float tEnter1;
-    ht_slab_boxes(r.slab, HT_LOAD_NODE(node).c0xy, HT_LOAD_NODE(node).c1xy, HT_LOAD_NODE(node).c01z,
-                  ht_ordered_cull_t(best, r.tmax), hit0, hit1, tEnter0, tEnter1);
-    uvec4 link = uvec4(0u);
-    if (hit0 || hit1) link = HT_LOAD_NODE_LINK(node);
-    uint push;
-    uint next = ht_order_children(hit0, hit1, tEnter0, tEnter1, link, push);
-    if (push != HT_REF_NONE) {
-      if (sp >= HT_BVH_MAX_DEPTH) {
+    while ((cur >> HT_REF_COUNT_SHIFT) == 0u) {
+      steps++;
+      if (steps > stepLimit) {
         overflow = true;
         break;
       }
-      stack[sp] = push;
-      sp++;
+      uint node = nodeBase + cur;
+      bool hit0;
+      bool hit1;
+      float tEnter0;
+      float tEnter1;
+      ht_slab_boxes(r.slab, HT_LOAD_NODE(node).c0xy, HT_LOAD_NODE(node).c1xy, HT_LOAD_NODE(node).c01z, cull, hit0, hit1,
+                    tEnter0, tEnter1);
+      uvec4 link = uvec4(0u);
+      if (hit0 || hit1) link = HT_LOAD_NODE_LINK(node);
+      uint push;
+      uint next = ht_order_children(hit0, hit1, tEnter0, tEnter1, link, push);
+      if (push != HT_REF_NONE) {
+        if (sp >= HT_BVH_MAX_DEPTH) {
+          overflow = true;
+          break;
+        }
+        stack[sp] = push;
+        sp++;
+      }
+      if (next == HT_REF_NONE && sp != 0u) {
+        sp--;
+        next = stack[sp];
+      }
+      cur = next;  // HT_REF_NONE (count field 31) ends the descent: nothing left to visit
     }
-    if (next == HT_REF_NONE && sp == 0u) {
+    if (overflow) break;
+    if (cur == HT_REF_NONE) {
       finished = true;
       break;
     }
-    if (next == HT_REF_NONE) {
-      sp--;
-      next = stack[sp];
+    ht_ordered_leaf(HT_BVH_ARG r, slotBase + (cur & HT_REF_INDEX_MASK), cur >> HT_REF_COUNT_SHIFT, anyHit, best, cull,
+                    steps, stepLimit, overflow);
+    if (overflow) break;
+    if (sp == 0u || (anyHit && best.triId != HT_MISS)) {
+      finished = true;
+      break;
     }
-    cur = next;
+    sp--;
+    cur = stack[sp];
   }
   return finished;
 }
@@ -189,18 +213,24 @@ HT_INLINE HtTraceResult ht_trace_closest_ordered(HT_BVH_PARAM HT_IN(HtRay) ray, 
   HtTraceResult res = ht_trace_miss(ray);
   if (!ht_ray_is_valid(ray)) return res;
   HtOrderedRay r = ht_make_ordered_ray(ray);
+  float cull = r.tmax;
   uint steps = 0u;
-  bool finished = ht_ordered_bvh(HT_BVH_ARG r, 0u, 0u, res.hit, steps, stepLimit);
+  bool finished = ht_ordered_bvh(HT_BVH_ARG r, 0u, 0u, false, res.hit, cull, steps, stepLimit);
+  ht_resolve_slot_id(HT_BVH_ARG res.hit);
   res.steps = steps;
   res.overflow = !finished;
   return res;
 }
 
-// Least (t, id) hit of a two-level BVH: the top level over instance boxes, each instance's own BVH below.
-HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
+#if !defined(HT_GLSL) || defined(HT_LOAD_TOP_NODE)
+// Walk of a two-level BVH: the top level over instance boxes, each instance's own BVH below; anyHit as in
+// ht_ordered_bvh. (GLSL: only where the including shader defines HT_LOAD_TOP_NODE and HT_LOAD_INSTANCE.)
+HT_INLINE HtTraceResult ht_two_level_walk(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
+                                          bool anyHit) {
   HtTraceResult res = ht_trace_miss(ray);
   if (!ht_ray_is_valid(ray)) return res;
   HtOrderedRay r = ht_make_ordered_ray(ray);
+  float cull = r.tmax;
   uint stack[HT_BVH_MAX_DEPTH];
   uint sp = 0u;
   uint cur = 0u;
@@ -217,11 +247,13 @@ HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
       uint first = cur & HT_REF_INDEX_MASK;
       uint end = first + (cur >> HT_REF_COUNT_SHIFT);
       for (uint e = first; e < end && !overflow; e++) {
+        steps++;  // this loop's iterations count too (lavapipe's loop budget, docs/TOOLCHAIN.md §0)
         uvec4 inst = HT_LOAD_INSTANCE(e);
-        overflow = !ht_ordered_bvh(HT_BVH_ARG r, inst.x, inst.y, res.hit, steps, stepLimit);
+        overflow = !ht_ordered_bvh(HT_BVH_ARG r, inst.x, inst.y, anyHit, res.hit, cull, steps, stepLimit);
+        if (anyHit && res.hit.triId != HT_MISS) break;
       }
       if (overflow) break;
-      if (sp == 0u) {
+      if (sp == 0u || (anyHit && res.hit.triId != HT_MISS)) {
         finished = true;
         break;
       }
@@ -233,8 +265,8 @@ HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
     bool hit1;
     float tEnter0;
     float tEnter1;
-    ht_slab_boxes(r.slab, HT_LOAD_TOP_NODE(cur).c0xy, HT_LOAD_TOP_NODE(cur).c1xy, HT_LOAD_TOP_NODE(cur).c01z,
-                  ht_ordered_cull_t(res.hit, r.tmax), hit0, hit1, tEnter0, tEnter1);
+    ht_slab_boxes(r.slab, HT_LOAD_TOP_NODE(cur).c0xy, HT_LOAD_TOP_NODE(cur).c1xy, HT_LOAD_TOP_NODE(cur).c01z, cull,
+                  hit0, hit1, tEnter0, tEnter1);
     uint push;
     uint next = ht_order_children(hit0, hit1, tEnter0, tEnter1, HT_LOAD_TOP_NODE(cur).link, push);
     if (push != HT_REF_NONE) {
@@ -255,10 +287,23 @@ HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
     }
     cur = next;
   }
+  ht_resolve_slot_id(HT_BVH_ARG res.hit);
   res.steps = steps;
   res.overflow = !finished;
   return res;
 }
+
+// Least (t, id) hit of a two-level BVH.
+HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
+  return ht_two_level_walk(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, false);
+}
+
+// Any hit of a two-level BVH within [tmin, tmax] (occlusion): the same triangles count as for ht_trace_any on the
+// flattened BVH (ht_intersect_triangle with the ray's tmax); which one is reported depends on the tree.
+HT_INLINE HtTraceResult ht_trace_two_level_any(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
+  return ht_two_level_walk(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, true);
+}
+#endif
 
 HT_SHARED_END
 #endif

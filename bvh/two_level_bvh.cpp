@@ -200,6 +200,7 @@ void TwoLevelBvh::updateInstances(std::span<const glm::vec3> positions, std::spa
     if (i >= instances_.size()) throw SceneError("<two-level bvh>", "no instance " + std::to_string(i));
     sizesKept &= packInstance(i, positions, triangles);
   }
+  relaidOut_ = !sizesKept;
   if (!sizesKept) relayout(positions, triangles);  // a placement needed a tree shape of its own
   timings_.refitMs = msSince(start);
   rebuildTopLevel();
@@ -229,6 +230,11 @@ void TwoLevelBvh::rebuildTopLevel() {
     instanceTable_[j] = glm::uvec4(inst.nodeBase, inst.slotBase, top.primIndex[j], 0u);
   }
   timings_.topLevelMs = msSince(start);
+}
+
+InstanceSlots TwoLevelBvh::instanceSlots(uint32_t i) const {
+  const Instance& inst = instances_.at(i);
+  return InstanceSlots{inst.nodeBase, inst.nodeCount, inst.slotBase, inst.slotCount};
 }
 
 gpu_shared::TwoLevelView TwoLevelBvh::view() const {

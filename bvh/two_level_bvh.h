@@ -30,6 +30,12 @@ struct InstanceRange {
   int32_t mesh = -1;
 };
 
+// Where instance i's bottom level lies in the concatenated buffers: nodes [nodeBase, +nodeCount) of blasNodes(),
+// triangle slots [slotBase, +slotCount) (HT_TRI_STRIDE vec4 each) of blasTriangles().
+struct InstanceSlots {
+  uint32_t nodeBase = 0, nodeCount = 0, slotBase = 0, slotCount = 0;
+};
+
 struct TwoLevelTimings {
   double refitMs = 0.0;     // bottom levels refitted (and repacked) in the last update
   double topLevelMs = 0.0;  // top-level rebuild of the last build or update
@@ -54,6 +60,10 @@ class TwoLevelBvh {
   size_t instanceCount() const { return instances_.size(); }
   size_t shapeCount() const { return shapes_.size(); }  // distinct bottom-level tree shapes
   const Aabb& instanceBox(uint32_t i) const { return instances_[i].box; }
+  InstanceSlots instanceSlots(uint32_t i) const;
+  // Whether the last updateInstances laid the bottom levels out anew (a placement needed a tree shape of its own):
+  // then every instance's range may have moved, not only the moved instances'.
+  bool lastUpdateRelaidOut() const { return relaidOut_; }
   size_t memoryBytes() const;
 
   // Concatenated buffers (what a GPU kernel binds).
@@ -88,6 +98,7 @@ class TwoLevelBvh {
   std::vector<gpu_shared::GpuBvhNode> blasNodes_;
   std::vector<glm::vec4> blasTriangles_;
   TwoLevelTimings timings_;
+  bool relaidOut_ = false;
 };
 
 }  // namespace ht::bvh

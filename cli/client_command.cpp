@@ -122,7 +122,8 @@ void moveNode(Stub& stub, const std::string& sceneId, const std::string& spec, s
   v1::UpdateSceneResponse response;
   check(stub.UpdateScene(&context, request, &response), "UpdateScene");
   out << "moved " << node->node() << ": world = translate(" << t[0] << ", " << t[1] << ", " << t[2]
-      << "), BVH rebuilt in " << response.rebuild_ms() << " ms, SAH " << response.sah_cost() << "\n";
+      << "), BVH updated in " << response.rebuild_ms() << " ms (" << response.bvh_layout() << ", "
+      << response.bvh_full_builds() << " full build(s), " << response.bvh_instance_updates() << " move update(s))\n";
 }
 
 v1::SceneHandle openScene(Stub& stub, const ParsedArguments& a, std::ostream& out) {

@@ -125,6 +125,32 @@ void DeviceBuffer::download(void* data, VkDeviceSize bytes, VkDeviceSize offset)
   std::memcpy(data, staging.mapped(), bytes);
 }
 
+void UploadBatch::add(DeviceBuffer& buffer, const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
+  if (bytes == 0) return;
+  copies_.push_back({&buffer, offset, bytes, staged_.size()});
+  const auto* bytesIn = static_cast<const unsigned char*>(data);
+  staged_.insert(staged_.end(), bytesIn, bytesIn + bytes);
+}
+
+void UploadBatch::submit() {
+  if (copies_.empty()) return;
+  DeviceBuffer staging(vk_, staged_.size(), MemoryPlace::HostReadback);
+  std::memcpy(staging.mapped(), staged_.data(), staged_.size());
+  OneShotCommands once(vk_);
+  for (const Copy& c : copies_) {
+    if (c.buffer->mapped()) {  // host-visible memory: written in place
+      std::memcpy(static_cast<unsigned char*>(c.buffer->mapped()) + c.offset, staged_.data() + c.stagingOffset,
+                  c.bytes);
+      continue;
+    }
+    const VkBufferCopy region{c.stagingOffset, c.offset, c.bytes};
+    vkCmdCopyBuffer(once.cmd(), staging.handle(), c.buffer->handle(), 1, &region);
+  }
+  once.submitAndWait();
+  copies_.clear();
+  staged_.clear();
+}
+
 OneShotCommands::OneShotCommands(VulkanContext::Impl& vk) : vk_(vk) {
   VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   ai.commandPool = vk.commandPool;

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "gpu/vulkan_impl.h"
 
@@ -38,6 +39,25 @@ class DeviceBuffer {
   VkDeviceAddress address_ = 0;
   VkDeviceSize size_ = 0;
   void* mapped_ = nullptr;
+};
+
+// Several host -> buffer copies through one staging buffer and one submission (DeviceBuffer::upload pays a staging
+// buffer, a submit and a fence wait per call): e.g. the ranges a node move changes (GpuScene::moveInstances). The
+// data is copied at add(); nothing reaches the buffers before submit().
+class UploadBatch {
+ public:
+  explicit UploadBatch(VulkanContext::Impl& vk) : vk_(vk) {}
+  void add(DeviceBuffer& buffer, const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
+  void submit();
+
+ private:
+  struct Copy {
+    DeviceBuffer* buffer;
+    VkDeviceSize offset, bytes, stagingOffset;
+  };
+  VulkanContext::Impl& vk_;
+  std::vector<Copy> copies_;
+  std::vector<unsigned char> staged_;
 };
 
 // Records and runs a one-off command buffer synchronously (uploads, small jobs).

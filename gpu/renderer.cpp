@@ -4,6 +4,7 @@
 #include "gpu/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -29,6 +30,10 @@ struct TexelBinding {
   const DeviceBuffer* buffer;
   VkFormat format;
 };
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
 
 }  // namespace
 
@@ -87,6 +92,8 @@ Renderer::Impl::Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptio
   HT_VK(vkCreateFence(vk.device, &fci, nullptr, &fence));
   bindScene();
   bindRayTable(nullptr);
+  bvhStats.layout = scene.layout();
+  bvhStats.fullBuilds = 1;
 }
 
 Renderer::Impl::~Impl() {
@@ -116,12 +123,44 @@ void Renderer::Impl::bindRayTable(const std::shared_ptr<const RayTable>& table) 
   boundRayTable = table;
 }
 
-void Renderer::Impl::replaceScene(const Scene& s) {
-  GpuScene next(vk, s, buildOptions);
+void Renderer::Impl::replaceScene(const Scene& s, BvhLayoutPolicy policy) {
+  const auto start = std::chrono::steady_clock::now();
+  installScene(s, buildSceneBvh(s, buildOptions, policy));
+  bvhStats.lastUpdateMs = msSince(start);
+}
+
+void Renderer::Impl::installScene(const Scene& s, SceneBvh bvh) {
+  GpuScene next(vk, s, std::move(bvh));
   HT_VK(vkQueueWaitIdle(vk.queue));
   scene = std::move(next);
   bindScene();
   descriptors.flush();
+  bvhStats.layout = scene.layout();
+  bvhStats.fullBuilds++;
+}
+
+void Renderer::Impl::moveNodes(const Scene& s, std::span<const std::uint32_t> movedNodes) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::uint32_t> moved;  // instance indices (Scene::instances order = the TwoLevelBvh's)
+  const std::vector<SceneInstance> instances = s.instances();
+  for (std::uint32_t i = 0; i < instances.size(); ++i) {
+    const auto node = instances[i].node;
+    if (node >= 0 &&
+        std::find(movedNodes.begin(), movedNodes.end(), static_cast<std::uint32_t>(node)) != movedNodes.end())
+      moved.push_back(i);
+  }
+  if (scene.layout() != bvh::BvhLayout::TwoLevel) {
+    installScene(s, buildSceneBvh(s, buildOptions, BvhLayoutPolicy::TwoLevel));
+  } else {
+    HT_VK(vkQueueWaitIdle(vk.queue));
+    if (scene.moveInstances(s, moved)) bindScene();
+    descriptors.flush();
+    bvhStats.instanceUpdates++;
+    bvhStats.lastRefitMs = scene.twoLevel()->timings().refitMs;
+    bvhStats.lastTopLevelMs = scene.twoLevel()->timings().topLevelMs;
+    bvhStats.lastUploadMs = scene.lastUploadMs();
+  }
+  bvhStats.lastUpdateMs = msSince(start);
 }
 
 void Renderer::Impl::updateLights(const Scene& s) {
@@ -136,6 +175,15 @@ void Renderer::Impl::bindScene() {
   bool tris = descriptors.setUniformTexels(HT_BINDING_BVH_TRIS, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_SFLOAT);
   descriptors.setUniformTexels(HT_BINDING_BVH_TRI_UINTS, scene.bvhTriangles, VK_FORMAT_R32G32B32A32_UINT);
   bvhTexelsCover = nodes && tris;  // else the trace kernels read the BVH by device address
+  // The top level and the instance table are read through texel fetches only (bvh_access.glsl).
+  const bool top = descriptors.setUniformTexels(HT_BINDING_TOP_NODES, scene.topNodes, VK_FORMAT_R32G32B32A32_SFLOAT);
+  descriptors.setUniformTexels(HT_BINDING_TOP_NODE_UINTS, scene.topNodes, VK_FORMAT_R32G32B32A32_UINT);
+  const bool table = descriptors.setUniformTexels(HT_BINDING_INSTANCES, scene.instances, VK_FORMAT_R32G32B32A32_UINT);
+  if (!top || !table) {
+    throw GpuError("two-level BVH: the top level over " + std::to_string(scene.twoLevel()->instanceCount()) +
+                   " instances exceeds the device's texel buffers (" + std::to_string(vk.info.maxTexelBufferElements) +
+                   " elements)");
+  }
   descriptors.setUniformBuffer(HT_BINDING_FRAME, frame);
   const TexelBinding records[] = {{HT_BINDING_VERTICES, &scene.vertices, VK_FORMAT_R32G32B32A32_SFLOAT},
                                   {HT_BINDING_NORMALS, &scene.normals, VK_FORMAT_R32G32B32A32_SFLOAT},
@@ -228,11 +276,16 @@ Renderer::Renderer(VulkanContext& context, const Scene& scene, const bvh::BuildO
 Renderer::Renderer(VulkanContext& context, const Scene& scene, bvh::GpuBvh bvh, const bvh::BuildOptions& buildOptions)
     : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, std::move(bvh)), buildOptions)) {}
 
+Renderer::Renderer(VulkanContext& context, const Scene& scene, SceneBvh bvh, const bvh::BuildOptions& buildOptions)
+    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, std::move(bvh)), buildOptions)) {}
+
 Renderer::~Renderer() = default;
 
 const bvh::BuildReport& Renderer::bvhReport() const { return impl_->scene.bvhReport(); }
-void Renderer::replaceScene(const Scene& scene) { impl_->replaceScene(scene); }
+void Renderer::replaceScene(const Scene& scene, BvhLayoutPolicy policy) { impl_->replaceScene(scene, policy); }
 void Renderer::updateLights(const Scene& scene) { impl_->updateLights(scene); }
+void Renderer::moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes) { impl_->moveNodes(scene, nodes); }
+BvhStats Renderer::bvhStats() const { return impl_->bvhStats; }
 const SceneFeatures& Renderer::features() const { return impl_->scene.features(); }
 
 RenderResult Renderer::render(const FrameCamera& camera, const RenderSettings& settings) {

@@ -13,6 +13,7 @@
 #include "bvh/ray_types.h"
 #include "camera_models/frame_camera.h"
 #include "camera_models/ray_table.h"
+#include "gpu/scene_bvh.h"
 #include "scene/scene.h"
 
 namespace ht::gpu {
@@ -71,6 +72,18 @@ struct RenderResult {
   std::uint64_t refinedTargets = 0;    // targets traced again by adaptive refinement (RenderSettings::refineSpp)
 };
 
+// Which BVH layout the Renderer traces and how its BVH changed since construction (tests and benchmarks: a node
+// move on a two-level scene must not rebuild).
+struct BvhStats {
+  bvh::BvhLayout layout = bvh::BvhLayout::Flattened;
+  std::uint64_t fullBuilds = 0;       // BVHs built and uploaded whole (construction counts one)
+  std::uint64_t instanceUpdates = 0;  // moveNodes served by refit + top-level rebuild + partial upload
+  double lastUpdateMs = 0.0;          // host wall time of the last replaceScene / moveNodes, uploads included
+  double lastRefitMs = 0.0;           // of the last moveNodes on the two-level BVH: refit of the moved instances
+  double lastTopLevelMs = 0.0;        // the top-level rebuild
+  double lastUploadMs = 0.0;          // and the upload of the changed ranges (all three included in lastUpdateMs)
+};
+
 struct TraceStats {
   double gpuMs = 0.0;  // timestamp time of the trace dispatches only
   std::uint32_t maxSteps = 0;
@@ -82,18 +95,27 @@ class Renderer {
   // With `bvh` = bvh::buildGpuBvh(scene, buildOptions) built beforehand, off the thread that owns the device (the
   // daemon's render worker keeps rendering other clients' frames meanwhile); the same frames as above.
   Renderer(VulkanContext& context, const Scene& scene, bvh::GpuBvh bvh, const bvh::BuildOptions& buildOptions = {});
+  // With the BVH built beforehand in the layout of the caller's choice (buildSceneBvh, gpu/scene_bvh.h). The first
+  // constructor chooses automatically (BvhLayoutPolicy::Automatic); frames are the same bits in either layout.
+  Renderer(VulkanContext& context, const Scene& scene, SceneBvh bvh, const bvh::BuildOptions& buildOptions = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
   const bvh::BuildReport& bvhReport() const;
   const SceneFeatures& features() const;
-  // Rebuilds the BVH and re-uploads the scene (an edited copy: moved nodes, changed lights) with the build options
-  // given at construction; the compiled pipelines are kept, so the next frame costs no shader compilation.
-  void replaceScene(const Scene& scene);
+  // Rebuilds the BVH (in the layout `policy` gives) and re-uploads the scene (an edited copy: moved nodes, changed
+  // lights) with the build options given at construction; the compiled pipelines are kept, so the next frame costs no
+  // shader compilation.
+  void replaceScene(const Scene& scene, BvhLayoutPolicy policy = BvhLayoutPolicy::Automatic);
   // Re-uploads only the lights of `scene`, which must be this Renderer's scene with edited light values (same light
   // count; throws GpuError otherwise): a light edit needs no BVH.
   void updateLights(const Scene& scene);
+  // `scene` is this Renderer's scene with nodes `nodes` (indices into scene.nodes) moved by setNodeWorldMatrix. On the
+  // two-level BVH: a refit of the moved instances, a top-level rebuild and an upload of what changed (no rebuild). On
+  // the flattened BVH: the scene switches to the two-level BVH (built whole once; later moves take the fast path).
+  void moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes);
+  BvhStats bvhStats() const;
 
   // Every view of the camera, whatever its model (camera_models/frame_camera.h). Large view arrays are rendered in
   // chunks of views (bounded device memory).

@@ -77,6 +77,7 @@ struct Renderer::Impl {
   std::shared_ptr<const RayTable> boundRayTable;  // which table rayTableTexels holds
 
   bvh::BuildOptions buildOptions;
+  BvhStats bvhStats;
 
   Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o);
 
@@ -104,9 +105,11 @@ struct Renderer::Impl {
     return withConstant(std::move(own), gpu_shared::HT_SPEC_PRIMARY_DEPTH, depth == 0 ? 1u : 0u);
   }
 
-  // Specialisation of the trace kernels: their own constants, then TEXEL_FETCH.
+  // Specialisation of the trace kernels: their own constants, then TEXEL_FETCH and TWO_LEVEL.
   std::vector<std::uint32_t> traceSpec(std::vector<std::uint32_t> own) const {
-    return withConstant(std::move(own), gpu_shared::HT_SPEC_TEXEL_FETCH, bvhTexelsCover ? 1u : 0u);
+    const bool twoLevel = scene.layout() == bvh::BvhLayout::TwoLevel;
+    return withConstant(withConstant(std::move(own), gpu_shared::HT_SPEC_TEXEL_FETCH, bvhTexelsCover ? 1u : 0u),
+                        gpu_shared::HT_SPEC_TWO_LEVEL, twoLevel ? 1u : 0u);
   }
 
   // Binding HT_BINDING_RAY_TABLE: `table`'s entries (uploaded when the table object changes); without a table the
@@ -115,10 +118,14 @@ struct Renderer::Impl {
 
   // A new BVH and scene records, built and uploaded before the current ones are released (a failure leaves them);
   // pipelines, work and output buffers stay. Every frame waits for its own work, so nothing in flight reads them.
-  void replaceScene(const Scene& s);
+  void replaceScene(const Scene& s, BvhLayoutPolicy policy);
 
   // New light values (same count) into the bound light buffer: no BVH build, no descriptor change.
   void updateLights(const Scene& s);
+  // Renderer::moveNodes.
+  void moveNodes(const Scene& s, std::span<const std::uint32_t> nodes);
+  // Replaces the device scene by one built from `bvh` (replaceScene, a layout switch).
+  void installScene(const Scene& s, SceneBvh bvh);
 
   FrameBlock& frameBlock() { return *static_cast<FrameBlock*>(frame.mapped()); }
   GpuCounters& counterBlock() { return *static_cast<GpuCounters*>(counters.mapped()); }

@@ -39,7 +39,12 @@ HT_CONST uint HT_BINDING_TEXTURES = 23u;   // RGBA32UI: GpuTexture.info
 HT_CONST uint HT_BINDING_TEXELS = 24u;
 HT_CONST uint HT_BINDING_RAY_TABLE = 25u;        // 2 texels per entry: origin, direction
 HT_CONST uint HT_BINDING_SUBPIXEL_TEXELS = 26u;  // read-only texel view of HT_BINDING_SUBPIXELS
-HT_CONST uint HT_BINDING_COUNT = 27u;
+// Two-level BVH (issue 16, bvh_access.glsl): the top level and the instance table, uniform texel buffers; with the
+// flattened BVH they hold a dummy entry. The BVH bindings above then hold the instances' bottom levels.
+HT_CONST uint HT_BINDING_TOP_NODES = 27u;       // RGBA32F, 4 texels per node
+HT_CONST uint HT_BINDING_TOP_NODE_UINTS = 28u;  // RGBA32UI view of the top nodes
+HT_CONST uint HT_BINDING_INSTANCES = 29u;       // RGBA32UI: nodeBase, slotBase, instance, 0
+HT_CONST uint HT_BINDING_COUNT = 30u;
 // The storage texel buffers are exactly the bindings [FIRST, LAST].
 HT_CONST uint HT_BINDING_STORAGE_FIRST = HT_BINDING_RAY_QUEUE_0;
 HT_CONST uint HT_BINDING_STORAGE_LAST = HT_BINDING_OUTPUT_IMAGE;
@@ -48,6 +53,7 @@ HT_CONST uint HT_BINDING_STORAGE_LAST = HT_BINDING_OUTPUT_IMAGE;
 // host in that order); the constants of the shared includes sit at fixed higher ids, so they never collide.
 HT_CONST uint HT_SPEC_MODEL = 0u;           // raygen, resolve, refine_select: the camera model (HT_MODEL_*)
 HT_CONST uint HT_SPEC_TEXEL_FETCH = 10u;    // bvh_access.glsl: read the BVH through texel buffers, else by address
+HT_CONST uint HT_SPEC_TWO_LEVEL = 11u;      // bvh_access.glsl: trace the two-level BVH (else the flattened one)
 HT_CONST uint HT_SPEC_PRIMARY_DEPTH = 20u;  // common.glsl: the dispatch continues primary paths (depth 0)
 
 HT_SHARED_END

@@ -100,7 +100,8 @@ std::shared_ptr<SceneContent> SceneLibrary::build(const std::string& client, con
   checkMemoryBudget(content->memoryBytes);
   // The BVH is built here, on the loading call's thread: the render worker only uploads it, so other clients'
   // frames wait for an upload, not for a build (loads never block other clients' frames, docs/SERVICE.md §5).
-  bvh::GpuBvh bvh = bvh::buildGpuBvh(content->scene.positions, content->scene.triangles, {});
+  // The layout (flattened or two-level) is chosen per scene, measured (docs/BVH.md §9.4).
+  gpu::SceneBvh bvh = gpu::buildSceneBvh(content->scene, {}, gpu::BvhLayoutPolicy::Automatic);
   worker_
       .submit(
           client,
@@ -317,6 +318,18 @@ void SceneLibrary::updateCamera(const std::string& id, const CameraPlacement& pl
   entry.session = std::move(updated);
 }
 
+namespace {
+
+// Indices of the nodes whose world matrix an edit changed.
+std::vector<std::uint32_t> movedNodes(const Scene& before, const Scene& after) {
+  std::vector<std::uint32_t> moved;
+  for (std::size_t n = 0; n < after.nodes.size() && n < before.nodes.size(); ++n)
+    if (after.nodes[n].world != before.nodes[n].world) moved.push_back(static_cast<std::uint32_t>(n));
+  return moved;
+}
+
+}  // namespace
+
 SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, const std::string& id, bool movesGeometry,
                                                  const std::function<void(Scene&)>& edit) {
   std::lock_guard editing(editMutex_);  // one edit BVH build at a time, and edits of one session in order
@@ -324,10 +337,16 @@ SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, cons
   if (session->content->quilt) throw BadRequest("scene_id", "'" + id + "' is a quilt image: it has no nodes or lights");
   auto content = std::make_shared<SceneContent>(*session->content);  // copies the scene, shares the Renderer
   edit(content->scene);
+  const std::vector<std::uint32_t> moved = movedNodes(session->content->scene, content->scene);
   const bool newRenderer = content->editedBy != id;
   const auto start = std::chrono::steady_clock::now();
-  bvh::GpuBvh bvh;  // a first edit's BVH is built here, off the render worker (as a load's)
-  if (newRenderer) bvh = bvh::buildGpuBvh(content->scene.positions, content->scene.triangles, {});
+  // A first edit's BVH is built here, off the render worker (as a load's); a scene whose nodes move is traced with
+  // the two-level BVH, so that later moves are a refit + top-level update, not a rebuild (docs/REUSE.md §3).
+  gpu::SceneBvh bvh;
+  if (newRenderer) {
+    bvh = gpu::buildSceneBvh(content->scene, {},
+                             movesGeometry ? gpu::BvhLayoutPolicy::TwoLevel : gpu::BvhLayoutPolicy::Automatic);
+  }
   worker_
       .submit(
           client,
@@ -335,7 +354,7 @@ SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, cons
             if (newRenderer)
               content->renderer = adopt(new gpu::Renderer(context, content->scene, std::move(bvh)));
             else if (movesGeometry)
-              content->renderer->replaceScene(content->scene);
+              content->renderer->moveNodes(content->scene, moved);
             else
               content->renderer->updateLights(content->scene);
           },
@@ -344,6 +363,7 @@ SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, cons
   EditResult result;
   result.updateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   result.sahCost = content->renderer->bvhReport().sahCost;
+  result.bvh = content->renderer->bvhStats();
   if (newRenderer) {
     content->editedBy = id;
     content->contentKey += "@" + id;

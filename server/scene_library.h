@@ -105,11 +105,13 @@ class SceneLibrary {
   // Applies `edit` to a copy of the session's scene, updates the device copy on the render worker (charged to
   // `client`) and publishes a session with the edited content; other sessions of the same bytes keep theirs. The
   // first edit of a session gives it its own Renderer (pipelines are the device's, gpu/pipeline_library.h: nothing
-  // recompiles); later ones reuse it: Renderer::replaceScene (new BVH) when `movesGeometry`, else only the lights are
-  // re-uploaded (Renderer::updateLights). `edit` throws (SceneError) to refuse; nothing changes then.
+  // recompiles); later ones reuse it: Renderer::moveNodes (on the two-level BVH a first edit that moves nodes
+  // builds: a refit + top-level update, no rebuild) when `movesGeometry`, else only the lights are re-uploaded
+  // (Renderer::updateLights). `edit` throws (SceneError) to refuse; nothing changes then.
   struct EditResult {
     double updateMs = 0.0;  // the device update: Renderer, BVH rebuild or light upload
     double sahCost = 0.0;
+    gpu::BvhStats bvh;  // the session renderer's BVH layout and build/update counts after the edit
   };
   EditResult editScene(const std::string& client, const std::string& id, bool movesGeometry,
                        const std::function<void(Scene&)>& edit);

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "bvh/bvh_layout_choice.h"
 #include "frame_io/quilt_file.h"
 #include "scene/scene_edits.h"
 #include "scene/scene_source.h"
@@ -208,6 +209,9 @@ grpc::Status HolotraceService::UpdateScene(grpc::ServerContext* context, const v
           });
       response->set_rebuild_ms(result.updateMs);
       response->set_sah_cost(result.sahCost);
+      response->set_bvh_layout(bvh::bvhLayoutName(result.bvh.layout));
+      response->set_bvh_full_builds(result.bvh.fullBuilds);
+      response->set_bvh_instance_updates(result.bvh.instanceUpdates);
     }
     if (!cameraChange) return grpc::Status::OK;
     // An observer-only update keeps the camera placement of earlier updates.

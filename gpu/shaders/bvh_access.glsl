@@ -8,6 +8,9 @@
 // so no float path can flush them.
 // TEXEL_FETCH = false: buffer device addresses, for BVHs larger than maxTexelBufferElements.
 layout(constant_id = HT_SPEC_TEXEL_FETCH) const bool TEXEL_FETCH = true;
+// TWO_LEVEL = true: the BVH bindings hold the bottom levels of a two-level BVH (bvh/two_level_bvh.h), whose top level
+// and instance table are read through texel fetches always (a few nodes per instance).
+layout(constant_id = HT_SPEC_TWO_LEVEL) const bool TWO_LEVEL = false;
 
 layout(set = 0, binding = HT_BINDING_BVH_NODES) uniform samplerBuffer bvhNodeTexels;      // 4 texels per node
 layout(set = 0, binding = HT_BINDING_BVH_NODE_UINTS) uniform usamplerBuffer bvhNodeUintTexels; // same memory, integer view
@@ -42,6 +45,22 @@ uint ht_fetch_tri_id(uint slot) {
   return floatBitsToUint(Vec4Ref(pc.bvhTriangles).v[slot].w);
 }
 
+layout(set = 0, binding = HT_BINDING_TOP_NODES) uniform samplerBuffer topNodeTexels;         // 4 texels per node
+layout(set = 0, binding = HT_BINDING_TOP_NODE_UINTS) uniform usamplerBuffer topNodeUintTexels; // same memory, integer view
+layout(set = 0, binding = HT_BINDING_INSTANCES) uniform usamplerBuffer instanceTexels;        // 1 texel per entry
+
+GpuBvhNode ht_fetch_top_node(uint i) {
+  GpuBvhNode n;
+  int base = int(4u * i);
+  n.c0xy = texelFetch(topNodeTexels, base);
+  n.c1xy = texelFetch(topNodeTexels, base + 1);
+  n.c01z = texelFetch(topNodeTexels, base + 2);
+  n.link = texelFetch(topNodeUintTexels, base + 3);
+  return n;
+}
+
+#define HT_LOAD_TOP_NODE(i) ht_fetch_top_node(i)
+#define HT_LOAD_INSTANCE(i) texelFetch(instanceTexels, int(i))
 #define HT_LOAD_NODE(i) ht_fetch_node(i)
 #define HT_LOAD_NODE_LINK(i) ht_fetch_node_link(i)
 #define HT_LOAD_TRI(i) ht_fetch_tri(i)

@@ -3,10 +3,11 @@
 // trace_any: early-exit occlusion test, one ray per invocation.
 //   SHADOW_QUEUE = 1: entry i of the shadow queue names a slot; an occluded slot's contribution is zeroed.
 //   SHADOW_QUEUE = 0: plain batch (Renderer::traceOccluded): ray i of queue 0, result in hits[i].triId.
+// Occlusion is the same on the flattened and the two-level BVH (the same triangle test with the ray's tmax).
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "gpu/shaders/bvh_access.glsl"
-#include "bvh/bvh_traversal.h"
+#include "bvh/ordered_traversal.h"
 
 layout(constant_id = 0) const uint SHADOW_QUEUE = 1u;
 
@@ -19,11 +20,17 @@ void main() {
   if (inQueue) {
     uint slot = SHADOW_QUEUE == 1u ? imageLoad(shadowQueueBuffer, int(i)).x : i;
     // (if/else, not ?: -- glslang 12 emits an invalid OpStore for a ternary over buffer-reference structs)
-    HtTraceResult r;
+    HtRay ray;
     if (SHADOW_QUEUE == 1u) {
-      r = ht_trace_any(load_shadow_ray(slot), FRAME.scene.z);
+      ray = load_shadow_ray(slot);
     } else {
-      r = ht_trace_any(load_ray(0u, i), FRAME.scene.z);
+      ray = load_ray(0u, i);
+    }
+    HtTraceResult r;
+    if (TWO_LEVEL) {
+      r = ht_trace_two_level_any(ray, FRAME.scene.z);
+    } else {
+      r = ht_trace_any(ray, FRAME.scene.z);
     }
     steps = r.steps;
     overflow = r.overflow;

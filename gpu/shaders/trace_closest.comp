@@ -2,11 +2,14 @@
 #extension GL_GOOGLE_include_directive : require
 // trace_closest: one closest-hit traversal per invocation (one ray per invocation per dispatch: lavapipe ends
 // every loop of an invocation after 65,535 iterations in total, docs/TOOLCHAIN.md §0). Rays past the step limit are
-// counted in overflowCount, which the host turns into an error.
+// counted in overflowCount, which the host turns into an error. The closest hit is the order-free one, the least
+// (t, triangle id) (bvh/ordered_traversal.h, docs/BVH.md §9.3): the same for every tree over the same triangles,
+// so a rebuilt, refitted or two-level BVH gives the same frame bits. Every loop iteration of the traversal counts a
+// step, so a loop lavapipe cut short has used more than HT_TRAVERSAL_STEP_LIMIT steps and sets overflow.
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "gpu/shaders/bvh_access.glsl"
-#include "bvh/bvh_traversal.h"
+#include "bvh/ordered_traversal.h"
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -14,7 +17,13 @@ void main() {
   uint steps = 0u;
   bool overflow = false;
   if (inQueue) {
-    HtTraceResult r = ht_trace_closest(load_ray(pc.queue, i), FRAME.scene.z);
+    HtRay ray = load_ray(pc.queue, i);
+    HtTraceResult r;
+    if (TWO_LEVEL) {
+      r = ht_trace_two_level_ordered(ray, FRAME.scene.z);
+    } else {
+      r = ht_trace_closest_ordered(ray, FRAME.scene.z);
+    }
     store_hit(i, r.hit);
     steps = r.steps;
     overflow = r.overflow;

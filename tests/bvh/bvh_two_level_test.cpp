@@ -70,7 +70,7 @@ uint32_t expectSameHits(const InstancedSoup& soup, const TwoLevelBvh& twoLevel, 
   uint32_t hits = 0;
   for (size_t i = 0; i < rays.size(); ++i) {
     const HtTraceResult a = traceClosestTwoLevel(twoLevel, rays[i]);
-    const HtTraceResult b = traceClosestOrdered(flat, rays[i]);
+    const HtTraceResult b = traceClosest(flat, rays[i]);
     EXPECT_FALSE(a.overflow || b.overflow) << "ray " << i;
     EXPECT_TRUE(sameHit(a.hit, b.hit)) << "ray " << i << ": two-level vs flattened";
     if (withBruteForce) { EXPECT_TRUE(sameHit(b.hit, bruteForce(soup, rays[i]))) << "ray " << i << ": vs brute force"; }

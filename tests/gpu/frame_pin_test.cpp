@@ -31,19 +31,12 @@ namespace {
 Scene pinScene() {
   Scene s;
   s.name = "test:pin";
-  Material diffuse;
-  diffuse.baseColor = glm::vec3(0.7f, 0.5f, 0.3f);
-  Material mirror;
-  mirror.metallic = 1.0f;
-  mirror.roughness = 0.0f;
-  Material glass;
-  glass.transmission = 1.0f;
-  glass.ior = 1.5f;
-  makeIcosphere(s, glm::vec3(-0.3f, 0.0f, 0.0f), 0.35f, 3, ht::addMaterial(s, diffuse));
-  makeIcosphere(s, glm::vec3(0.35f, 0.1f, -0.2f), 0.3f, 2, ht::addMaterial(s, mirror));
-  makeIcosphere(s, glm::vec3(0.05f, -0.15f, 0.35f), 0.2f, 2, ht::addMaterial(s, glass));
+  const DiffuseMirrorGlass m = addDiffuseMirrorGlass(s);
+  makeIcosphere(s, glm::vec3(-0.3f, 0.0f, 0.0f), 0.35f, 3, m.diffuse);
+  makeIcosphere(s, glm::vec3(0.35f, 0.1f, -0.2f), 0.3f, 2, m.mirror);
+  makeIcosphere(s, glm::vec3(0.05f, -0.15f, 0.35f), 0.2f, 2, m.glass);
   makeQuad(s, glm::vec3(0.0f, -0.4f, 0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, -1.0f),
-           ht::addMaterial(s, diffuse));
+           ht::addMaterial(s, s.materials[m.diffuse]));  // a fourth material, a copy of the diffuse one
   Light sun;
   sun.type = Light::Type::Directional;
   sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));

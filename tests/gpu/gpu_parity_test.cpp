@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "bvh/cpu_traversal.h"
 #include "bvh/gpu_layout.h"
@@ -92,6 +93,32 @@ TEST_F(GpuParity, AnyHitMatchesCpuReferenceOnBunny) {
   }
   EXPECT_GT(occluded, rays.size() / 20);
   EXPECT_EQ(disagreements, 0u);
+}
+
+// Coincident copies of one sphere: every hit is a tie of equal t between triangle k and its copy k + n. The kernel's
+// closest hit is the least (t, triangle id) (bvh/ordered_traversal.h), so it must report the first copy on every ray,
+// whatever the BVH's order, and equal the CPU reference bit for bit.
+TEST(GpuOrderFreeHit, TiesResolveToTheLeastTriangleIdBitForBit) {
+  Scene s;
+  const std::uint32_t material = addMaterial(s, Material{});
+  addIcosphere(s, glm::vec3(0.0f), 0.5f, 2, material);
+  const auto n = static_cast<std::uint32_t>(s.triangles.size());
+  addIcosphere(s, glm::vec3(0.0f), 0.5f, 2, material);
+  auto cam = lookAt(glm::vec3(0.4f, 0.3f, 2.0f), glm::vec3(0.0f), 40.0f, 96, 96);
+  std::vector<gpu_shared::HtRay> rays = pinholeRays(cam);
+
+  gpu::Renderer renderer(sharedContext(), s);
+  std::vector<gpu_shared::HtHit> gpuHits = renderer.traceClosest(rays);
+  bvh::GpuBvh cpuBvh = bvh::buildGpuBvh(s.positions, s.triangles, bvh::BuildOptions{});
+  size_t hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const gpu_shared::HtHit cpu = bvh::traceClosest(cpuBvh, rays[i]).hit;
+    ASSERT_EQ(std::memcmp(&gpuHits[i], &cpu, sizeof cpu), 0) << "ray " << i;
+    if (cpu.triId == gpu_shared::HT_MISS) continue;
+    ++hits;
+    ASSERT_LT(cpu.triId, n) << "ray " << i << ": a tie must resolve to the first copy";
+  }
+  EXPECT_GT(hits, rays.size() / 10);
 }
 
 }  // namespace

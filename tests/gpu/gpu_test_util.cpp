@@ -38,6 +38,19 @@ std::vector<gpu_shared::HtRay> pinholeRays(const gpu_shared::PinholeParams& p) {
   return rays;
 }
 
+DiffuseMirrorGlass addDiffuseMirrorGlass(Scene& s) {
+  Material diffuse;
+  diffuse.baseColor = glm::vec3(0.7f, 0.5f, 0.3f);
+  Material mirror;
+  mirror.metallic = 1.0f;
+  mirror.roughness = 0.0f;
+  Material glass;
+  glass.transmission = 1.0f;
+  glass.ior = 1.5f;
+  const std::uint32_t d = test::addMaterial(s, diffuse), m = test::addMaterial(s, mirror);
+  return {d, m, test::addMaterial(s, glass)};
+}
+
 std::uint32_t addMaterial(Scene& s, const Material& m) {
   s.materials.push_back(m);
   return static_cast<std::uint32_t>(s.materials.size() - 1);

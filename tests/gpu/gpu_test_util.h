@@ -32,6 +32,12 @@ std::uint32_t addMaterial(Scene& s, const Material& m);
 void addIcosphere(Scene& s, glm::vec3 center, float radius, int subdivisions, std::uint32_t material);
 void addQuad(Scene& s, glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, std::uint32_t material);
 
+// Appends a diffuse (0.7, 0.5, 0.3), a perfect mirror and a glass (ior 1.5) material, in this order.
+struct DiffuseMirrorGlass {
+  std::uint32_t diffuse, mirror, glass;
+};
+DiffuseMirrorGlass addDiffuseMirrorGlass(Scene& s);
+
 // Loads /usr/share/glmark2/models/bunny.obj (the Debian glmark2-data package); empty scene if absent.
 Scene loadBunnyOrEmpty();
 

@@ -227,7 +227,7 @@ TEST_F(ServerTest, UpdateSceneMovesANodeForThisSessionOnly) {
   v1::UpdateSceneResponse response;
   ASSERT_TRUE(updateScene(*stub_, request, &response).ok());
   EXPECT_GT(response.rebuild_ms(), 0.0);
-  EXPECT_GT(response.sah_cost(), 0.0);
+  EXPECT_EQ(response.bvh_layout(), "two-level");  // a moving scene's BVH: sah_cost is that of a flattened BVH only
   ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_), &moved).ok());
   ASSERT_TRUE(renderOne(*stub_, tinyRequest(other.scene_id()), &otherAfter).ok());
   EXPECT_NE(moved.bytes, before.bytes);
@@ -250,6 +250,32 @@ TEST_F(ServerTest, UpdateSceneMovesANodeForThisSessionOnly) {
   EXPECT_EQ(updateScene(*stub_, bad).error_code(), StatusCode::INVALID_ARGUMENT);
   ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_), &refused).ok());
   EXPECT_EQ(refused.bytes, moved.bytes);
+}
+
+// Node moves take the two-level BVH's fast path (docs/BVH.md §9): the session's first edit builds the two-level BVH,
+// every later move refits the moved node and rebuilds the top level, never the whole BVH (counted by the renderer).
+TEST_F(ServerTest, UpdateSceneNodeMovesAfterTheFirstDoNotRebuildTheBvh) {
+  ReceivedFrame first, second, third;
+  v1::UpdateSceneRequest request;
+  request.set_scene_id(sceneId_);
+  v1::UpdateSceneResponse response;
+  *request.add_nodes() = translation("violet-sphere", -0.5, 0.4, 0.0);
+  ASSERT_TRUE(updateScene(*stub_, request, &response).ok());
+  EXPECT_EQ(response.bvh_layout(), "two-level");
+  EXPECT_EQ(response.bvh_full_builds(), 1u);
+  EXPECT_EQ(response.bvh_instance_updates(), 0u);
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_), &first).ok());
+  *request.mutable_nodes(0) = translation("violet-sphere", 0.3, 0.2, 0.1);
+  ASSERT_TRUE(updateScene(*stub_, request, &response).ok());
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_), &second).ok());
+  *request.mutable_nodes(0) = translation("orange-sphere", 0.1, 0.0, 0.2);
+  ASSERT_TRUE(updateScene(*stub_, request, &response).ok());
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(sceneId_), &third).ok());
+  EXPECT_EQ(response.bvh_layout(), "two-level");
+  EXPECT_EQ(response.bvh_full_builds(), 1u) << "a node move rebuilt the BVH";
+  EXPECT_EQ(response.bvh_instance_updates(), 2u);
+  EXPECT_NE(second.bytes, first.bytes);
+  EXPECT_NE(third.bytes, second.bytes);
 }
 
 // Lights: a dimmed, recoloured light changes the frame; an index past the scene's lights is refused.

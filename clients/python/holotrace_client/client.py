@@ -79,6 +79,9 @@ class Scene:
 class SceneUpdate:
     rebuild_ms: float
     sah_cost: float
+    bvh_layout: str = ""  # "flattened" or "two-level" (docs/BVH.md §9.5)
+    bvh_full_builds: int = 0
+    bvh_instance_updates: int = 0  # node moves served without a BVH rebuild
 
 
 @dataclass
@@ -291,7 +294,7 @@ class Client:
         observer_distance / observer_height: the tracked viewer of a projector-array display; nodes: {name: world
         matrix} (4x4 numpy/rows, or 16 column-major values; matrices.py builds them); lights: {index: {"position":
         (x, y, z), "direction": ..., "color": ..., "intensity": v}}. All edits are checked by the daemon before any
-        applies. Returns SceneUpdate(rebuild_ms, sah_cost)."""
+        applies. Returns SceneUpdate(rebuild_ms, sah_cost, bvh_layout, bvh_full_builds, bvh_instance_updates)."""
         request = pb.UpdateSceneRequest(scene_id=_id(scene, "scene"))
         if target is not None:
             request.target.CopyFrom(_vec3(target, "target"))
@@ -317,7 +320,7 @@ class Client:
             if "intensity" in edit:
                 light.intensity = float(edit["intensity"])
         r = self._unary("UpdateScene", request)
-        return SceneUpdate(r.rebuild_ms, r.sah_cost)
+        return SceneUpdate(r.rebuild_ms, r.sah_cost, r.bvh_layout, r.bvh_full_builds, r.bvh_instance_updates)
 
     # ---- frames -------------------------------------------------------------------------------------------------
 
