@@ -48,20 +48,35 @@ v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame
   return header;
 }
 
-// Renders one frame and sends it; false when the client went away or stopped reading for longer than
-// limits.stream_stall_seconds (`watch` cancels the blocked Write).
+// Encodes `frame` and sends it; false when the client went away or stopped reading for longer than
+// limits.stream_stall_seconds (`watch` cancels the blocked Write). `state` set: a progressive frame's fields.
+bool sendRendered(ServiceState& state, const FrameJob& job, const gpu::RenderResult& frame, v1::PixelFormat format,
+                  double queueMs, std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer,
+                  CallWatchdog::Watch& watch, v1::StreamState streamState = v1::STREAM_STATE_UNSPECIFIED) {
+  const DisplayConfig display = displayForSession(job.display->config, *job.session);
+  const EncodedFrame encoded = encodeFrame(frame, checkPixelFormat(format), {display, jobCamera(job).quilt});
+  v1::FrameHeader header = makeHeader(state.nextFrameId++, frame, encoded, format, queueMs);
+  header.set_dropped_frames(dropped);
+  if (streamState != v1::STREAM_STATE_UNSPECIFIED) {
+    const gpu::AccumulationReport& a = frame.accumulation;
+    header.set_accumulated_spp(a.minSamples);
+    header.set_accumulated_spp_max(a.maxSamples);
+    header.set_error_estimate(a.maxError);
+    header.set_unconverged_targets(a.unconverged);
+    header.set_state(streamState);
+  }
+  const CallWatchdog::Watch::Wait waiting(watch);
+  return sendFrame(writer, std::move(header), encoded.bytes);
+}
+
+// Renders one frame and sends it (sendRendered).
 bool renderAndSend(ServiceState& state, const std::string& client, const FrameJob& job, v1::PixelFormat format,
                    std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer,
                    CallWatchdog::Watch& watch) {
   const auto queued = Clock::now();
   const gpu::RenderResult frame = renderFrameJob(state.worker, client, job);
   const double queueMs = std::max(0.0, msBetween(queued, Clock::now()) - frame.totalMs);
-  const DisplayConfig display = displayForSession(job.display->config, *job.session);
-  const EncodedFrame encoded = encodeFrame(frame, checkPixelFormat(format), {display, jobCamera(job).quilt});
-  v1::FrameHeader header = makeHeader(state.nextFrameId++, frame, encoded, format, queueMs);
-  header.set_dropped_frames(dropped);
-  const CallWatchdog::Watch::Wait waiting(watch);
-  return sendFrame(writer, std::move(header), encoded.bytes);
+  return sendRendered(state, job, frame, format, queueMs, dropped, writer, watch);
 }
 
 // Sleeps until `due` in short slices, so a cancelled call or a shutdown frees its slot within ~20 ms.
@@ -100,6 +115,126 @@ std::vector<frame_io::FrameFile> captureFiles(const gpu::RenderResult& frame, co
       .files;
 }
 
+// The tick clock of a stream: frame k due at start + k/fps. `next()` after a frame moves to the next tick not yet
+// passed and says how many ticks were missed (latest-frame-wins, docs/SERVICE.md §4 "Backpressure").
+class TickClock {
+ public:
+  explicit TickClock(double fps)
+      // <= 1000 s after the range check, >= 1 ms (limits.max_frames_per_second <= 1000): no overflow, never zero.
+      : period_(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / fps))),
+        start_(Clock::now()) {}
+  std::uint64_t next() {
+    const auto due = static_cast<std::uint64_t>((Clock::now() - start_) / period_) + 1;  // next tick not yet passed
+    const std::uint64_t dropped = due > tick_ + 1 ? due - tick_ - 1 : 0;
+    tick_ = std::max(tick_ + 1, due);
+    return dropped;
+  }
+  std::uint64_t tick() const { return tick_; }
+  Clock::time_point due() const { return start_ + period_ * static_cast<Clock::rep>(tick_); }
+
+ private:
+  Clock::duration period_;
+  Clock::time_point start_;
+  std::uint64_t tick_ = 0;
+};
+
+// The stop rule of a progressive stream: the request's values, else the daemon's defaults.
+gpu::AccumulationPolicy streamPolicy(const Limits& limits, const v1::StreamRequest& request) {
+  gpu::AccumulationPolicy policy;
+  const float error = request.target_error();
+  if (!(error >= 0.0f) || !std::isfinite(error)) {
+    throw BadRequest("target_error", shortNumber(error) + " is not a finite number >= 0 (0 = the daemon default " +
+                                         shortNumber(limits.streamTargetError) + ")");
+  }
+  policy.targetError = error > 0.0f ? error : static_cast<float>(limits.streamTargetError);
+  if (request.max_spp() > (1u << 20)) {
+    throw BadRequest("max_spp", std::to_string(request.max_spp()) + " is more than 1048576 (0 = the daemon default " +
+                                    std::to_string(limits.streamMaxSpp) + ")");
+  }
+  policy.maxSpp = request.max_spp() > 0 ? request.max_spp() : limits.streamMaxSpp;
+  policy.minSpp = std::min(policy.minSpp, policy.maxSpp);
+  return policy;
+}
+
+bool progressiveMode(const v1::StreamRequest& request, const FrameJob& job) {
+  switch (request.mode()) {
+    case v1::STREAM_MODE_UNSPECIFIED:
+    case v1::STREAM_MODE_PROGRESSIVE: return !job.session->content->quilt;  // a quilt image has no samples to add
+    case v1::STREAM_MODE_INDEPENDENT: return false;
+    default: throw BadRequest("mode", "unknown stream mode " + std::to_string(request.mode()));
+  }
+}
+
+// Calls that share one accumulation: same session, display, camera path, per-frame spp, seed and stop rule.
+std::string progressiveKey(const v1::StreamRequest& request, const FrameJob& job,
+                           const gpu::AccumulationPolicy& policy) {
+  const v1::RenderRequest& r = request.render();
+  return r.scene_id() + '\n' + job.display->id + '\n' + (r.quilt() ? "quilt" : "native") + '\n' +
+         std::to_string(job.spp) + '\n' + std::to_string(r.seed()) + '\n' + shortNumber(policy.targetError) + '\n' +
+         std::to_string(policy.maxSpp);
+}
+
+// Independent frames: every tick a new frame from scratch with seed + tick.
+void streamIndependent(ServiceState& state, grpc::ServerContext& context, const v1::StreamRequest& request,
+                       FrameJob& job, const std::string& client, grpc::ServerWriter<v1::FramePart>& writer,
+                       CallWatchdog::Watch& watch) {
+  TickClock clock(request.frames_per_second());
+  std::uint64_t dropped = 0;
+  while (!context.IsCancelled()) {
+    if (state.shuttingDown) throw ShuttingDown("holotraced is shutting down");
+    job.session = state.scenes.find(request.render().scene_id());  // picks up UpdateScene
+    job.seed = request.render().seed() + static_cast<std::uint32_t>(clock.tick());
+    if (!renderAndSend(state, client, job, request.render().format(), dropped, writer, watch)) return;
+    dropped = clock.next();
+    waitForTick(state, context, clock.due());
+  }
+}
+
+// Progressive frames (docs/REUSE.md §1-§2): each tick adds samples to the stream's shared accumulation, unless it
+// has converged for the current session (scene and camera version), in which case nothing is rendered and the last
+// frame is sent only to a caller that has not had it. The accumulation restarts by itself when the renderer's scene
+// or the camera changed (gpu/accumulator.h), so an edit never mixes samples of two scene versions.
+void streamProgressive(ServiceState& state, grpc::ServerContext& context, const v1::StreamRequest& request,
+                       FrameJob& job, const std::string& client, grpc::ServerWriter<v1::FramePart>& writer,
+                       CallWatchdog::Watch& watch) {
+  const gpu::AccumulationPolicy policy = streamPolicy(state.config.limits, request);
+  const std::uint64_t bytes = gpu::Accumulator::bytesFor(displayFrameShape(*job.display, job.path));
+  ProgressiveStreams::Membership member(
+      state.progressive, state.progressive.join(progressiveKey(request, job, policy), request.render().scene_id(),
+                                                job.display->id, bytes, policy));
+  ProgressiveStream& stream = member.stream();
+  TickClock clock(request.frames_per_second());
+  std::uint64_t dropped = 0, sentFrame = 0;
+  while (!context.IsCancelled()) {
+    if (state.shuttingDown) throw ShuttingDown("holotraced is shutting down");
+    job.session = state.scenes.find(request.render().scene_id());  // picks up UpdateScene
+    std::shared_ptr<const gpu::RenderResult> frame;
+    std::uint64_t frameNumber = 0;
+    double queueMs = 0.0;
+    {
+      std::lock_guard lock(stream.frameMutex);
+      const bool idle = stream.last && stream.session == job.session && stream.last->accumulation.converged;
+      if (!idle) {
+        const auto queued = Clock::now();
+        auto rendered = std::make_shared<const gpu::RenderResult>(
+            accumulateFrameJob(state.worker, client, job, *stream.accumulator));
+        queueMs = std::max(0.0, msBetween(queued, Clock::now()) - rendered->totalMs);
+        stream.recordFrame(std::move(rendered), job.session);
+      }
+      frame = stream.last;
+      frameNumber = stream.frameNumber;
+    }
+    if (frameNumber != sentFrame) {
+      const v1::StreamState shown =
+          frame->accumulation.converged ? v1::STREAM_STATE_CONVERGED : v1::STREAM_STATE_ACCUMULATING;
+      if (!sendRendered(state, job, *frame, request.render().format(), queueMs, dropped, writer, watch, shown)) return;
+      sentFrame = frameNumber;
+    }
+    dropped = clock.next();
+    waitForTick(state, context, clock.due());
+  }
+}
+
 }  // namespace
 
 grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v1::RenderRequest* request,
@@ -117,7 +252,8 @@ grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v
 
 // Frames on a fixed clock (frame k due at start + k/fps). A frame is rendered only when the previous one has been
 // written, so a slow client is never queued old frames: it gets the newest, and dropped_frames counts the ticks
-// it missed (latest-frame-wins, docs/SERVICE.md §4 "Backpressure").
+// it missed (latest-frame-wins, docs/SERVICE.md §4 "Backpressure"). Progressive by default (docs/SERVICE.md §2
+// "StreamFrames modes").
 grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const v1::StreamRequest* request,
                                             grpc::ServerWriter<v1::FramePart>* writer) {
   return guarded([&] {
@@ -129,24 +265,15 @@ grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const 
                                                 "] (limits.max_frames_per_second)");
     }
     FrameJob job = checkRenderRequest(state_, request->render());
+    const bool progressive = progressiveMode(*request, job);
     StreamSlot slot(state_);
     const SceneLibrary::Pin pin(state_.scenes, request->render().scene_id());  // not idled out between slow frames
     CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.streamStallSeconds, "StreamFrames");
     const std::string client = clientKey(*context);
-    // <= 1000 s after the check above, >= 1 ms (limits.max_frames_per_second <= 1000): no overflow, never zero.
-    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / fps));
-    const auto start = Clock::now();
-    std::uint64_t tick = 0, dropped = 0;
-    while (!context->IsCancelled()) {
-      if (state_.shuttingDown) throw ShuttingDown("holotraced is shutting down");
-      job.session = state_.scenes.find(request->render().scene_id());  // picks up UpdateScene
-      job.seed = request->render().seed() + static_cast<std::uint32_t>(tick);
-      if (!renderAndSend(state_, client, job, request->render().format(), dropped, *writer, watch)) break;
-      const auto now = Clock::now();
-      const auto due = static_cast<std::uint64_t>((now - start) / period) + 1;  // next tick not yet passed
-      dropped = due > tick + 1 ? due - tick - 1 : 0;
-      tick = std::max(tick + 1, due);
-      waitForTick(state_, *context, start + period * static_cast<Clock::rep>(tick));
+    if (progressive) {
+      streamProgressive(state_, *context, *request, job, client, *writer, watch);
+    } else {
+      streamIndependent(state_, *context, *request, job, client, *writer, watch);
     }
     return grpc::Status(grpc::StatusCode::CANCELLED, "client cancelled the stream");
   });

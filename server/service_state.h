@@ -11,6 +11,7 @@
 #include "server/daemon_config.h"
 #include "server/display_registry.h"
 #include "server/file_sink.h"
+#include "server/progressive_streams.h"
 #include "server/render_worker.h"
 #include "server/scene_library.h"
 #include "server/upload_budget.h"
@@ -26,8 +27,9 @@ struct ServiceState {
   RenderWorker& worker;
   FileSink& outputSink;
   UploadBudget& uploads;
-  CallWatchdog& watchdog;        // cancels stalled uploads and streams
-  PanelSinks* panels = nullptr;  // display sinks of the config's "present" (server/panel_sinks.h); null = none
+  CallWatchdog& watchdog;           // cancels stalled uploads and streams
+  ProgressiveStreams& progressive;  // accumulations of progressive StreamFrames calls
+  PanelSinks* panels = nullptr;     // display sinks of the config's "present" (server/panel_sinks.h); null = none
 
   std::atomic<std::uint32_t> activeStreams{0};
   std::atomic<std::uint64_t> nextFrameId{1};

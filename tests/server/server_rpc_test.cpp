@@ -285,6 +285,7 @@ TEST_F(ServerTest, UpdateSceneChangesALight) {
 TEST_F(ServerTest, StreamDeliversFramesUntilCancelledWhileOthersRender) {
   grpc::ClientContext context;
   v1::StreamRequest request;
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
   *request.mutable_render() = tinyRequest(sceneId_);
   request.set_frames_per_second(30);
   auto reader = stub_->StreamFrames(&context, request);
@@ -305,6 +306,7 @@ TEST_F(ServerTest, StreamDeliversFramesUntilCancelledWhileOthersRender) {
 TEST_F(ServerTest, SlowConsumerGetsNewestFramesAndDoesNotBlockOthers) {
   grpc::ClientContext context;
   v1::StreamRequest request;
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
   *request.mutable_render() = tinyRequest(sceneId_, v1::PIXEL_FORMAT_RGBA16F);
   request.set_frames_per_second(60);
   auto reader = stub_->StreamFrames(&context, request);
@@ -335,6 +337,7 @@ TEST_F(ServerTest, ClientThatDisconnectsMidStreamIsCleanedUp) {
     auto vanishing = connect(files_->socketAddress());
     grpc::ClientContext context;
     v1::StreamRequest request;
+    request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
     *request.mutable_render() = tinyRequest(sceneId_);
     request.set_frames_per_second(30);
     auto reader = vanishing->StreamFrames(&context, request);
@@ -358,6 +361,7 @@ TEST_F(ServerTest, TooManyStreamingClientsIsResourceExhausted) {
   };
   std::vector<std::unique_ptr<Stream>> streams;
   v1::StreamRequest request;
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
   *request.mutable_render() = tinyRequest(sceneId_);
   request.set_frames_per_second(1);
   for (std::uint32_t i = 0; i < files_->config().limits.maxClients; ++i) {
