@@ -79,12 +79,17 @@ bool renderAndSend(ServiceState& state, const std::string& client, const FrameJo
   return sendRendered(state, job, frame, format, queueMs, dropped, writer, watch);
 }
 
-// Sleeps until `due` in short slices, so a cancelled call or a shutdown frees its slot within ~20 ms.
-void waitForTick(ServiceState& state, grpc::ServerContext& context, Clock::time_point due) {
+// Sleeps until `due` in slices of `slice`, so a cancelled call or a shutdown frees its slot within one slice.
+void waitForTick(ServiceState& state, grpc::ServerContext& context, Clock::time_point due,
+                 Clock::duration slice = std::chrono::milliseconds(20)) {
   while (Clock::now() < due && !context.IsCancelled()) {
-    if (!state.sleepUntil(std::min(due, Clock::now() + std::chrono::milliseconds(20)))) return;
+    if (!state.sleepUntil(std::min(due, Clock::now() + slice))) return;
   }
 }
+
+// A converged progressive stream looks for a new scene or camera version this often (and for a cancel), whatever
+// its frame rate: its only work while idle (docs/SERVICE.md §4.1).
+constexpr auto kConvergedPoll = std::chrono::milliseconds(100);
 
 frame_io::FrameFormat captureFormat(v1::CaptureFormat format) {
   switch (format) {
@@ -224,14 +229,18 @@ void streamProgressive(ServiceState& state, grpc::ServerContext& context, const 
       frame = stream.last;
       frameNumber = stream.frameNumber;
     }
+    const bool converged = frame->accumulation.converged;
     if (frameNumber != sentFrame) {
-      const v1::StreamState shown =
-          frame->accumulation.converged ? v1::STREAM_STATE_CONVERGED : v1::STREAM_STATE_ACCUMULATING;
+      const v1::StreamState shown = converged ? v1::STREAM_STATE_CONVERGED : v1::STREAM_STATE_ACCUMULATING;
       if (!sendRendered(state, job, *frame, request.render().format(), queueMs, dropped, writer, watch, shown)) return;
       sentFrame = frameNumber;
     }
     dropped = clock.next();
-    waitForTick(state, context, clock.due());
+    if (converged) {
+      waitForTick(state, context, std::max(clock.due(), Clock::now() + kConvergedPoll), kConvergedPoll);
+    } else {
+      waitForTick(state, context, clock.due());
+    }
   }
 }
 

@@ -1,5 +1,5 @@
 // progressive_streams.h - the accumulations of progressive StreamFrames calls (docs/REUSE.md §1-§2,
-// docs/SERVICE.md §2 "StreamFrames modes"). Calls that stream the same scene session to the same display with the
+// docs/SERVICE.md §4.1). Calls that stream the same scene session to the same display with the
 // same request share one stream: one device accumulation (gpu/accumulator.h), the last frame, and the state a new
 // caller starts from (a converged stream's frame is sent at once, with no GPU work). A stream's device memory is
 // reserved against limits.max_accumulator_bytes when its first caller joins: over the limit, the call fails with

@@ -1,5 +1,5 @@
 // progressive_stream_test.cpp - progressive StreamFrames through the daemon (issue 16, docs/REUSE.md §1-§2 and §5,
-// docs/SERVICE.md §2 "StreamFrames modes"): a stream accumulates until the stop rule holds, then sends nothing more
+// docs/SERVICE.md §4.1): a stream accumulates until the stop rule holds, then sends nothing more
 // and renders nothing (the daemon's CPU goes idle); a new caller of the same stream gets the converged frame at once;
 // an UpdateScene during accumulation restarts the sums, and the converged frame equals that of a fresh stream of the
 // edited scene bit for bit (no frame mixes samples of two scene versions); over limits.max_accumulator_bytes the call
