@@ -143,20 +143,22 @@ class TickClock {
   std::uint64_t tick_ = 0;
 };
 
-// The stop rule of a progressive stream: the request's values, else the daemon's defaults.
-gpu::AccumulationPolicy streamPolicy(const Limits& limits, const v1::StreamRequest& request) {
+// The stop rule of a progressive stream: the request's values, else the display config's, else the daemon's.
+gpu::AccumulationPolicy streamPolicy(const Limits& limits, const DisplayConfig& display,
+                                     const v1::StreamRequest& request) {
   gpu::AccumulationPolicy policy;
   const float error = request.target_error();
   if (!(error >= 0.0f) || !std::isfinite(error)) {
     throw BadRequest("target_error", shortNumber(error) + " is not a finite number >= 0 (0 = the daemon default " +
                                          shortNumber(limits.streamTargetError) + ")");
   }
-  policy.targetError = error > 0.0f ? error : static_cast<float>(limits.streamTargetError);
+  policy.targetError =
+      static_cast<float>(error > 0.0f ? error : display.progressiveTargetError.value_or(limits.streamTargetError));
   if (request.max_spp() > (1u << 20)) {
     throw BadRequest("max_spp", std::to_string(request.max_spp()) + " is more than 1048576 (0 = the daemon default " +
                                     std::to_string(limits.streamMaxSpp) + ")");
   }
-  policy.maxSpp = request.max_spp() > 0 ? request.max_spp() : limits.streamMaxSpp;
+  policy.maxSpp = request.max_spp() > 0 ? request.max_spp() : display.progressiveMaxSpp.value_or(limits.streamMaxSpp);
   policy.minSpp = std::min(policy.minSpp, policy.maxSpp);
   return policy;
 }
@@ -202,7 +204,7 @@ void streamIndependent(ServiceState& state, grpc::ServerContext& context, const 
 void streamProgressive(ServiceState& state, grpc::ServerContext& context, const v1::StreamRequest& request,
                        FrameJob& job, const std::string& client, grpc::ServerWriter<v1::FramePart>& writer,
                        CallWatchdog::Watch& watch) {
-  const gpu::AccumulationPolicy policy = streamPolicy(state.config.limits, request);
+  const gpu::AccumulationPolicy policy = streamPolicy(state.config.limits, job.display->config, request);
   const std::uint64_t bytes = gpu::Accumulator::bytesFor(displayFrameShape(*job.display, job.path));
   ProgressiveStreams::Membership member(
       state.progressive, state.progressive.join(progressiveKey(request, job, policy), request.render().scene_id(),
