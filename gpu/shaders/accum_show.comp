@@ -6,6 +6,8 @@
 // estimate and stop rule (gpu/accumulation_error.h) into the frame's AccumStats.
 #include "gpu/shaders/common.glsl"
 #include "gpu/accumulation_error.h"
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 
 layout(constant_id = HT_SPEC_MODEL) const uint MODEL = HT_MODEL_LENTICULAR;
 
@@ -31,11 +33,18 @@ void main() {
     imageStore(subpixelBuffer, int(3u * target + 1u), vec4(value.y));
     imageStore(subpixelBuffer, int(3u * target + 2u), vec4(value.z));
   }
-  AccumStatsRef stats = AccumStatsRef(FRAME.accumStats);
-  if (ht_accum_needs_samples(a.n, error, FRAME.accum.z, FRAME.accum.w, uintBitsToFloat(FRAME.accum.y))) {
-    atomicAdd(stats.s.unconverged, 1u);
+  // Reduced per subgroup first: one atomic of each kind per subgroup, not per target (lavapipe runs atomics lane by
+  // lane). The statistics are order-free (sum, min, max), so the result does not depend on the schedule.
+  bool needs = ht_accum_needs_samples(a.n, error, FRAME.accum.z, FRAME.accum.w, uintBitsToFloat(FRAME.accum.y));
+  uint unconverged = subgroupAdd(needs ? 1u : 0u);
+  uint maxErrorBits = subgroupMax(isnan(error) ? 0u : floatBitsToUint(min(error, HT_ACCUM_UNKNOWN_ERROR)));
+  uint minSamples = subgroupMin(a.n);
+  uint maxSamples = subgroupMax(a.n);
+  if (subgroupElect()) {
+    AccumStatsRef stats = AccumStatsRef(FRAME.accumStats);
+    if (unconverged > 0u) atomicAdd(stats.s.unconverged, unconverged);
+    atomicMax(stats.s.maxErrorBits, maxErrorBits);
+    atomicMin(stats.s.minSamples, minSamples);
+    atomicMax(stats.s.maxSamples, maxSamples);
   }
-  if (!isnan(error)) atomicMax(stats.s.maxErrorBits, floatBitsToUint(min(error, HT_ACCUM_UNKNOWN_ERROR)));
-  atomicMin(stats.s.minSamples, a.n);
-  atomicMax(stats.s.maxSamples, a.n);
 }
