@@ -38,6 +38,18 @@ Accumulator::~Accumulator() = default;
 std::uint64_t Accumulator::deviceBytes() const { return state_->targets.size(); }
 void Accumulator::restart() { state_->key.clear(); }
 
+std::vector<float> Accumulator::downloadSums() const {
+  std::vector<gpu_shared::AccumTarget> targets(state_->targets.size() / sizeof(gpu_shared::AccumTarget));
+  if (!targets.empty()) state_->targets.download(targets.data(), targets.size() * sizeof(gpu_shared::AccumTarget));
+  std::vector<float> sums;
+  sums.reserve(targets.size() * 8);
+  for (const gpu_shared::AccumTarget& t : targets) {
+    for (float v : {t.sum.x, t.sum.y, t.sum.z, float(t.n), t.halfSum.x, t.halfSum.y, t.halfSum.z, float(t.halfN)})
+      sums.push_back(v);
+  }
+  return sums;
+}
+
 std::string accumulationKey(const void* renderer, std::uint64_t sceneGeneration, const FrameCamera& camera,
                             const RenderSettings& settings) {
   std::string key;

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "camera_models/frame_camera.h"
 
@@ -56,6 +57,9 @@ class Accumulator {
   std::uint64_t deviceBytes() const;
   // The next frame starts a new accumulation (sums and counts zero).
   void restart();
+  // The per-target sums as (rgb sum, n, rgb half sum, half count), 8 floats per target of the whole frame (n and
+  // the half count as float values): the CPU side of the error-estimate parity test. Empty before the first frame.
+  std::vector<float> downloadSums() const;
 
   struct State;  // the device buffers and what the sums belong to (gpu/renderer_impl.h)
   State& state() { return *state_; }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "camera_models/display_model_registry.h"
+#include "gpu/accumulation_error.h"
 #include "gpu_test_util.h"
 #include "scene/scene_edits.h"
 
@@ -163,6 +164,49 @@ TEST(Accumulation, AdaptivePolicyConvergesAndThenTracesNothing) {
   const gpu::RenderResult after = renderer.accumulate(camera, settings, accumulator);
   EXPECT_EQ(after.accumulation.tracedTargets, 0u);
   EXPECT_TRUE(sameBits(after, frame));
+}
+
+// CPU reference of the error estimate and the stop rule (gpu/accumulation_error.h, the same source): recomputed on
+// the CPU from the downloaded sums of every target, the count of targets that need samples and the largest error
+// equal what accum_show.comp reported; the sample and half counts are those of the sequence (n, and the indices
+// below n with an odd popcount of i & 0xaaaaaaaa); the shown value of a target is its sum / n.
+TEST(Accumulation, ErrorEstimateAndStopRuleMatchTheirCpuReference) {
+  const Scene scene = accumulationScene();
+  gpu::Renderer renderer(sharedContext(), scene);
+  const FrameCamera camera = lookAt(glm::vec3(0.0f, 0.2f, 2.0f), glm::vec3(0.0f), 40.0f, 20, 14);
+  gpu::AccumulationPolicy policy;
+  policy.adaptive = false;
+  policy.targetError = 0.05f;
+  policy.minSpp = 4;
+  policy.maxSpp = 64;
+  gpu::Accumulator accumulator(policy);
+  gpu::RenderSettings settings;
+  settings.spp = 3;
+  gpu::RenderResult frame;
+  for (int k = 0; k < 3; ++k) frame = renderer.accumulate(camera, settings, accumulator);
+  const std::vector<float> sums = accumulator.downloadSums();
+  ASSERT_EQ(sums.size(), std::size_t(20 * 14 * 8));
+  std::uint32_t halfCount = 0;
+  for (std::uint32_t i = 0; i < 9; ++i) halfCount += gpu_shared::ht_accum_in_half(i) ? 1u : 0u;
+  std::uint64_t unconverged = 0;
+  float maxError = 0.0f;
+  for (std::size_t t = 0; t < sums.size() / 8; ++t) {
+    const float* s = &sums[t * 8];
+    ASSERT_EQ(s[3], 9.0f);
+    ASSERT_EQ(s[7], float(halfCount));
+    const glm::vec3 mean = glm::vec3(s[0], s[1], s[2]) / s[3];
+    const glm::vec3 halfMean = glm::vec3(s[4], s[5], s[6]) / s[7];
+    const float error = gpu_shared::ht_accum_error(mean, halfMean, halfCount, glm::vec3(1.0f));
+    maxError = std::max(maxError, error);
+    if (gpu_shared::ht_accum_needs_samples(9, error, policy.minSpp, policy.maxSpp, policy.targetError)) ++unconverged;
+    // Pinhole: pixel targets; row 0 of the frame is the top, targets count rows from the bottom.
+    const std::size_t x = t % 20, y = t / 20, pixel = (13 - y) * 20 + x;
+    EXPECT_EQ(frame.rgba[pixel * 4], mean.x) << "target " << t;
+  }
+  EXPECT_EQ(frame.accumulation.unconverged, unconverged);
+  EXPECT_GT(unconverged, 0u);
+  EXPECT_LT(unconverged, sums.size() / 8) << "the threshold should split the targets for a meaningful check";
+  EXPECT_NEAR(frame.accumulation.maxError, maxError, 1e-5f * maxError);
 }
 
 }  // namespace
