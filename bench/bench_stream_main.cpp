@@ -69,7 +69,7 @@ const std::array<cli::OptionSpec, 12> kSpecs = {{
     {"--spp", "", "N", "samples of the single frame whose PSNR progressive frames must reach (default 8)"},
     {"--frame-spp", "", "N", "samples per target of one progressive frame (default 2)"},
     {"--reference-spp", "", "N", "samples of the reference frame (default 64)"},
-    {"--target-error", "", "E", "stop rule's error (adaptive policy, daemon stream; default 0.02)"},
+    {"--target-error", "", "E", "stop rule's error (adaptive policy after --spp samples, daemon stream; default 0.02)"},
     {"--max-spp", "", "N", "stop rule's max samples per target (daemon stream; default 64)"},
     {"--runs", "", "N", "timed runs / idle windows, medians reported (default 5)"},
     {"--idle-seconds", "", "S", "length of one idle window after convergence (default 2)"},
@@ -192,7 +192,7 @@ void timeToQuality(const StreamOptions& o, const DisplayConfig& display, const S
   uniform.maxSpp = 1u << 20;
   gpu::AccumulationPolicy adaptive;
   adaptive.targetError = static_cast<float>(o.targetError);
-  adaptive.minSpp = std::min(4u, o.spp);
+  adaptive.minSpp = o.spp;  // every target gets the single frame's spp; later samples go where the error is high
   adaptive.maxSpp = 1u << 20;
   std::cout << "frame: " << camera.shape.width << "x" << camera.shape.height << " x " << camera.shape.views
             << " views, " << camera.shape.targets() << " targets\n";
