@@ -47,6 +47,7 @@ v1::StreamRequest streamRequest(v1::Holotrace::Stub& stub, const ht::bench::Load
   const grpc::Status loaded = stub.LoadScene(&context, load, &scene);
   if (!loaded.ok()) throw std::runtime_error("LoadScene: " + loaded.error_message());
   v1::StreamRequest request;
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
   request.mutable_render()->set_scene_id(scene.scene_id());
   request.mutable_render()->set_display_id(o.display);
   request.mutable_render()->set_spp(o.spp);

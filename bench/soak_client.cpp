@@ -132,6 +132,7 @@ struct Worker {
     grpc::ClientContext context;
     deadline(context);
     v1::StreamRequest req;
+    req.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
     *req.mutable_render() = request(sceneId);
     req.set_frames_per_second(pauseReader ? 120 : 30 + pick(60));
     auto reader = stub->StreamFrames(&context, req);

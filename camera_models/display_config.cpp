@@ -218,10 +218,24 @@ DisplayConfig fromVisualJson(const json& root, const std::string& sourceName) {
   return config;
 }
 
+// "progressive": the stop rule of progressive streams (docs/SERVICE.md §4.1).
+void readProgressive(const JsonLocation& parent, const json& object, DisplayConfig& config) {
+  const JsonLocation at = parent.child("progressive");
+  detail::rejectUnknownKeys(at, object, {"target_error", "max_spp"});
+  config.progressiveTargetError = detail::optionalNumber(at, object, "target_error", false, "a number in [0, 1000]");
+  if (config.progressiveTargetError &&
+      !(*config.progressiveTargetError >= 0.0 && *config.progressiveTargetError <= 1000.0)) {
+    throw ConfigError(at.file, at.field("target_error"), std::to_string(*config.progressiveTargetError),
+                      "a number in [0, 1000]");
+  }
+  if (auto maxSpp = detail::optionalInteger(at, object, "max_spp", false, 1, 1 << 20))
+    config.progressiveMaxSpp = static_cast<std::uint32_t>(*maxSpp);
+}
+
 DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, const std::filesystem::path& baseDir) {
   const JsonLocation at{sourceName, ""};
-  std::vector<std::string_view> keys = {"name",   "description", "model",   "calibration",
-                                        "camera", "spp",         "pinhole", "panel"};
+  std::vector<std::string_view> keys = {"name", "description", "model",   "calibration", "camera",
+                                        "spp",  "progressive", "pinhole", "panel"};
   for (const DisplayModelRow& row : displayModels()) {
     if (!row.sectionKey.empty()) keys.push_back(row.sectionKey);
   }
@@ -237,6 +251,8 @@ DisplayConfig fromOurFormat(const json& root, const std::string& sourceName, con
     config.camera = readCamera(at.child("camera"), requireObject(at, root, "camera"));
   if (auto spp = detail::optionalInteger(at, root, "spp", false, 1, kMaxSpp))
     config.spp = static_cast<std::uint32_t>(*spp);
+  if (detail::findField(root, "progressive") != nullptr)
+    readProgressive(at, requireObject(at, root, "progressive"), config);
   if (detail::findField(root, "pinhole") != nullptr)
     config.pinhole = readPinhole(at.child("pinhole"), requireObject(at, root, "pinhole"));
   for (const DisplayModelRow& row : displayModels()) {

@@ -61,6 +61,10 @@ struct DisplayConfig {
   std::optional<LookingGlassCalibration> calibration;  // required for (and only for) the lenticular model
   CameraPlacement camera;
   std::uint32_t spp = 4;  // default samples per subpixel / pixel, [1, 4096]
+  // Stop rule of progressive streams on this display (docs/REUSE.md §2, docs/SERVICE.md §4.1), "progressive":
+  // {"target_error", "max_spp"}; unset = the daemon's default. A request's values come first.
+  std::optional<double> progressiveTargetError;
+  std::optional<std::uint32_t> progressiveMaxSpp;
   PinholeSettings pinhole;
   std::optional<ProjectorArrayConfig> projectorArray;  // required for (and only for) model "projector-array"
   std::optional<IntegralConfig> integral;              // required for (and only for) model "integral"

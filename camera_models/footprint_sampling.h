@@ -82,6 +82,13 @@ HT_INLINE vec2 footprint_sample(uint target, uint s, uint spp, uint seed, uint f
   return footprint_warp(u, filterKind);
 }
 
+// Footprint position of sample index i of `target` in a progressive accumulation (docs/REUSE.md §1, §6 item 1):
+// always the R2 lattice point i, whatever the frame's spp, so the samples of k frames of N continue one sequence and
+// equal those of one frame of k*N (for spp >= 3 also the points footprint_sample gives a single frame).
+HT_INLINE vec2 footprint_sample_progressive(uint target, uint i, uint seed, uint filterKind) {
+  return footprint_sample(target, i, 3u, seed, filterKind);
+}
+
 // Second footprint pair of sample s: dimensions 3 and 4 of the R4 sequence (g^5 = g + 1), for angular footprints
 // (projector scattering). Uniform in [0,1)^2; the model applies its own angular distribution.
 HT_INLINE vec2 footprint_sample_angle(uint target, uint s, uint spp, uint seed) {

@@ -23,7 +23,7 @@ namespace v1 = holotrace::v1;
 using Stub = v1::Holotrace::Stub;
 constexpr const char* kCommand = "holotrace client";
 
-const std::array<OptionSpec, 14> kOptions = {{
+const std::array<OptionSpec, 15> kOptions = {{
     {"--socket", "", "ADDR", "daemon address (default unix:$XDG_RUNTIME_DIR/holotrace/holotraced.sock)"},
     {"--scene", "", "SPEC", "scene below the daemon's scene root, or builtin:NAME (default builtin:showcase)"},
     {"--upload", "", "FILE",
@@ -36,6 +36,8 @@ const std::array<OptionSpec, 14> kOptions = {{
     {"--out", "-o", "FILE", "render: write the frame bytes here"},
     {"--fps", "", "N", "stream: requested frames per second (default 10)"},
     {"--frames", "", "N", "stream: stop after N frames (default 10); capture: file count (default 1)"},
+    {"--mode", "", "MODE",
+     "stream: progressive (default: frames add samples until converged, then the stream ends here) | independent"},
     {"--name", "", "NAME", "capture: file name prefix under the daemon's output root"},
     {"--exr", "", "", "capture: linear half EXR instead of 8-bit PNG"},
     {"--move", "", "NODE=X,Y,Z",
@@ -193,6 +195,10 @@ void printFrame(std::ostream& out, const v1::FrameHeader& h) {
   out << "frame " << h.frame_id() << ": " << h.width() << "x" << h.height() << ", " << h.total_bytes() << " bytes, "
       << h.render_ms() << " ms render, " << h.queue_ms() << " ms queued";
   if (h.dropped_frames()) out << ", " << h.dropped_frames() << " dropped";
+  if (h.state() != v1::STREAM_STATE_UNSPECIFIED) {
+    out << ", " << h.accumulated_spp() << "-" << h.accumulated_spp_max() << " spp accumulated, error "
+        << h.error_estimate() << (h.state() == v1::STREAM_STATE_CONVERGED ? ", converged" : "");
+  }
   out << "\n";
 }
 
@@ -222,6 +228,11 @@ int stream(Stub& stub, const ParsedArguments& a, std::ostream& out) {
   v1::StreamRequest request;
   *request.mutable_render() = renderRequest(a, scene.scene_id(), "rgba8");
   request.set_frames_per_second(a.unsignedValue("--fps", 1, 120).value_or(10));
+  const std::string mode = a.textOr("--mode", "progressive");
+  if (mode != "progressive" && mode != "independent") {
+    throw UsageError(usageMessage(kCommand, "--mode " + mode + ": expected progressive or independent"));
+  }
+  request.set_mode(mode == "progressive" ? v1::STREAM_MODE_PROGRESSIVE : v1::STREAM_MODE_INDEPENDENT);
   const std::uint32_t frames = a.unsignedValue("--frames", 1, 1'000'000).value_or(10);
   grpc::ClientContext context;
   auto reader = stub.StreamFrames(&context, request);
@@ -232,6 +243,7 @@ int stream(Stub& stub, const ParsedArguments& a, std::ostream& out) {
   while (received < frames && readFrame(*reader, header, bytes)) {
     printFrame(out, header);
     ++received;
+    if (header.state() == v1::STREAM_STATE_CONVERGED) break;  // a converged stream sends nothing more
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   context.TryCancel();

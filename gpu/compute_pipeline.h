@@ -12,7 +12,18 @@
 
 namespace ht::gpu {
 
-enum class ShaderId { Raygen, TraceClosest, TraceAny, Shade, Prepare, GatherDirect, Resolve, Interleave, RefineSelect };
+enum class ShaderId {
+  Raygen,
+  TraceClosest,
+  TraceAny,
+  Shade,
+  Prepare,
+  GatherDirect,
+  Resolve,
+  Interleave,
+  RefineSelect,
+  AccumShow
+};
 
 std::span<const std::uint32_t> embeddedSpirv(ShaderId id);
 const char* shaderName(ShaderId id);

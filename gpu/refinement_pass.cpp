@@ -10,7 +10,7 @@ namespace ht::gpu {
 // host-side exclusive scan of one count per subgroup, so the list, and with it the frame, is the same whatever order
 // the device runs the workgroups in.
 std::uint64_t Renderer::Impl::selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast,
-                                                   StageTimes& stageMs) {
+                                                   StageTimes& stageMs, bool byError) {
   const glm::uvec3 grid(
       groupsFor(shape.width), shape.height,
       static_cast<std::uint32_t>(targets / (std::uint64_t{shape.width} * shape.height * shape.targetsPerPixel)));
@@ -28,8 +28,9 @@ std::uint64_t Renderer::Impl::selectRefinedTargets(const FrameShape& shape, std:
   auto run = [&](std::uint32_t mode, glm::uvec3 groups, std::uint32_t count) {
     beginCommands();
     PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
-    rec.dispatch(pipeline(ShaderId::RefineSelect, {shape.model, mode}), passConstants(0, count, 0, 0), groups,
-                 Stage::Refine);
+    std::vector<std::uint32_t> spec{shape.model, mode};
+    if (byError) spec.push_back(1u);  // BY_ERROR (only when set: the contrast pipelines stay as they were)
+    rec.dispatch(pipeline(ShaderId::RefineSelect, spec), passConstants(0, count, 0, 0), groups, Stage::Refine);
     submitAndWait();
     rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
   };

@@ -20,7 +20,8 @@ static_assert(sizeof(gpu_shared::HtRay) == 32 && sizeof(gpu_shared::HtHit) == 16
 static_assert(sizeof(gpu_shared::GpuBvhNode) == 64);
 static_assert(sizeof(GpuCounters) == 80 && offsetof(GpuCounters, dispatch) == 32);
 static_assert(sizeof(PassConstants) == 40);
-static_assert(offsetof(FrameBlock, dims) == 16 && sizeof(FrameBlock) % 16 == 0);  // std140 == C++ layout
+static_assert(sizeof(gpu_shared::AccumTarget) == 32 && sizeof(gpu_shared::AccumStats) == 16);  // std430 == C++
+static_assert(offsetof(FrameBlock, dims) == 16 && sizeof(FrameBlock) % 16 == 0);               // std140 == C++ layout
 
 namespace {
 
@@ -133,6 +134,7 @@ void Renderer::Impl::installScene(const Scene& s, SceneBvh bvh) {
   GpuScene next(vk, s, std::move(bvh));
   HT_VK(vkQueueWaitIdle(vk.queue));
   scene = std::move(next);
+  ++sceneGeneration;
   bindScene();
   descriptors.flush();
   bvhStats.layout = scene.layout();
@@ -166,6 +168,7 @@ void Renderer::Impl::moveNodes(const Scene& s, std::span<const std::uint32_t> mo
 void Renderer::Impl::updateLights(const Scene& s) {
   HT_VK(vkQueueWaitIdle(vk.queue));
   scene.updateLights(s);
+  ++sceneGeneration;
 }
 
 void Renderer::Impl::bindScene() {
@@ -290,6 +293,10 @@ const SceneFeatures& Renderer::features() const { return impl_->scene.features()
 
 RenderResult Renderer::render(const FrameCamera& camera, const RenderSettings& settings) {
   return impl_->render(camera, settings);
+}
+
+RenderResult Renderer::accumulate(const FrameCamera& camera, const RenderSettings& settings, Accumulator& accumulator) {
+  return impl_->accumulate(camera, settings, accumulator);
 }
 
 std::vector<gpu_shared::HtRay> Renderer::generateRays(const FrameCamera& camera, const RenderSettings& settings,

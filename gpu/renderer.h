@@ -13,6 +13,7 @@
 #include "bvh/ray_types.h"
 #include "camera_models/frame_camera.h"
 #include "camera_models/ray_table.h"
+#include "gpu/accumulator.h"
 #include "gpu/scene_bvh.h"
 #include "scene/scene.h"
 
@@ -70,6 +71,7 @@ struct RenderResult {
   std::uint32_t maxTraversalSteps = 0;
   std::uint32_t nonFiniteSamples = 0;  // targets whose value was NaN/Inf and was written as 0 (should be 0)
   std::uint64_t refinedTargets = 0;    // targets traced again by adaptive refinement (RenderSettings::refineSpp)
+  AccumulationReport accumulation;     // Renderer::accumulate only
 };
 
 // Which BVH layout the Renderer traces and how its BVH changed since construction (tests and benchmarks: a node
@@ -120,6 +122,12 @@ class Renderer {
   // Every view of the camera, whatever its model (camera_models/frame_camera.h). Large view arrays are rendered in
   // chunks of views (bounded device memory).
   RenderResult render(const FrameCamera& camera, const RenderSettings& settings);
+
+  // One progressive frame (gpu/accumulator.h): adds settings.spp samples per target (per listed target under the
+  // adaptive policy) to `accumulator`'s sums and returns sum / n per target. refineSpp must be 0 (the accumulator's
+  // policy decides where samples go). Restarts the accumulation when this renderer's scene, the camera or a setting
+  // that shapes samples changed since its last frame.
+  RenderResult accumulate(const FrameCamera& camera, const RenderSettings& settings, Accumulator& accumulator);
 
   // The primary rays raygen writes for targets [firstTarget, firstTarget + targetCount), settings.spp samples each
   // (sample s of target t at index (t - firstTarget)*spp + s), read back without tracing them: the GPU side of

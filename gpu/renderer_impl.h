@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "gpu/compute_pipeline.h"
@@ -57,6 +58,22 @@ struct RowBand {
   std::uint32_t viewRows = 0;
 };
 
+}  // namespace ht::gpu
+
+// What an accumulation's sums belong to, and its device buffers (gpu/accumulator.h).
+struct ht::gpu::Accumulator::State {
+  DeviceBuffer targets;  // AccumTarget per target of the whole frame
+  DeviceBuffer stats;    // AccumStats, host visible
+  std::string key;       // accumulationKey() of the frames summed; "" = nothing summed yet
+};
+
+namespace ht::gpu {
+
+// The identity of an accumulation: the renderer and its scene version, the camera block and shape, and every
+// setting that shapes a sample (not spp: frames of different spp continue one accumulation).
+std::string accumulationKey(const void* renderer, std::uint64_t sceneGeneration, const FrameCamera& camera,
+                            const RenderSettings& settings);
+
 struct Renderer::Impl {
   VulkanContext::Impl& vk;
   GpuScene scene;
@@ -78,6 +95,8 @@ struct Renderer::Impl {
 
   bvh::BuildOptions buildOptions;
   BvhStats bvhStats;
+  std::uint64_t sceneGeneration = 0;    // bumped by replaceScene and updateLights (accumulation keys)
+  Accumulator* accumulating = nullptr;  // during accumulate(): the accumulation the chunks add to
 
   Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o);
 
@@ -91,12 +110,17 @@ struct Renderer::Impl {
   // folds to the panel's own pattern (lenticular_model.h HT_LENTICULAR_CELL_MODE; a CPU driver pays for untaken code),
   // then REFINING for the pass over listed targets.
   static_assert(gpu_shared::HT_SPEC_MODEL == 0, "raygen, resolve and refine_select take the model as constant 0");
+  // PROGRESSIVE (constant 4) is appended only when set, so single frames keep their pipelines.
   static std::vector<std::uint32_t> raygenSpec(const FrameCamera& camera, const FrameShape& shape,
-                                               bool refining = false) {
+                                               bool refining = false, bool progressive = false) {
     const auto* lenticular = std::get_if<gpu_shared::LenticularParams>(&camera);
-    if (!lenticular) return {shape.model, 0u, 0u, refining};
-    return {shape.model, static_cast<std::uint32_t>(lenticular->flags.x),
-            static_cast<std::uint32_t>(lenticular->flags.y), refining};
+    std::vector<std::uint32_t> spec{shape.model, 0u, 0u, refining};
+    if (lenticular) {
+      spec[1] = static_cast<std::uint32_t>(lenticular->flags.x);
+      spec[2] = static_cast<std::uint32_t>(lenticular->flags.y);
+    }
+    if (progressive) spec.push_back(1u);
+    return spec;
   }
 
   // Specialisation of the kernels that continue paths (shade, gather_direct): their own constants, then
@@ -163,6 +187,10 @@ struct Renderer::Impl {
   RenderResult render(const FrameCamera& camera, const RenderSettings& settings);
   void renderChunk(const FrameCamera& camera, const FrameShape& shape, const RowBand& band, std::uint32_t viewFirst,
                    std::uint32_t viewCount, const RenderSettings& settings, StageTimes& stageMs, RenderResult& result);
+  // The samples of a single frame's chunk: the base pass, then adaptive refinement.
+  void renderChunkSamples(const FrameCamera& camera, const FrameShape& shape, std::uint64_t targets,
+                          std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
+                          RenderResult& result);
   // Traces paths [0, totalPaths) of `spp` samples per target in batches of perBatch (a multiple of spp) and resolves
   // them into the subpixel buffer. refining: the listed targets of FrameBlock.refine (refineInfo.w = the base spp),
   // through the REFINING pipelines of raygen and resolve; else the chunk's base pass, its first call, which clears
@@ -170,9 +198,16 @@ struct Renderer::Impl {
   void tracePaths(const FrameCamera& camera, const FrameShape& shape, std::uint32_t spp, std::uint64_t totalPaths,
                   std::uint64_t perBatch, bool refining, const RenderSettings& settings, StageTimes& stageMs,
                   const std::function<void(double)>& progress);
-  // Adaptive refinement (refinement_pass.cpp).
+  // Adaptive refinement (refinement_pass.cpp); byError: the targets the accumulation's stop rule says need samples.
   std::uint64_t selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast,
-                                     StageTimes& stageMs);
+                                     StageTimes& stageMs, bool byError = false);
+  // Progressive accumulation (accumulation_pass.cpp).
+  RenderResult accumulate(const FrameCamera& camera, const RenderSettings& settings, Accumulator& accumulator);
+  void accumulateChunk(const FrameCamera& camera, const FrameShape& shape, const RowBand& band, std::uint32_t viewFirst,
+                       std::uint32_t viewCount, const RenderSettings& settings, std::uint64_t perBatch,
+                       StageTimes& stageMs, RenderResult& result);
+  // The progressive members of the frame block (after fillFrame).
+  void fillAccumulation(FrameBlock& f, Accumulator& accumulator) const;
   // Ray batches without a frame (ray_batches.cpp).
   std::vector<gpu_shared::HtRay> generateRays(const FrameCamera& camera, const RenderSettings& settings,
                                               std::uint64_t firstTarget, std::uint32_t targetCount, TraceStats* stats);

@@ -81,7 +81,7 @@ RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSetti
   for (size_t s = 0; s < stageMs.size(); ++s) {
     auto stage = static_cast<Stage>(s);
     if (stage == Stage::Shadow && !lights) continue;
-    if (stage == Stage::Refine && settings.refineSpp == 0) continue;
+    if (stage == Stage::Refine && settings.refineSpp == 0 && !accumulating) continue;
     result.stages.push_back({stageName(stage), stageMs[s]});
   }
   result.stages.push_back({"readback", readbackMs});
@@ -105,7 +105,27 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   bindState();
   fillFrame(camera, shape, band, viewFirst, viewCount, settings);
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));
+  if (accumulating) {
+    accumulateChunk(camera, shape, band, viewFirst, viewCount, settings, perBatch, stageMs, result);
+  } else {
+    renderChunkSamples(camera, shape, targets, perBatch, settings, stageMs, result);
+  }
+  const ComputePipeline& interleave = pipeline(ShaderId::Interleave);
+  beginCommands();
+  PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+  rec.dispatch(interleave, passConstants(0, 0, 0, 0),
+               groupsFor(static_cast<std::uint64_t>(shape.width) * shape.height * viewCount), Stage::Interleave);
+  submitAndWait();
+  rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+  const GpuCounters& c = counterBlock();
+  result.raysTraced += c.raysTraced;
+  result.maxTraversalSteps = std::max(result.maxTraversalSteps, c.maxSteps);
+  result.nonFiniteSamples += c.nanCount;
+}
 
+void Renderer::Impl::renderChunkSamples(const FrameCamera& camera, const FrameShape& shape, std::uint64_t targets,
+                                        std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
+                                        RenderResult& result) {
   const double share = settings.refineSpp > 0 ? 0.8 : 1.0;  // progress: the refinement takes the rest
   tracePaths(camera, shape, settings.spp, targets * settings.spp, perBatch, false, settings, stageMs, [&](double done) {
     if (settings.progress) settings.progress(done * share);
@@ -125,17 +145,6 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
                  });
     }
   }
-  const ComputePipeline& interleave = pipeline(ShaderId::Interleave);
-  beginCommands();
-  PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
-  rec.dispatch(interleave, passConstants(0, 0, 0, 0),
-               groupsFor(static_cast<std::uint64_t>(shape.width) * shape.height * viewCount), Stage::Interleave);
-  submitAndWait();
-  rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
-  const GpuCounters& c = counterBlock();
-  result.raysTraced += c.raysTraced;
-  result.maxTraversalSteps = std::max(result.maxTraversalSteps, c.maxSteps);
-  result.nonFiniteSamples += c.nanCount;
 }
 
 void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& shape, std::uint32_t spp,
@@ -149,16 +158,19 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
              textures = (feat.textures && scene.textureCount() > 0) || all;
   const std::uint32_t depthPasses = (mirror || glass) ? settings.maxDepth + 1 : 1;
 
-  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape, refining));
+  const bool progressive = accumulating != nullptr;
+  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape, refining, progressive));
   const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest, traceSpec({}));
   const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
   const std::vector<std::uint32_t> shadeFeatures = {lights, mirror, glass, textures};
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
-  const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {shape.model, refining});
+  std::vector<std::uint32_t> resolveSpec{shape.model, refining};
+  if (progressive) resolveSpec.push_back(1u);  // PROGRESSIVE, only when set (single frames keep their pipeline)
+  const ComputePipeline& resolve = pipeline(ShaderId::Resolve, resolveSpec);
 
   const VkBuffer args = counters.handle();
-  bool clear = !refining;
+  bool clear = !refining || accumulating;  // a progressive frame may trace only a list: no base pass cleared
   for (std::uint64_t begin = 0; begin < totalPaths; begin += perBatch) {
     const auto count = static_cast<std::uint32_t>(std::min<std::uint64_t>(perBatch, totalPaths - begin));
     const auto batchFirst = static_cast<std::uint32_t>(begin);

@@ -79,6 +79,29 @@ struct FrameBlock {
   vec4 background;     // rgb radiance of escaped rays
   vec4 ambient;        // rgb ambient irradiance on diffuse surfaces
   CameraBlock camera;  // the frame's camera model's parameters (camera_models/model_list.h)
+  // Progressive accumulation (gpu/accumulator.h, docs/REUSE.md §1): accum.x = 1 while a frame adds samples to the
+  // sums at `accumTargets` (AccumTarget per target of the whole frame, by frame_global_target), 0 for single frames;
+  // y = the target error (float bits), z = min spp, w = max spp of the stop rule (gpu/accumulation_error.h).
+  uint64_t accumTargets;
+  uint64_t accumStats;  // AccumStats of the frame (device address)
+  uvec4 accum;
+};
+
+// The accumulated samples of one target (docs/REUSE.md §1-§2): the sum of its n samples in sample order, and the
+// sum of its half-estimate samples (gpu/accumulation_error.h). 32 B; vec3 + uint packs to 16 B in std430 and C++.
+struct AccumTarget {
+  vec3 sum;
+  uint n;
+  vec3 halfSum;
+  uint halfN;
+};
+
+// Written by accum_show.comp over the targets of a progressive frame (atomics; reset by the host per frame).
+struct AccumStats {
+  uint unconverged;   // targets the stop rule says need more samples
+  uint maxErrorBits;  // largest error estimate (float bits; non-negative floats order as their bits)
+  uint minSamples;    // fewest samples of a target
+  uint maxSamples;    // most samples of a target
 };
 
 // Push constants of every pass (40 B of the 128 B guaranteed). The BVH addresses sit here, not in the

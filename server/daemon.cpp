@@ -39,6 +39,7 @@ struct Daemon::Parts {
   FileSink outputSink;
   UploadBudget uploads;
   CallWatchdog watchdog;
+  ProgressiveStreams progressive;  // accumulations released on the worker, before it stops
   ServiceState state;
   HolotraceService service;
   std::unique_ptr<PanelSinks> panels;  // display sinks ("present"); their threads end before the state they read
@@ -59,7 +60,8 @@ struct Daemon::Parts {
         outputSink(config.outputRoot),
         uploads(config.limits.maxUploads, config.limits.maxUploadBytesInFlight),
         watchdog(l),
-        state{config, displays, *scenes, worker, outputSink, uploads, watchdog},
+        progressive(worker, config.limits.maxAccumulatorBytes),
+        state{config, displays, *scenes, worker, outputSink, uploads, watchdog, progressive},
         service(state) {}
 };
 

@@ -73,6 +73,9 @@ Limits parseLimits(const json& doc, const std::string& source) {
   readInteger(j, "max_upload_bytes_in_flight", l.maxUploadBytesInFlight, 1, 1ull << 44, source);
   readReal(j, "upload_idle_seconds", l.uploadIdleSeconds, 0.05, 86400.0, source);
   readReal(j, "stream_stall_seconds", l.streamStallSeconds, 0.05, 86400.0, source);
+  readInteger(j, "max_accumulator_bytes", l.maxAccumulatorBytes, 0, 1ull << 44, source);
+  readReal(j, "stream_target_error", l.streamTargetError, 0.0, 1000.0, source);
+  readInteger(j, "stream_max_spp", l.streamMaxSpp, 1, 1u << 20, source);
   if (l.maxUploadBytesInFlight < l.maxSceneBytes) {  // else the largest allowed upload could never run
     throw ConfigError(source, "limits.max_upload_bytes_in_flight", std::to_string(l.maxUploadBytesInFlight),
                       "at least limits.max_scene_bytes = " + std::to_string(l.maxSceneBytes));

@@ -25,12 +25,35 @@ gpu::DisplayCamera jobCamera(const FrameJob& job) {
   return gpu::makeDisplayCamera(config, job.session->content->loadBounds, job.path, job.display->rayTable);
 }
 
-gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job) {
+namespace {
+
+gpu::RenderSettings jobSettings(const FrameJob& job) {
   gpu::RenderSettings settings;
   settings.spp = job.spp ? job.spp : job.display->config.spp;
   settings.seed = job.seed;
   settings.refineSpp = job.refineSpp;
   settings.refineContrast = job.refineContrast;
+  return settings;
+}
+
+}  // namespace
+
+gpu::RenderResult accumulateFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job,
+                                     gpu::Accumulator& accumulator) {
+  gpu::RenderSettings settings = jobSettings(job);
+  settings.refineSpp = 0;
+  const SceneContent& content = *job.session->content;
+  const gpu::DisplayCamera camera = jobCamera(job);
+  gpu::RenderResult result;
+  worker
+      .submit(client,
+              [&](gpu::VulkanContext&) { result = content.renderer->accumulate(camera.camera, settings, accumulator); })
+      .get();
+  return result;
+}
+
+gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job) {
+  const gpu::RenderSettings settings = jobSettings(job);
   const SceneContent& content = *job.session->content;
   if (content.quilt) {  // existing quilt content: interleaved for the display, nothing traced
     if (job.path == gpu::CameraPath::Quilt) {

@@ -39,4 +39,10 @@ gpu::DisplayCamera jobCamera(const FrameJob& job);
 // Queues the frame for `client` and waits for it. Throws what the worker or renderer threw.
 gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job);
 
+// One progressive frame of `job` (gpu/accumulator.h): job.spp (or the display's) more samples into `accumulator`,
+// on the worker. The job's refinement settings are ignored (the accumulator's policy places samples). The session's
+// content must have a Renderer (not a quilt image).
+gpu::RenderResult accumulateFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job,
+                                     gpu::Accumulator& accumulator);
+
 }  // namespace ht::server

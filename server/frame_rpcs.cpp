@@ -49,9 +49,29 @@ v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame
   return header;
 }
 
-// Renders one frame and sends it; false when the client went away or stopped reading for longer than
-// limits.stream_stall_seconds (`watch` cancels the blocked Write).
-// `panel` (StreamRequest.present_on) also gets the frame, through its one-slot mailbox: never waits on the display.
+// Encodes `frame` and sends it; false when the client went away or stopped reading for longer than
+// limits.stream_stall_seconds (`watch` cancels the blocked Write). `state` set: a progressive frame's fields.
+bool sendRendered(ServiceState& state, const FrameJob& job, const gpu::RenderResult& frame, v1::PixelFormat format,
+                  double queueMs, std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer,
+                  CallWatchdog::Watch& watch, v1::StreamState streamState = v1::STREAM_STATE_UNSPECIFIED) {
+  const DisplayConfig display = displayForSession(job.display->config, *job.session);
+  const EncodedFrame encoded = encodeFrame(frame, checkPixelFormat(format), {display, jobCamera(job).quilt});
+  v1::FrameHeader header = makeHeader(state.nextFrameId++, frame, encoded, format, queueMs);
+  header.set_dropped_frames(dropped);
+  if (streamState != v1::STREAM_STATE_UNSPECIFIED) {
+    const gpu::AccumulationReport& a = frame.accumulation;
+    header.set_accumulated_spp(a.minSamples);
+    header.set_accumulated_spp_max(a.maxSamples);
+    header.set_error_estimate(a.maxError);
+    header.set_unconverged_targets(a.unconverged);
+    header.set_state(streamState);
+  }
+  const CallWatchdog::Watch::Wait waiting(watch);
+  return sendFrame(writer, std::move(header), encoded.bytes);
+}
+
+// Renders one frame and sends it (sendRendered). `panel` (StreamRequest.present_on) also gets the frame, through
+// its one-slot mailbox: never waits on the display.
 bool renderAndSend(ServiceState& state, const std::string& client, const FrameJob& job, v1::PixelFormat format,
                    std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer,
                    CallWatchdog::Watch& watch, present::PanelSink* panel = nullptr) {
@@ -59,20 +79,20 @@ bool renderAndSend(ServiceState& state, const std::string& client, const FrameJo
   const gpu::RenderResult frame = renderFrameJob(state.worker, client, job);
   if (panel) panel->submit(panelFrameOf(frame, job));
   const double queueMs = std::max(0.0, msBetween(queued, Clock::now()) - frame.totalMs);
-  const DisplayConfig display = displayForSession(job.display->config, *job.session);
-  const EncodedFrame encoded = encodeFrame(frame, checkPixelFormat(format), {display, jobCamera(job).quilt});
-  v1::FrameHeader header = makeHeader(state.nextFrameId++, frame, encoded, format, queueMs);
-  header.set_dropped_frames(dropped);
-  const CallWatchdog::Watch::Wait waiting(watch);
-  return sendFrame(writer, std::move(header), encoded.bytes);
+  return sendRendered(state, job, frame, format, queueMs, dropped, writer, watch);
 }
 
-// Sleeps until `due` in short slices, so a cancelled call or a shutdown frees its slot within ~20 ms.
-void waitForTick(ServiceState& state, grpc::ServerContext& context, Clock::time_point due) {
+// Sleeps until `due` in slices of `slice`, so a cancelled call or a shutdown frees its slot within one slice.
+void waitForTick(ServiceState& state, grpc::ServerContext& context, Clock::time_point due,
+                 Clock::duration slice = std::chrono::milliseconds(20)) {
   while (Clock::now() < due && !context.IsCancelled()) {
-    if (!state.sleepUntil(std::min(due, Clock::now() + std::chrono::milliseconds(20)))) return;
+    if (!state.sleepUntil(std::min(due, Clock::now() + slice))) return;
   }
 }
+
+// A converged progressive stream looks for a new scene or camera version this often (and for a cancel), whatever
+// its frame rate: its only work while idle (docs/SERVICE.md §4.1).
+constexpr auto kConvergedPoll = std::chrono::milliseconds(100);
 
 frame_io::FrameFormat captureFormat(v1::CaptureFormat format) {
   switch (format) {
@@ -103,6 +123,135 @@ std::vector<frame_io::FrameFile> captureFiles(const gpu::RenderResult& frame, co
       .files;
 }
 
+// The tick clock of a stream: frame k due at start + k/fps. `next()` after a frame moves to the next tick not yet
+// passed and says how many ticks were missed (latest-frame-wins, docs/SERVICE.md §4 "Backpressure").
+class TickClock {
+ public:
+  explicit TickClock(double fps)
+      // <= 1000 s after the range check, >= 1 ms (limits.max_frames_per_second <= 1000): no overflow, never zero.
+      : period_(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / fps))),
+        start_(Clock::now()) {}
+  std::uint64_t next() {
+    const auto due = static_cast<std::uint64_t>((Clock::now() - start_) / period_) + 1;  // next tick not yet passed
+    const std::uint64_t dropped = due > tick_ + 1 ? due - tick_ - 1 : 0;
+    tick_ = std::max(tick_ + 1, due);
+    return dropped;
+  }
+  std::uint64_t tick() const { return tick_; }
+  Clock::time_point due() const { return start_ + period_ * static_cast<Clock::rep>(tick_); }
+
+ private:
+  Clock::duration period_;
+  Clock::time_point start_;
+  std::uint64_t tick_ = 0;
+};
+
+// The stop rule of a progressive stream: the request's values, else the display config's, else the daemon's.
+gpu::AccumulationPolicy streamPolicy(const Limits& limits, const DisplayConfig& display,
+                                     const v1::StreamRequest& request) {
+  gpu::AccumulationPolicy policy;
+  const float error = request.target_error();
+  if (!(error >= 0.0f) || !std::isfinite(error)) {
+    throw BadRequest("target_error", shortNumber(error) + " is not a finite number >= 0 (0 = the daemon default " +
+                                         shortNumber(limits.streamTargetError) + ")");
+  }
+  policy.targetError =
+      static_cast<float>(error > 0.0f ? error : display.progressiveTargetError.value_or(limits.streamTargetError));
+  if (request.max_spp() > (1u << 20)) {
+    throw BadRequest("max_spp", std::to_string(request.max_spp()) + " is more than 1048576 (0 = the daemon default " +
+                                    std::to_string(limits.streamMaxSpp) + ")");
+  }
+  policy.maxSpp = request.max_spp() > 0 ? request.max_spp() : display.progressiveMaxSpp.value_or(limits.streamMaxSpp);
+  policy.minSpp = std::min(policy.minSpp, policy.maxSpp);
+  return policy;
+}
+
+bool progressiveMode(const v1::StreamRequest& request, const FrameJob& job) {
+  switch (request.mode()) {
+    // Under mpirun the default stays independent frames, which every rank renders (docs/CLUSTER.md §8); an explicit
+    // PROGRESSIVE accumulates on rank 0's device alone.
+    case v1::STREAM_MODE_UNSPECIFIED: return !job.session->content->quilt && !job.cluster;
+    case v1::STREAM_MODE_PROGRESSIVE: return !job.session->content->quilt;  // a quilt image has no samples to add
+    case v1::STREAM_MODE_INDEPENDENT: return false;
+    default: throw BadRequest("mode", "unknown stream mode " + std::to_string(request.mode()));
+  }
+}
+
+// Calls that share one accumulation: same session, display, camera path, per-frame spp, seed and stop rule.
+std::string progressiveKey(const v1::StreamRequest& request, const FrameJob& job,
+                           const gpu::AccumulationPolicy& policy) {
+  const v1::RenderRequest& r = request.render();
+  return r.scene_id() + '\n' + job.display->id + '\n' + (r.quilt() ? "quilt" : "native") + '\n' +
+         std::to_string(job.spp) + '\n' + std::to_string(r.seed()) + '\n' + shortNumber(policy.targetError) + '\n' +
+         std::to_string(policy.maxSpp);
+}
+
+// Independent frames: every tick a new frame from scratch with seed + tick.
+void streamIndependent(ServiceState& state, grpc::ServerContext& context, const v1::StreamRequest& request,
+                       FrameJob& job, const std::string& client, grpc::ServerWriter<v1::FramePart>& writer,
+                       CallWatchdog::Watch& watch, present::PanelSink* panel) {
+  TickClock clock(request.frames_per_second());
+  std::uint64_t dropped = 0;
+  while (!context.IsCancelled()) {
+    if (state.shuttingDown) throw ShuttingDown("holotraced is shutting down");
+    job.session = state.scenes.find(request.render().scene_id());  // picks up UpdateScene
+    job.seed = request.render().seed() + static_cast<std::uint32_t>(clock.tick());
+    if (!renderAndSend(state, client, job, request.render().format(), dropped, writer, watch, panel)) return;
+    dropped = clock.next();
+    waitForTick(state, context, clock.due());
+  }
+}
+
+// Progressive frames (docs/REUSE.md §1-§2): each tick adds samples to the stream's shared accumulation, unless it
+// has converged for the current session (scene and camera version), in which case nothing is rendered and the last
+// frame is sent only to a caller that has not had it. The accumulation restarts by itself when the renderer's scene
+// or the camera changed (gpu/accumulator.h), so an edit never mixes samples of two scene versions.
+void streamProgressive(ServiceState& state, grpc::ServerContext& context, const v1::StreamRequest& request,
+                       FrameJob& job, const std::string& client, grpc::ServerWriter<v1::FramePart>& writer,
+                       CallWatchdog::Watch& watch, present::PanelSink* panel) {
+  const gpu::AccumulationPolicy policy = streamPolicy(state.config.limits, job.display->config, request);
+  const std::uint64_t bytes = gpu::Accumulator::bytesFor(displayFrameShape(*job.display, job.path));
+  ProgressiveStreams::Membership member(
+      state.progressive, state.progressive.join(progressiveKey(request, job, policy), request.render().scene_id(),
+                                                job.display->id, bytes, policy));
+  ProgressiveStream& stream = member.stream();
+  TickClock clock(request.frames_per_second());
+  std::uint64_t dropped = 0, sentFrame = 0;
+  while (!context.IsCancelled()) {
+    if (state.shuttingDown) throw ShuttingDown("holotraced is shutting down");
+    job.session = state.scenes.find(request.render().scene_id());  // picks up UpdateScene
+    std::shared_ptr<const gpu::RenderResult> frame;
+    std::uint64_t frameNumber = 0;
+    double queueMs = 0.0;
+    {
+      std::lock_guard lock(stream.frameMutex);
+      const bool idle = stream.last && stream.session == job.session && stream.last->accumulation.converged;
+      if (!idle) {
+        const auto queued = Clock::now();
+        auto rendered = std::make_shared<const gpu::RenderResult>(
+            accumulateFrameJob(state.worker, client, job, *stream.accumulator));
+        queueMs = std::max(0.0, msBetween(queued, Clock::now()) - rendered->totalMs);
+        stream.recordFrame(std::move(rendered), job.session);
+      }
+      frame = stream.last;
+      frameNumber = stream.frameNumber;
+    }
+    const bool converged = frame->accumulation.converged;
+    if (frameNumber != sentFrame) {
+      if (panel) panel->submit(panelFrameOf(*frame, job));  // each new sum / n, the converged one last
+      const v1::StreamState shown = converged ? v1::STREAM_STATE_CONVERGED : v1::STREAM_STATE_ACCUMULATING;
+      if (!sendRendered(state, job, *frame, request.render().format(), queueMs, dropped, writer, watch, shown)) return;
+      sentFrame = frameNumber;
+    }
+    dropped = clock.next();
+    if (converged) {
+      waitForTick(state, context, std::max(clock.due(), Clock::now() + kConvergedPoll), kConvergedPoll);
+    } else {
+      waitForTick(state, context, clock.due());
+    }
+  }
+}
+
 }  // namespace
 
 grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v1::RenderRequest* request,
@@ -120,7 +269,8 @@ grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v
 
 // Frames on a fixed clock (frame k due at start + k/fps). A frame is rendered only when the previous one has been
 // written, so a slow client is never queued old frames: it gets the newest, and dropped_frames counts the ticks
-// it missed (latest-frame-wins, docs/SERVICE.md §4 "Backpressure").
+// it missed (latest-frame-wins, docs/SERVICE.md §4 "Backpressure"). Progressive by default (docs/SERVICE.md §2
+// "StreamFrames modes").
 grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const v1::StreamRequest* request,
                                             grpc::ServerWriter<v1::FramePart>* writer) {
   return guarded([&] {
@@ -134,24 +284,15 @@ grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const 
     FrameJob job = checkRenderRequest(state_, request->render());
     std::shared_ptr<present::PanelSink> panel;
     if (!request->present_on().empty()) panel = streamPanelSink(state_, request->present_on(), job);
+    const bool progressive = progressiveMode(*request, job);
     StreamSlot slot(state_);
     const SceneLibrary::Pin pin(state_.scenes, request->render().scene_id());  // not idled out between slow frames
     CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.streamStallSeconds, "StreamFrames");
     const std::string client = clientKey(*context);
-    // <= 1000 s after the check above, >= 1 ms (limits.max_frames_per_second <= 1000): no overflow, never zero.
-    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / fps));
-    const auto start = Clock::now();
-    std::uint64_t tick = 0, dropped = 0;
-    while (!context->IsCancelled()) {
-      if (state_.shuttingDown) throw ShuttingDown("holotraced is shutting down");
-      job.session = state_.scenes.find(request->render().scene_id());  // picks up UpdateScene
-      job.seed = request->render().seed() + static_cast<std::uint32_t>(tick);
-      if (!renderAndSend(state_, client, job, request->render().format(), dropped, *writer, watch, panel.get())) break;
-      const auto now = Clock::now();
-      const auto due = static_cast<std::uint64_t>((now - start) / period) + 1;  // next tick not yet passed
-      dropped = due > tick + 1 ? due - tick - 1 : 0;
-      tick = std::max(tick + 1, due);
-      waitForTick(state_, *context, start + period * static_cast<Clock::rep>(tick));
+    if (progressive) {
+      streamProgressive(state_, *context, *request, job, client, *writer, watch, panel.get());
+    } else {
+      streamIndependent(state_, *context, *request, job, client, *writer, watch, panel.get());
     }
     return grpc::Status(grpc::StatusCode::CANCELLED, "client cancelled the stream");
   });

@@ -245,6 +245,22 @@ grpc::Status HolotraceService::Status(grpc::ServerContext*, const v1::StatusRequ
     response->set_scene_memory_bytes(scenes.memoryBytes);
     response->set_scene_sessions_released(scenes.sessionsReleased);
     response->set_open_fds(self.openFds);
+    for (const StreamStatusEntry& entry : state_.progressive.status()) {
+      v1::StreamStatus& stream = *response->add_streams();
+      stream.set_scene_id(entry.sceneId);
+      stream.set_display_id(entry.displayId);
+      stream.set_state(entry.framesRendered == 0 ? v1::STREAM_STATE_UNSPECIFIED
+                       : entry.report.converged  ? v1::STREAM_STATE_CONVERGED
+                                                 : v1::STREAM_STATE_ACCUMULATING);
+      stream.set_accumulated_spp(entry.report.minSamples);
+      stream.set_accumulated_spp_max(entry.report.maxSamples);
+      stream.set_error_estimate(entry.report.maxError);
+      stream.set_clients(entry.clients);
+      stream.set_frames_rendered(entry.framesRendered);
+      stream.set_accumulator_bytes(entry.bytes);
+    }
+    response->set_accumulator_bytes(state_.progressive.bytesInUse());
+    response->set_accumulator_limit_bytes(state_.progressive.limitBytes());
     return grpc::Status::OK;
   });
 }

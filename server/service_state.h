@@ -11,6 +11,7 @@
 #include "server/daemon_config.h"
 #include "server/display_registry.h"
 #include "server/file_sink.h"
+#include "server/progressive_streams.h"
 #include "server/render_worker.h"
 #include "server/scene_library.h"
 #include "server/upload_budget.h"
@@ -28,6 +29,7 @@ struct ServiceState {
   FileSink& outputSink;
   UploadBudget& uploads;
   CallWatchdog& watchdog;                // cancels stalled uploads and streams
+  ProgressiveStreams& progressive;       // accumulations of progressive StreamFrames calls
   PanelSinks* panels = nullptr;          // display sinks of the config's "present" (server/panel_sinks.h); null = none
   DistributedFrames* cluster = nullptr;  // under mpirun: frames made by every rank (server/distributed_frames.h)
 

@@ -23,6 +23,8 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer No
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Vec4Ref { vec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer CountersRef { GpuCounters c; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer UintRef { uint v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer AccumRef { AccumTarget t[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer AccumStatsRef { AccumStats s; };
 
 layout(push_constant, std430) uniform PushBlock { PassConstants pc; };
 
@@ -69,6 +71,10 @@ uint frame_global_target(uint target) {
   uint view = FRAME.views.y + pixel / bandPixels;
   return ((view * FRAME.frame.y + y) * width + pixel % width) * perPixel + target % perPixel;
 }
+
+// Progressive frames (FRAME.accum.x = 1, gpu/accumulator.h): the samples target `globalTarget` already has. Sample
+// s of this frame is sample index n + s of the target's sequence (docs/REUSE.md §1 rule 1).
+uint accum_samples_so_far(uint globalTarget) { return AccumRef(FRAME.accumTargets).t[globalTarget].n; }
 
 HtRay load_ray(uint q, uint i) {
   int k = int(2u * i);

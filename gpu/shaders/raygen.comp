@@ -15,6 +15,9 @@ layout(constant_id = 1) const int LENTICULAR_CELL_MODE = 0;
 layout(constant_id = 2) const int LENTICULAR_CELL_COUNT = 0;
 // The refinement pass's pipeline (paths of listed targets): the base pass then has no list load to run masked.
 layout(constant_id = 3) const bool REFINING = false;
+// Progressive accumulation (gpu/accumulator.h): sample s of a target is index (its samples so far + s) of one
+// sequence, with no spp-1 / spp-2 special case (docs/REUSE.md §1, §6 item 1).
+layout(constant_id = 4) const bool PROGRESSIVE = false;
 #define HT_LENTICULAR_CELL_MODE(p) LENTICULAR_CELL_MODE
 #define HT_LENTICULAR_CELL_COUNT(p) LENTICULAR_CELL_COUNT
 #include "camera_models/lenticular_model.h"
@@ -56,7 +59,9 @@ void main() {
   uint view = FRAME.views.y + pixel / (width * height);
   // Decorrelation uses the target's index over the whole frame (all views, all rows), not within this chunk.
   uint globalTarget = frame_global_target(target);
-  vec2 xi = footprint_sample(globalTarget, s, spp, FRAME.frame.x, FRAME.views.z);
+  uint sampleIndex = PROGRESSIVE ? accum_samples_so_far(globalTarget) + s : s;
+  vec2 xi = PROGRESSIVE ? footprint_sample_progressive(globalTarget, sampleIndex, FRAME.frame.x, FRAME.views.z)
+                        : footprint_sample(globalTarget, s, spp, FRAME.frame.x, FRAME.views.z);
   vec3 origin;
   vec3 dir;
   if (MODEL == HT_MODEL_LENTICULAR) {
@@ -66,8 +71,8 @@ void main() {
   } else if (MODEL == HT_MODEL_QUILT) {
     quilt_ray(FRAME.camera.quilt, x, y, view, xi, origin, dir);
   } else if (MODEL == HT_MODEL_PROJECTOR_ARRAY) {
-    if (spp > 1u && FRAME.camera.projectors.observer.z > 0.0f) {
-      vec2 xiAngle = footprint_sample_angle(globalTarget, s, spp, FRAME.frame.x);
+    if ((PROGRESSIVE || spp > 1u) && FRAME.camera.projectors.observer.z > 0.0f) {
+      vec2 xiAngle = footprint_sample_angle(globalTarget, sampleIndex, PROGRESSIVE ? 3u : spp, FRAME.frame.x);
       projector_view_scattered_ray(frame_projector(view), x, y, xi, xiAngle, origin, dir);
     } else {
       projector_view_ray(frame_projector(view), x, y, xi, origin, dir);

@@ -18,9 +18,14 @@
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "gpu/adaptive_refinement.h"
+#include "gpu/accumulation_error.h"
 
 layout(constant_id = HT_SPEC_MODEL) const uint MODEL = HT_MODEL_LENTICULAR;
 layout(constant_id = 1) const uint MODE = 0u;
+// What selects a target: false = its contrast (adaptive refinement of a single frame), true = the stop rule of
+// progressive accumulation on its stored sums (gpu/accumulation_error.h: the adaptive policy lists the targets that
+// still need samples, docs/REUSE.md §1-§2).
+layout(constant_id = 2) const bool BY_ERROR = false;
 
 // Texel fetches, not image loads: lavapipe gathers all lanes of a fetch at once (gpu/shaders/bvh_access.glsl).
 float channel(uint pixel, uint c) { return texelFetch(subpixelTexels, int(3u * pixel + c)).x; }
@@ -46,6 +51,19 @@ float target_contrast(uint x, uint c, uint y, uint view) {
   return contrast;
 }
 
+// Whether chunk target `target` still needs samples under the stop rule (progressive accumulation).
+bool target_needs_samples(uint target) {
+  AccumTarget a = AccumRef(FRAME.accumTargets).t[frame_global_target(target)];
+  vec3 mean = a.n > 0u ? a.sum / float(a.n) : vec3(0.0f);
+  vec3 halfMean = a.halfN > 0u ? a.halfSum / float(a.halfN) : vec3(0.0f);
+  uint c = target % 3u;
+  vec3 mask = ht_model_has_subpixel_targets(MODEL)
+                  ? vec3(c == 0u ? 1.0f : 0.0f, c == 1u ? 1.0f : 0.0f, c == 2u ? 1.0f : 0.0f)
+                  : vec3(1.0f);
+  float error = ht_accum_error(mean, halfMean, a.halfN, mask);
+  return ht_accum_needs_samples(a.n, error, FRAME.accum.z, FRAME.accum.w, uintBitsToFloat(FRAME.accum.y));
+}
+
 void main() {
   UintRef refine = UintRef(FRAME.refine);
   uint stride = FRAME.refineInfo.z;
@@ -58,14 +76,16 @@ void main() {
     uint slot = group * gl_NumSubgroups + gl_SubgroupID;
     float threshold = uintBitsToFloat(FRAME.refineInfo.x);
     uint selected = 0u;  // bit c: target c of the pixel
+    uint first = (row * FRAME.dims.x + x) * perPixel;
     if (x < FRAME.dims.x) {
       for (uint c = 0u; c < perPixel; ++c) {
-        if (target_contrast(x, c, gl_GlobalInvocationID.y, gl_GlobalInvocationID.z) >= threshold) selected |= 1u << c;
+        bool pick = BY_ERROR ? target_needs_samples(first + c)
+                             : target_contrast(x, c, gl_GlobalInvocationID.y, gl_GlobalInvocationID.z) >= threshold;
+        if (pick) selected |= 1u << c;
       }
     }
     uint count = bitCount(selected);
     uint at = slots + 1u + slot * stride + subgroupExclusiveAdd(count);
-    uint first = (row * FRAME.dims.x + x) * perPixel;
     for (uint c = 0u; c < perPixel; ++c) {
       if ((selected & (1u << c)) != 0u) refine.v[at++] = first + c;
     }

@@ -7,10 +7,15 @@
 // samples, as this pass first did, wasted a fifth of a 1 + 4 target's samples (Portrait, 1 + 4 at contrast 0.10:
 // 49.70 -> 50.08 dB for one more texel load per refined target, docs/BENCHMARKS.md).
 #include "gpu/shaders/common.glsl"
+#include "gpu/accumulation_error.h"
 
 layout(constant_id = HT_SPEC_MODEL) const uint MODEL = HT_MODEL_LENTICULAR;
 // The refinement pass's pipeline: lavapipe would run the list and base-value loads of a runtime branch on every pass.
 layout(constant_id = 1) const bool REFINING = false;
+// Progressive accumulation (gpu/accumulator.h, docs/REUSE.md §1): the samples are added, in sample order, to the
+// target's stored sums (AccumTarget), continuing from them, so k frames of N samples make the float additions of one
+// frame of k*N; accum_show.comp then shows sum / n. Refining here means the listed targets of the adaptive policy.
+layout(constant_id = 2) const bool PROGRESSIVE = false;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -18,6 +23,22 @@ void main() {
   if (i >= pc.batchCount / spp) return;
   uint entry = pc.batchFirst / spp + i;
   uint target = REFINING ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;  // refining: listed
+  if (PROGRESSIVE) {
+    AccumRef accum = AccumRef(FRAME.accumTargets);
+    uint globalTarget = frame_global_target(target);
+    AccumTarget a = accum.t[globalTarget];
+    for (uint s = 0u; s < spp; ++s) {
+      vec3 x = imageLoad(radianceBuffer, int(i * spp + s)).xyz;
+      a.sum += x;
+      if (ht_accum_in_half(a.n + s)) {
+        a.halfSum += x;
+        a.halfN += 1u;
+      }
+    }
+    a.n += spp;
+    accum.t[globalTarget] = a;
+    return;
+  }
   vec3 sum = vec3(0.0f);
   for (uint s = 0u; s < spp; ++s) sum += imageLoad(radianceBuffer, int(i * spp + s)).xyz;
   vec3 value = sum / float(spp);

@@ -148,7 +148,14 @@ uint path_sample_key(uint chunkPath) {
   uint entry = chunkPath / spp;
   bool refining = FRAME.refineInfo.w != 0u;
   uint target = refining ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;
-  return ht_hash(frame_global_target(target) * 0x9E3779B9u ^ ht_hash(chunkPath % spp + spp * 0x68E31DA4u));
+  uint globalTarget = frame_global_target(target);
+  // Progressive frames key by the absolute sample index, without the frame's spp, so that k frames of N samples
+  // draw what one frame of k*N does (docs/REUSE.md §6 item 3; single frames keep their key, and their bits).
+  if (FRAME.accum.x != 0u) {
+    uint sampleIndex = accum_samples_so_far(globalTarget) + chunkPath % spp;
+    return ht_hash(globalTarget * 0x9E3779B9u ^ ht_hash(sampleIndex ^ 0x5BD1E995u));
+  }
+  return ht_hash(globalTarget * 0x9E3779B9u ^ ht_hash(chunkPath % spp + spp * 0x68E31DA4u));
 }
 
 void main() {

@@ -233,5 +233,27 @@ TEST(DisplayConfigBuiltin, ResolveDisplaySpecs) {
   EXPECT_THROW(resolveDisplay("builtin:nope"), ConfigError);
 }
 
+// The stop rule of progressive streams on a display (docs/SERVICE.md §4.1): optional, checked like every field.
+TEST(DisplayConfigParse, ProgressiveStopRule) {
+  const std::string base = R"({"model":"pinhole","pinhole":{"width":64,"height":48})";
+  const DisplayConfig none = parseDisplayConfig(base + "}", "p.json", {});
+  EXPECT_FALSE(none.progressiveTargetError.has_value());
+  EXPECT_FALSE(none.progressiveMaxSpp.has_value());
+  const DisplayConfig set =
+      parseDisplayConfig(base + R"(,"progressive":{"target_error":0.01,"max_spp":512}})", "p.json", {});
+  EXPECT_EQ(set.progressiveTargetError.value_or(0.0), 0.01);
+  EXPECT_EQ(set.progressiveMaxSpp.value_or(0u), 512u);
+  for (const char* bad : {R"(,"progressive":{"target_error":-1}})", R"(,"progressive":{"max_spp":0}})",
+                          R"(,"progressive":{"maxSpp":8}})", R"(,"progressive":3})"}) {
+    SCOPED_TRACE(bad);
+    EXPECT_THROW(parseDisplayConfig(base + bad, "p.json", {}), ConfigError);
+  }
+  try {
+    parseDisplayConfig(base + R"(,"progressive":{"target_error":-1}})", "p.json", {});
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("progressive.target_error"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace ht

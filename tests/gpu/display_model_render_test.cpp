@@ -9,7 +9,6 @@
 #include <string>
 
 #include "camera_models/display_model_registry.h"
-#include "camera_models/ray_table.h"
 #include "gpu_test_util.h"
 
 namespace ht::test {
@@ -27,28 +26,13 @@ Scene registryScene() {
   return s;
 }
 
-// An 8 x 6 table of rays converging on the scene from z = 2.
-std::shared_ptr<const RayTable> renderTestTable() {
-  auto table = std::make_shared<RayTable>();
-  table->width = 8;
-  table->height = 6;
-  for (std::uint32_t y = 0; y < table->height; ++y) {
-    for (std::uint32_t x = 0; x < table->width; ++x) {
-      const glm::vec3 origin((x + 0.5f) / 8.0f - 0.5f, (y + 0.5f) / 6.0f - 0.5f, 2.0f);
-      table->origins.push_back(origin);
-      table->directions.push_back(glm::normalize(-origin));
-    }
-  }
-  return table;
-}
-
 TEST(DisplayModelRender, EveryRegistryRowRendersOnTheGpu) {
   const Scene scene = registryScene();
   gpu::Renderer renderer(sharedContext(), scene);
   for (const DisplayModelRow& row : displayModels()) {
     SCOPED_TRACE(std::string(row.name));
     const DisplayConfig config = parseDisplayConfig(row.example, "example", HT_TEST_DATA_DIR);
-    const FrameCamera camera = row.makeCamera(config, scene.bounds(), renderTestTable());
+    const FrameCamera camera = row.makeCamera(config, scene.bounds(), testRayTable());
     const FrameShape shape = frameShape(camera);
     gpu::RenderSettings settings;
     settings.spp = 1;

@@ -109,4 +109,18 @@ Scene loadBunnyOrEmpty() {
   return loadScene(path);
 }
 
+std::shared_ptr<const RayTable> testRayTable() {
+  auto table = std::make_shared<RayTable>();
+  table->width = 8;
+  table->height = 6;
+  for (std::uint32_t y = 0; y < table->height; ++y) {
+    for (std::uint32_t x = 0; x < table->width; ++x) {
+      const glm::vec3 origin((x + 0.5f) / 8.0f - 0.5f, (y + 0.5f) / 6.0f - 0.5f, 2.0f);
+      table->origins.push_back(origin);
+      table->directions.push_back(glm::normalize(-origin));
+    }
+  }
+  return table;
+}
+
 }  // namespace ht::test

@@ -130,7 +130,7 @@ class DaemonTest(unittest.TestCase):
             self.client.render(self.scene, "wall", quilt=True)  # quilt cameras exist for lenticular displays only
 
     def test_stream_hands_out_the_newest_frame(self):
-        with self.client.stream(self.scene, "tiny", fps=20, spp=1, frames=4) as stream:
+        with self.client.stream(self.scene, "tiny", fps=20, spp=1, frames=4, mode="independent") as stream:
             ids = []
             for frame in stream:
                 ids.append(frame.frame_id)

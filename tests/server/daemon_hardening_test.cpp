@@ -102,6 +102,7 @@ grpc::Status streamAt(v1::Holotrace::Stub& stub, const std::string& sceneId, dou
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(20));
   v1::StreamRequest request;
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
   *request.mutable_render() = tinyRequest(sceneId);
   request.set_frames_per_second(fps);
   auto reader = stub.StreamFrames(&context, request);

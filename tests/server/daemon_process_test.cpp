@@ -214,6 +214,7 @@ TEST(DaemonProcessTest, ResidentMemoryStaysFlatOverHundredsOfFramesAndCalls) {
   v1::SceneHandle handle;
   ASSERT_TRUE(loadScene(*stub, "builtin:plain", &handle).ok());
   v1::StreamRequest request;
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
   *request.mutable_render() = tinyRequest(handle.scene_id());
   request.set_frames_per_second(120);
   const std::string address = "unix:" + f.socket.string();
@@ -246,6 +247,7 @@ TEST(DaemonProcessTest, SighupDuringAStreamDropsRemovedDisplaysAndSkipsBrokenOne
   ASSERT_TRUE(loadScene(*stub, "builtin:plain", &handle).ok());
   grpc::ClientContext context;
   v1::StreamRequest request;
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
   *request.mutable_render() = tinyRequest(handle.scene_id());
   request.set_frames_per_second(30);
   auto reader = stub->StreamFrames(&context, request);

@@ -101,6 +101,7 @@ TEST(SceneSessionTest, IdleSessionsEndAfterTheTtlButNotWhileAStreamRendersThem) 
   const std::string streamed = d.load("cube.obj");
   grpc::ClientContext context;
   v1::StreamRequest request;
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
   *request.mutable_render() = tinyRequest(streamed);
   request.set_frames_per_second(1.5);  // a frame every 0.67 s: longer than the TTL between frames
   auto reader = d.stub->StreamFrames(&context, request);

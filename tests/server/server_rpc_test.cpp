@@ -311,6 +311,7 @@ TEST_F(ServerTest, UpdateSceneChangesALight) {
 TEST_F(ServerTest, StreamDeliversFramesUntilCancelledWhileOthersRender) {
   grpc::ClientContext context;
   v1::StreamRequest request;
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
   *request.mutable_render() = tinyRequest(sceneId_);
   request.set_frames_per_second(30);
   auto reader = stub_->StreamFrames(&context, request);
@@ -331,6 +332,7 @@ TEST_F(ServerTest, StreamDeliversFramesUntilCancelledWhileOthersRender) {
 TEST_F(ServerTest, SlowConsumerGetsNewestFramesAndDoesNotBlockOthers) {
   grpc::ClientContext context;
   v1::StreamRequest request;
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
   *request.mutable_render() = tinyRequest(sceneId_, v1::PIXEL_FORMAT_RGBA16F);
   request.set_frames_per_second(60);
   auto reader = stub_->StreamFrames(&context, request);
@@ -361,6 +363,7 @@ TEST_F(ServerTest, ClientThatDisconnectsMidStreamIsCleanedUp) {
     auto vanishing = connect(files_->socketAddress());
     grpc::ClientContext context;
     v1::StreamRequest request;
+    request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
     *request.mutable_render() = tinyRequest(sceneId_);
     request.set_frames_per_second(30);
     auto reader = vanishing->StreamFrames(&context, request);
@@ -384,6 +387,7 @@ TEST_F(ServerTest, TooManyStreamingClientsIsResourceExhausted) {
   };
   std::vector<std::unique_ptr<Stream>> streams;
   v1::StreamRequest request;
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
   *request.mutable_render() = tinyRequest(sceneId_);
   request.set_frames_per_second(1);
   for (std::uint32_t i = 0; i < files_->config().limits.maxClients; ++i) {

@@ -122,6 +122,7 @@ TEST(StalledClientTest, AStreamWhoseClientStopsReadingIsCancelledAndFreesItsSlot
       grpc::CreateCustomChannel(d.files.socketAddress(), grpc::InsecureChannelCredentials(), args));
   grpc::ClientContext context;
   v1::StreamRequest request;
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
   *request.mutable_render() = tinyRequest(handle.scene_id());
   request.set_frames_per_second(120);
   auto reader = paused->StreamFrames(&context, request);

@@ -20,6 +20,7 @@ class StreamFairnessTest : public InProcessDaemonTest<StreamFairnessTest> {
  protected:
   v1::StreamRequest streamRequest(double fps, v1::PixelFormat format) const {
     v1::StreamRequest request;
+    request.set_mode(v1::STREAM_MODE_INDEPENDENT);  // continuous frames (progressive converges and goes quiet)
     *request.mutable_render() = tinyRequest(sceneId_, format);
     request.set_frames_per_second(fps);
     return request;

@@ -364,15 +364,20 @@ class Client:
                                  timeout).data
 
     def stream(self, scene, display, fps=10.0, spp=0, seed=0, quilt=False, format="rgba8", refine_spp=0,
-               refine_contrast=0.0, frames=None):
+               refine_contrast=0.0, frames=None, mode="progressive"):
         """StreamFrames as a FrameStream: iterate it for Frames, the newest one each time (stream.py); it ends after
-        `frames` frames (None = until closed). Use it in a `with` block, or close() it."""
+        `frames` frames (None = until closed). Use it in a `with` block, or close() it. mode "progressive" (frames add
+        samples until converged; a converged stream then sends nothing until the scene changes) or "independent"
+        (a new frame every tick), docs/SERVICE.md §4.1."""
         self._check_open()
         if not fps > 0:
             raise ValueError(f"fps must be > 0, got {fps!r}")
+        modes = {"progressive": pb.STREAM_MODE_PROGRESSIVE, "independent": pb.STREAM_MODE_INDEPENDENT}
+        if mode not in modes:
+            raise ValueError(f"mode must be 'progressive' or 'independent', got {mode!r}")
         request = pb.StreamRequest(
             render=self._render_request(scene, display, spp, seed, quilt, format, refine_spp, refine_contrast),
-            frames_per_second=float(fps))
+            frames_per_second=float(fps), mode=modes[mode])
         return FrameStream(self._stub.StreamFrames(request), frames)
 
     def capture(self, scene, display, name, frames=1, format="png", layout="auto", spp=0, seed=0, quilt=False,

@@ -107,7 +107,8 @@ async function main() {
     'RenderFrame RGBA8: one complete 64x48 frame');
 
   const streamed = await readFrames(c.StreamFrames({
-    render: { scene_id: scene.scene_id, display_id: 'tiny', format: 'PIXEL_FORMAT_RGBA16F' }, frames_per_second: 20 }), 3);
+    render: { scene_id: scene.scene_id, display_id: 'tiny', format: 'PIXEL_FORMAT_RGBA16F' }, frames_per_second: 20,
+    mode: 'STREAM_MODE_INDEPENDENT' }), 3);
   check(streamed.frames.length === 3 && streamed.code === grpc.status.CANCELLED,
     'StreamFrames: 3 RGBA16F frames, then client cancel -> CANCELLED');
 

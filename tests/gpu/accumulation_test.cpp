@@ -1,0 +1,213 @@
+// accumulation_test.cpp - progressive accumulation (gpu/accumulator.h, docs/REUSE.md §1-§2) on every row of the
+// display-model registry: k frames of N samples equal one frame of k*N samples bit for bit (4 x 1, 2 x 2 and 1 x 4),
+// on a scene with a diffuse sphere, a glass sphere (the Fresnel choice's random number), a mirror and a light
+// (shadow rays); a scene edit or a camera change restarts the sums; the adaptive policy converges and then traces
+// nothing more.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camera_models/display_model_registry.h"
+#include "gpu/accumulation_error.h"
+#include "gpu_test_util.h"
+#include "scene/scene_edits.h"
+
+namespace ht::test {
+namespace {
+
+constexpr std::uint64_t kMaxTargets = 1u << 14;  // tiny frames: the test is about bits, not images
+
+Scene accumulationScene() {
+  Scene s;
+  Material white;
+  white.baseColor = glm::vec3(0.9f);
+  Material glass;
+  glass.transmission = 1.0f;
+  Material mirror;
+  mirror.metallic = 1.0f;
+  mirror.roughness = 0.0f;
+  addIcosphere(s, glm::vec3(-0.25f, 0.0f, 0.0f), 0.3f, 1, addMaterial(s, white));
+  addIcosphere(s, glm::vec3(0.25f, 0.05f, 0.15f), 0.22f, 1, addMaterial(s, glass));
+  addQuad(s, glm::vec3(-1.0f, -0.4f, -0.6f), glm::vec3(2.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, 1.2f),
+          addMaterial(s, mirror));
+  Light light;
+  light.position = glm::vec3(0.5f, 1.0f, 1.0f);
+  light.intensity = 2.0f;
+  s.lights.push_back(light);
+  s.ambient = glm::vec3(0.3f);
+  return s;
+}
+
+// `frames` progressive frames of `spp` samples into a fresh accumulation (uniform policy); the last frame.
+gpu::RenderResult accumulateFrames(gpu::Renderer& renderer, const FrameCamera& camera, std::uint32_t frames,
+                                   std::uint32_t spp) {
+  gpu::AccumulationPolicy uniform;
+  uniform.adaptive = false;
+  uniform.maxSpp = 1u << 20;
+  gpu::Accumulator accumulator(uniform);
+  gpu::RenderSettings settings;
+  settings.spp = spp;
+  settings.seed = 7;
+  gpu::RenderResult frame;
+  for (std::uint32_t k = 0; k < frames; ++k) frame = renderer.accumulate(camera, settings, accumulator);
+  EXPECT_EQ(frame.accumulation.minSamples, frames * spp);
+  EXPECT_EQ(frame.accumulation.maxSamples, frames * spp);
+  EXPECT_EQ(frame.accumulation.frames, frames);
+  return frame;
+}
+
+bool sameBits(const gpu::RenderResult& a, const gpu::RenderResult& b) {
+  return a.rgba.size() == b.rgba.size() && std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * 4) == 0;
+}
+
+// The shown frames of k x N and 1 x kN are the same floats, for every camera model.
+TEST(Accumulation, KFramesOfNSamplesEqualOneFrameOfKNSamplesOnEveryModel) {
+  const Scene scene = accumulationScene();
+  gpu::Renderer renderer(sharedContext(), scene);
+  int modelsChecked = 0;
+  for (const DisplayModelRow& row : displayModels()) {
+    SCOPED_TRACE(std::string(row.name));
+    DisplayConfig config = parseDisplayConfig(row.example, "example", HT_TEST_DATA_DIR);
+    const FrameCamera camera = row.makeCamera(config, scene.bounds(), testRayTable());
+    if (frameShape(camera).targets() > kMaxTargets) continue;
+    const gpu::RenderResult one = accumulateFrames(renderer, camera, 1, 4);
+    const gpu::RenderResult four = accumulateFrames(renderer, camera, 4, 1);
+    const gpu::RenderResult two = accumulateFrames(renderer, camera, 2, 2);
+    EXPECT_TRUE(sameBits(one, four)) << "4 frames of spp 1 differ from 1 frame of spp 4";
+    EXPECT_TRUE(sameBits(one, two)) << "2 frames of spp 2 differ from 1 frame of spp 4";
+    EXPECT_EQ(one.nonFiniteSamples, 0u);
+    float brightest = 0.0f;
+    for (float v : one.rgba) brightest = std::max(brightest, v);
+    EXPECT_GT(brightest, 0.05f) << "the frame sees nothing: the equality would be vacuous";
+    ++modelsChecked;
+  }
+  EXPECT_GE(modelsChecked, 5);
+}
+
+// A progressive frame of spp >= 3 samples shows what a single frame of that spp shows (same lattice points, same
+// sum order) on a scene without glass, whose Fresnel choice keys single frames by spp (docs/REUSE.md §6 item 3).
+TEST(Accumulation, FirstFrameOfFourSamplesEqualsASingleFrameWithoutGlass) {
+  Scene scene;
+  Material white;
+  white.baseColor = glm::vec3(0.8f);
+  addIcosphere(scene, glm::vec3(0.0f), 0.4f, 1, addMaterial(scene, white));
+  Light light;
+  light.position = glm::vec3(0.5f, 1.0f, 1.0f);
+  scene.lights.push_back(light);
+  gpu::Renderer renderer(sharedContext(), scene);
+  const FrameCamera camera = lookAt(glm::vec3(0.0f, 0.2f, 2.0f), glm::vec3(0.0f), 40.0f, 24, 16);
+  gpu::RenderSettings settings;
+  settings.spp = 4;
+  settings.seed = 7;
+  EXPECT_TRUE(sameBits(accumulateFrames(renderer, camera, 1, 4), renderer.render(camera, settings)));
+}
+
+// An edit of the renderer's scene (lights here) or a camera change starts a new accumulation: no frame sums
+// samples of two scene versions (docs/REUSE.md §5).
+TEST(Accumulation, SceneEditOrCameraChangeRestartsTheSums) {
+  Scene scene = accumulationScene();
+  gpu::Renderer renderer(sharedContext(), scene);
+  const FrameCamera camera = lookAt(glm::vec3(0.0f, 0.2f, 2.0f), glm::vec3(0.0f), 40.0f, 16, 12);
+  gpu::AccumulationPolicy uniform;
+  uniform.adaptive = false;
+  gpu::Accumulator accumulator(uniform);
+  gpu::RenderSettings settings;
+  settings.spp = 2;
+  settings.seed = 7;
+  EXPECT_TRUE(renderer.accumulate(camera, settings, accumulator).accumulation.restarted);
+  EXPECT_EQ(renderer.accumulate(camera, settings, accumulator).accumulation.minSamples, 4u);
+  LightEdit dim;
+  dim.intensity = 0.5;
+  editLight(scene, 0, dim);
+  renderer.updateLights(scene);
+  const gpu::RenderResult afterEdit = renderer.accumulate(camera, settings, accumulator);
+  EXPECT_TRUE(afterEdit.accumulation.restarted);
+  EXPECT_EQ(afterEdit.accumulation.maxSamples, 2u);
+  // The frame after the edit is the first frame of a fresh accumulation of the edited scene, bit for bit.
+  gpu::Renderer fresh(sharedContext(), scene);
+  gpu::Accumulator clean(uniform);
+  EXPECT_TRUE(sameBits(afterEdit, fresh.accumulate(camera, settings, clean)));
+  const FrameCamera moved = lookAt(glm::vec3(0.1f, 0.2f, 2.0f), glm::vec3(0.0f), 40.0f, 16, 12);
+  EXPECT_TRUE(renderer.accumulate(moved, settings, accumulator).accumulation.restarted);
+  settings.spp = 3;  // another per-frame count continues the same accumulation
+  EXPECT_FALSE(renderer.accumulate(moved, settings, accumulator).accumulation.restarted);
+}
+
+// The adaptive policy: after the first frame only targets above the target error get samples; the accumulation
+// converges (every target below the error or at max spp) and a converged accumulation traces no more targets.
+TEST(Accumulation, AdaptivePolicyConvergesAndThenTracesNothing) {
+  const Scene scene = accumulationScene();
+  gpu::Renderer renderer(sharedContext(), scene);
+  const FrameCamera camera = lookAt(glm::vec3(0.0f, 0.2f, 2.0f), glm::vec3(0.0f), 40.0f, 16, 12);
+  gpu::AccumulationPolicy policy;
+  policy.targetError = 0.05f;
+  policy.minSpp = 4;
+  policy.maxSpp = 64;
+  gpu::Accumulator accumulator(policy);
+  gpu::RenderSettings settings;
+  settings.spp = 4;
+  gpu::RenderResult frame;
+  std::uint64_t previousTraced = ~0ull;
+  for (int k = 0; k < 40 && !frame.accumulation.converged; ++k) {
+    frame = renderer.accumulate(camera, settings, accumulator);
+    EXPECT_LE(frame.accumulation.tracedTargets, previousTraced);
+    previousTraced = frame.accumulation.tracedTargets;
+  }
+  ASSERT_TRUE(frame.accumulation.converged);
+  EXPECT_EQ(frame.accumulation.unconverged, 0u);
+  EXPECT_LE(frame.accumulation.maxSamples, 64u);
+  EXPECT_GE(frame.accumulation.minSamples, 4u);
+  EXPECT_LT(frame.accumulation.minSamples, frame.accumulation.maxSamples) << "no target was refined adaptively";
+  const gpu::RenderResult after = renderer.accumulate(camera, settings, accumulator);
+  EXPECT_EQ(after.accumulation.tracedTargets, 0u);
+  EXPECT_TRUE(sameBits(after, frame));
+}
+
+// CPU reference of the error estimate and the stop rule (gpu/accumulation_error.h, the same source): recomputed on
+// the CPU from the downloaded sums of every target, the count of targets that need samples and the largest error
+// equal what accum_show.comp reported; the sample and half counts are those of the sequence (n, and the indices
+// below n with an odd popcount of i & 0xaaaaaaaa); the shown value of a target is its sum / n.
+TEST(Accumulation, ErrorEstimateAndStopRuleMatchTheirCpuReference) {
+  const Scene scene = accumulationScene();
+  gpu::Renderer renderer(sharedContext(), scene);
+  const FrameCamera camera = lookAt(glm::vec3(0.0f, 0.2f, 2.0f), glm::vec3(0.0f), 40.0f, 20, 14);
+  gpu::AccumulationPolicy policy;
+  policy.adaptive = false;
+  policy.targetError = 0.05f;
+  policy.minSpp = 4;
+  policy.maxSpp = 64;
+  gpu::Accumulator accumulator(policy);
+  gpu::RenderSettings settings;
+  settings.spp = 3;
+  gpu::RenderResult frame;
+  for (int k = 0; k < 3; ++k) frame = renderer.accumulate(camera, settings, accumulator);
+  const std::vector<float> sums = accumulator.downloadSums();
+  ASSERT_EQ(sums.size(), std::size_t(20 * 14 * 8));
+  std::uint32_t halfCount = 0;
+  for (std::uint32_t i = 0; i < 9; ++i) halfCount += gpu_shared::ht_accum_in_half(i) ? 1u : 0u;
+  std::uint64_t unconverged = 0;
+  float maxError = 0.0f;
+  for (std::size_t t = 0; t < sums.size() / 8; ++t) {
+    const float* s = &sums[t * 8];
+    ASSERT_EQ(s[3], 9.0f);
+    ASSERT_EQ(s[7], float(halfCount));
+    const glm::vec3 mean = glm::vec3(s[0], s[1], s[2]) / s[3];
+    const glm::vec3 halfMean = glm::vec3(s[4], s[5], s[6]) / s[7];
+    const float error = gpu_shared::ht_accum_error(mean, halfMean, halfCount, glm::vec3(1.0f));
+    maxError = std::max(maxError, error);
+    if (gpu_shared::ht_accum_needs_samples(9, error, policy.minSpp, policy.maxSpp, policy.targetError)) ++unconverged;
+    // Pinhole: pixel targets; row 0 of the frame is the top, targets count rows from the bottom.
+    const std::size_t x = t % 20, y = t / 20, pixel = (13 - y) * 20 + x;
+    EXPECT_EQ(frame.rgba[pixel * 4], mean.x) << "target " << t;
+  }
+  EXPECT_EQ(frame.accumulation.unconverged, unconverged);
+  EXPECT_GT(unconverged, 0u);
+  EXPECT_LT(unconverged, sums.size() / 8) << "the threshold should split the targets for a meaningful check";
+  EXPECT_NEAR(frame.accumulation.maxError, maxError, 1e-5f * maxError);
+}
+
+}  // namespace
+}  // namespace ht::test
