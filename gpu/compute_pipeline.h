@@ -12,7 +12,19 @@
 
 namespace ht::gpu {
 
-enum class ShaderId { Raygen, TraceClosest, TraceAny, Shade, Prepare, GatherDirect, Resolve, Interleave, RefineSelect };
+enum class ShaderId {
+  Raygen,
+  TraceClosest,
+  TraceAny,
+  Shade,
+  Prepare,
+  GatherDirect,
+  Resolve,
+  Interleave,
+  RefineSelect,
+  RecordSegments,
+  MarkDirty
+};
 
 std::span<const std::uint32_t> embeddedSpirv(ShaderId id);
 const char* shaderName(ShaderId id);

@@ -66,14 +66,15 @@ void checkShape(const FrameShape& shape, std::uint32_t spp) {
   }
 }
 
-Renderer::Impl::Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o)
+Renderer::Impl::Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o, const Bounds3& sceneBounds)
     : vk(v),
       scene(std::move(s)),
       layout(v.pipelines->layout()),
       descriptors(v, layout.setLayout()),
       frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
       counters(v, sizeof(GpuCounters), MemoryPlace::HostReadback),
-      buildOptions(o) {
+      buildOptions(o),
+      reuse(v, sceneBounds) {
   VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
   qi.queryCount = kQueryCapacity;
@@ -127,6 +128,7 @@ void Renderer::Impl::replaceScene(const Scene& s) {
 void Renderer::Impl::updateLights(const Scene& s) {
   HT_VK(vkQueueWaitIdle(vk.queue));
   scene.updateLights(s);
+  reuse.lightsEdited();
 }
 
 void Renderer::Impl::bindScene() {
@@ -223,16 +225,25 @@ void Renderer::Impl::fillFrame(const FrameCamera& camera, const FrameShape& shap
 }
 
 Renderer::Renderer(VulkanContext& context, const Scene& scene, const bvh::BuildOptions& buildOptions)
-    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, buildOptions), buildOptions)) {}
+    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, buildOptions), buildOptions,
+                                   scene.bounds())) {}
 
 Renderer::Renderer(VulkanContext& context, const Scene& scene, bvh::GpuBvh bvh, const bvh::BuildOptions& buildOptions)
-    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, std::move(bvh)), buildOptions)) {}
+    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, std::move(bvh)), buildOptions,
+                                   scene.bounds())) {}
 
 Renderer::~Renderer() = default;
 
 const bvh::BuildReport& Renderer::bvhReport() const { return impl_->scene.bvhReport(); }
-void Renderer::replaceScene(const Scene& scene) { impl_->replaceScene(scene); }
+void Renderer::replaceScene(const Scene& scene) {
+  impl_->replaceScene(scene);
+  impl_->reuse.invalidate();
+}
 void Renderer::updateLights(const Scene& scene) { impl_->updateLights(scene); }
+void Renderer::replaceSceneAfterMove(const Scene& scene, const Bounds3& oldBounds, const Bounds3& newBounds) {
+  impl_->replaceScene(scene);
+  impl_->reuse.geometryMoved(oldBounds, newBounds);
+}
 const SceneFeatures& Renderer::features() const { return impl_->scene.features(); }
 
 RenderResult Renderer::render(const FrameCamera& camera, const RenderSettings& settings) {

@@ -13,6 +13,7 @@
 #include "bvh/ray_types.h"
 #include "camera_models/frame_camera.h"
 #include "camera_models/ray_table.h"
+#include "gpu/segment_cells.h"
 #include "scene/scene.h"
 
 namespace ht::gpu {
@@ -50,13 +51,27 @@ struct RenderSettings {
   // of all its spp + refineSpp samples. refineSpp 0 = off; refineContrast 0 refines every target, > 1 none.
   std::uint32_t refineSpp = 0;
   float refineContrast = 0.08f;
-  RenderRegion region;                                // default: the whole frame
+  RenderRegion region;  // default: the whole frame
+  // Keep what the next frame of the same view can reuse after an edit (docs/REUSE.md §3, §4): the primary rays and
+  // hits of every sample (48 B per path, up to kPrimaryHitCacheBudget) and per target the world-grid cells its path
+  // segments met (8 B per target). Then a frame after updateLights re-shades the cached hits without raygen and
+  // primary trace, and a frame after replaceSceneAfterMove re-traces only the targets whose segments may meet the
+  // moved bounds; both equal a full render of the edited scene bit for bit. Only frames of one chunk of views
+  // without adaptive refinement keep state; others render in full.
+  bool reuse = false;
   std::function<void(double fractionDone)> progress;  // called after each batch of paths (optional)
 };
 
 struct StageTiming {
   std::string name;  // "raygen", "trace", "shade", "shadow", "resolve", "interleave", "readback", ...
   double ms = 0.0;   // GPU timestamp time summed over batches/bounces (readback: host wall time)
+};
+
+// What a frame took from the previous frame of the same view (RenderSettings::reuse).
+enum class FrameReuse : std::uint32_t {
+  None,               // rendered in full
+  CachedPrimaryHits,  // the light values changed (or nothing did): re-shaded from the cached primary hits
+  PartialRetrace,     // a node moved: only the targets whose path segments could meet it were traced again
 };
 
 struct RenderResult {
@@ -69,6 +84,8 @@ struct RenderResult {
   std::uint32_t maxTraversalSteps = 0;
   std::uint32_t nonFiniteSamples = 0;  // targets whose value was NaN/Inf and was written as 0 (should be 0)
   std::uint64_t refinedTargets = 0;    // targets traced again by adaptive refinement (RenderSettings::refineSpp)
+  FrameReuse reuse = FrameReuse::None;
+  std::uint64_t tracedTargets = 0;  // targets whose samples this frame computed (PartialRetrace: the dirty ones)
 };
 
 struct TraceStats {
@@ -94,6 +111,10 @@ class Renderer {
   // Re-uploads only the lights of `scene`, which must be this Renderer's scene with edited light values (same light
   // count; throws GpuError otherwise): a light edit needs no BVH.
   void updateLights(const Scene& scene);
+  // replaceScene after an edit that changed geometry only inside `oldBounds` and `newBounds` (a node moved: its
+  // world bounds before and after, e.g. nodeWorldBounds in scene/scene_edits.h): with RenderSettings::reuse the next
+  // frame of the same view re-traces only the targets whose last path segments met a grid cell of those bounds.
+  void replaceSceneAfterMove(const Scene& scene, const Bounds3& oldBounds, const Bounds3& newBounds);
 
   // Every view of the camera, whatever its model (camera_models/frame_camera.h). Large view arrays are rendered in
   // chunks of views (bounded device memory).
@@ -110,6 +131,15 @@ class Renderer {
   // traversal step limit (the lavapipe loop cap), naming how many rays did.
   std::vector<gpu_shared::HtHit> traceClosest(std::span<const gpu_shared::HtRay> rays, TraceStats* stats = nullptr);
   std::vector<std::uint32_t> traceOccluded(std::span<const gpu_shared::HtRay> rays, TraceStats* stats = nullptr);
+
+  // The frame-reuse state (RenderSettings::reuse) for tests and benchmarks: per-target segment cells of the last
+  // frame that kept state (2 words per target, gpu/segment_cells.h), the grid they are counted on, and the targets
+  // the last partial re-render traced (in the marking pass's order). Empty when none is kept.
+  struct ReuseSnapshot {
+    std::vector<std::uint32_t> segmentMasks, dirtyTargets;
+    gpu_shared::SegmentGrid grid{};
+  };
+  ReuseSnapshot reuseSnapshot() const;
 
   struct Impl;
 

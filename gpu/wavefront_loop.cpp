@@ -72,7 +72,8 @@ RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSetti
         settings.progress((first + done * count) / views);
       };
     }
-    renderChunk(camera, shape, band, region.viewFirst + first, count, chunkSettings, stageMs, result);
+    const bool reusable = count == shape.views && settings.refineSpp == 0;
+    renderChunk(camera, shape, band, region.viewFirst + first, count, chunkSettings, reusable, stageMs, result);
     auto tRead = std::chrono::steady_clock::now();
     outputs.image.download(result.rgba.data() + viewPixels * first * 4, viewPixels * count * 16);
     readbackMs += msSince(tRead);
@@ -82,6 +83,7 @@ RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSetti
     auto stage = static_cast<Stage>(s);
     if (stage == Stage::Shadow && !lights) continue;
     if (stage == Stage::Refine && settings.refineSpp == 0) continue;
+    if ((stage == Stage::Record || stage == Stage::Mark) && !settings.reuse) continue;
     result.stages.push_back({stageName(stage), stageMs[s]});
   }
   result.stages.push_back({"readback", readbackMs});
@@ -91,7 +93,7 @@ RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSetti
 
 void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& shape, const RowBand& band,
                                  std::uint32_t viewFirst, std::uint32_t viewCount, const RenderSettings& settings,
-                                 StageTimes& stageMs, RenderResult& result) {
+                                 bool reusable, StageTimes& stageMs, RenderResult& result) {
   const std::uint64_t targets =
       static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
   // Batch size: whole targets, bounded by the path-state memory budget.
@@ -105,11 +107,25 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   bindState();
   fillFrame(camera, shape, band, viewFirst, viewCount, settings);
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));
+  const ReuseKey key = reuseKey(settings);
+  framePlan = reuse.plan(key, settings.reuse, reusable, targets * settings.spp, targets);
+  if (framePlan.recordSegments) {
+    frameBlock().segmentMasks = reuse.segmentMasks.address();
+    frameBlock().grid = reuse.grid();
+  }
+  result.reuse = framePlan.mode;
 
   const double share = settings.refineSpp > 0 ? 0.8 : 1.0;  // progress: the refinement takes the rest
-  tracePaths(camera, shape, settings.spp, targets * settings.spp, perBatch, false, settings, stageMs, [&](double done) {
+  auto baseProgress = [&](double done) {
     if (settings.progress) settings.progress(done * share);
-  });
+  };
+  if (framePlan.mode == FrameReuse::PartialRetrace) {
+    result.tracedTargets += retraceDirty(camera, shape, targets, perBatch, settings, stageMs, baseProgress);
+  } else {
+    tracePaths(camera, shape, settings.spp, targets * settings.spp, perBatch, TracedTargets::All, settings, stageMs,
+               baseProgress);
+    result.tracedTargets += targets;
+  }
   if (settings.refineSpp > 0) {
     const std::uint64_t refined = selectRefinedTargets(shape, targets, settings.refineContrast, stageMs);
     result.refinedTargets += refined;
@@ -119,8 +135,8 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
       f.refineInfo.w = settings.spp;  // != 0: trace the listed targets, and keep the base samples in their mean
       const std::uint64_t refineBatch =
           std::min(perBatch / settings.refineSpp * settings.refineSpp, refined * settings.refineSpp);
-      tracePaths(camera, shape, settings.refineSpp, refined * settings.refineSpp, refineBatch, true, settings, stageMs,
-                 [&](double done) {
+      tracePaths(camera, shape, settings.refineSpp, refined * settings.refineSpp, refineBatch, TracedTargets::Refined,
+                 settings, stageMs, [&](double done) {
                    if (settings.progress) settings.progress(share + done * (1.0 - share));
                  });
     }
@@ -136,10 +152,11 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   result.raysTraced += c.raysTraced;
   result.maxTraversalSteps = std::max(result.maxTraversalSteps, c.maxSteps);
   result.nonFiniteSamples += c.nanCount;
+  reuse.frameDone(key, framePlan);
 }
 
 void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& shape, std::uint32_t spp,
-                                std::uint64_t totalPaths, std::uint64_t perBatch, bool refining,
+                                std::uint64_t totalPaths, std::uint64_t perBatch, TracedTargets which,
                                 const RenderSettings& settings, StageTimes& stageMs,
                                 const std::function<void(double)>& progress) {
   const SceneFeatures& feat = scene.features();
@@ -148,52 +165,78 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   const bool mirror = feat.mirrors || all, glass = feat.glass || all,
              textures = (feat.textures && scene.textureCount() > 0) || all;
   const std::uint32_t depthPasses = (mirror || glass) ? settings.maxDepth + 1 : 1;
+  const bool listed = which != TracedTargets::All;
+  // Frame reuse (gpu/frame_reuse.h): the base pass loads the cached primary rays and hits instead of running raygen
+  // and the primary trace, or saves them; every pass but refinement records its segment cells.
+  const bool loadHits = which == TracedTargets::All && framePlan.mode == FrameReuse::CachedPrimaryHits;
+  const bool saveHits = which == TracedTargets::All && framePlan.recordHits;
+  const bool record = which != TracedTargets::Refined && framePlan.recordSegments;
 
-  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape, refining));
+  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape, listed));
   const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest, traceSpec({}));
   const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
   const std::vector<std::uint32_t> shadeFeatures = {lights, mirror, glass, textures};
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
-  const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {shape.model, refining});
+  const ComputePipeline& resolve = pipeline(ShaderId::Resolve, {shape.model, listed});
 
   const VkBuffer args = counters.handle();
-  bool clear = !refining;
+  bool clear = which != TracedTargets::Refined;
   for (std::uint64_t begin = 0; begin < totalPaths; begin += perBatch) {
     const auto count = static_cast<std::uint32_t>(std::min<std::uint64_t>(perBatch, totalPaths - begin));
     const auto batchFirst = static_cast<std::uint32_t>(begin);
     beginCommands();
     if (clear) {  // live flags of the shadow slots start cleared; gather_direct clears them after use
       vkCmdFillBuffer(cmd, work.shadowContrib.handle(), 0, VK_WHOLE_SIZE, 0);
+      if (record && which == TracedTargets::All) {  // a full frame records every target's cells afresh
+        vkCmdFillBuffer(cmd, reuse.segmentMasks.handle(), 0, totalPaths / spp * 2 * sizeof(std::uint32_t), 0);
+      }
       VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
                         VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
       vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0,
                            nullptr, 0, nullptr);
       clear = false;
     }
+    const VkDeviceSize rayBytes = VkDeviceSize{count} * sizeof(gpu_shared::HtRay);
+    const VkDeviceSize hitBytes = VkDeviceSize{count} * sizeof(gpu_shared::HtHit);
     PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
-    rec.dispatch(raygen, passConstants(batchFirst, count, 0, 0), groupsFor(count), Stage::Raygen);
+    if (loadHits) {  // what raygen's first invocation writes: queue 0 holds the batch, the others are empty
+      const std::uint32_t queues[3] = {count, 0u, 0u};
+      vkCmdUpdateBuffer(cmd, counters.handle(), offsetof(GpuCounters, queueCount), sizeof(queues), queues);
+      recordComputeCopy(cmd, reuse.primaryRays, batchFirst * sizeof(gpu_shared::HtRay), work.rays[0], 0, rayBytes);
+      recordComputeCopy(cmd, reuse.primaryHits, batchFirst * sizeof(gpu_shared::HtHit), work.hits, 0, hitBytes);
+    } else {
+      rec.dispatch(raygen, passConstants(batchFirst, count, 0, 0), groupsFor(count), Stage::Raygen);
+    }
     for (std::uint32_t depth = 0; depth < depthPasses; ++depth) {
       const std::uint32_t q = depth % 2;
       PassConstants pc = passConstants(batchFirst, count, depth, q);
       const VkDeviceSize queueArgs = offsetof(GpuCounters, dispatch) + q * sizeof(glm::uvec4);
       const ComputePipeline& shade = pipeline(ShaderId::Shade, depthSpec(shadeFeatures, depth));
       const ComputePipeline& gather = pipeline(ShaderId::GatherDirect, depthSpec({}, depth));
-      if (depth == 0) {
-        rec.dispatch(traceClosest, pc, groupsFor(count), Stage::Trace);
-        rec.dispatch(shade, pc, groupsFor(count), Stage::Shade);
-      } else {
-        rec.dispatchIndirect(traceClosest, pc, args, queueArgs, Stage::Trace);
-        rec.dispatchIndirect(shade, pc, args, queueArgs, Stage::Shade);
+      auto overQueue = [&](const ComputePipeline& pass, Stage stage) {  // one invocation per entry of queue q
+        if (depth == 0)
+          rec.dispatch(pass, pc, groupsFor(count), stage);
+        else
+          rec.dispatchIndirect(pass, pc, args, queueArgs, stage);
+      };
+      auto recordSegments = [&] {
+        if (record) overQueue(pipeline(ShaderId::RecordSegments, depthSpec({listed}, depth)), Stage::Record);
+      };
+      if (depth > 0 || !loadHits) overQueue(traceClosest, Stage::Trace);
+      if (depth == 0 && saveHits) {
+        recordComputeCopy(cmd, work.rays[0], 0, reuse.primaryRays, batchFirst * sizeof(gpu_shared::HtRay), rayBytes);
+        recordComputeCopy(cmd, work.hits, 0, reuse.primaryHits, batchFirst * sizeof(gpu_shared::HtHit), hitBytes);
       }
+      overQueue(shade, Stage::Shade);
       rec.dispatch(afterShade, pc, 1, Stage::Queues);
       if (lights) {
         rec.dispatchIndirect(traceAny, pc, args, offsetof(GpuCounters, dispatch) + 2 * sizeof(glm::uvec4),
                              Stage::Shadow);
-        if (depth == 0)
-          rec.dispatch(gather, pc, groupsFor(count), Stage::Shadow);
-        else
-          rec.dispatchIndirect(gather, pc, args, queueArgs, Stage::Shadow);
+        recordSegments();  // before gather_direct clears the shadow slots
+        overQueue(gather, Stage::Shadow);
+      } else {
+        recordSegments();
       }
       rec.dispatch(endDepth, pc, 1, Stage::Queues);
     }

@@ -11,6 +11,7 @@
 #define HT_WAVEFRONT_TYPES_H
 #include "common/glsl_cpp.h"
 #include "camera_models/model_list.h"
+#include "gpu/segment_cells.h"
 #include "gpu/shader_interface.h"
 
 HT_SHARED_BEGIN
@@ -72,13 +73,19 @@ struct FrameBlock {
   uvec4 frame;         // x = seed, y = rows of a whole view (dims.y: of the band), z = targets per pixel;
                        // w unused (per-dispatch values travel in PassConstants)
   uvec4 refineInfo;    // adaptive refinement (refine_select.comp): x = contrast threshold (float bits), y = first
-                       // entry of the target list in `refine`, z = subgroup size the slots assume,
-                       // w = the base pass's spp while the listed targets are traced (resolve.comp averages
+                       // entry of the target list in `refine` (!= 0 while listed targets are traced: refinement
+                       // or a partial re-render, gpu/frame_reuse.h), z = subgroup size the slots assume,
+                       // w = the base pass's spp while refined targets are traced (resolve.comp averages
                        // its samples with theirs), 0 otherwise
   uvec4 flags;         // x = scene has vertex normals, y = scene has texcoords
   vec4 background;     // rgb radiance of escaped rays
   vec4 ambient;        // rgb ambient irradiance on diffuse surfaces
   CameraBlock camera;  // the frame's camera model's parameters (camera_models/model_list.h)
+  // Frame reuse (gpu/frame_reuse.h): per-target segment cells, 2 words per target (device address; 0 = the frame
+  // records none), and the world grid they are counted on (gpu/segment_cells.h).
+  uint64_t segmentMasks;
+  uint64_t segmentMasksUnused;
+  SegmentGrid grid;
 };
 
 // Push constants of every pass (40 B of the 128 B guaranteed). The BVH addresses sit here, not in the

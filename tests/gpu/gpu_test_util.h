@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "camera_models/camera_params.h"
+#include "camera_models/display_config.h"
 #include "gpu/renderer.h"
 #include "gpu/vulkan_context.h"
 #include "scene/scene.h"
@@ -31,6 +32,9 @@ std::vector<gpu_shared::HtRay> pinholeRays(const gpu_shared::PinholeParams& p);
 std::uint32_t addMaterial(Scene& s, const Material& m);
 void addIcosphere(Scene& s, glm::vec3 center, float radius, int subdivisions, std::uint32_t material);
 void addQuad(Scene& s, glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, std::uint32_t material);
+
+// A 4-projector array of 24 x 12 images (several small views of pixel targets).
+DisplayConfig smallProjectorArray();
 
 // Loads /usr/share/glmark2/models/bunny.obj (the Debian glmark2-data package); empty scene if absent.
 Scene loadBunnyOrEmpty();

@@ -1,0 +1,80 @@
+// partial_retrace.cpp - the frame-reuse side of the wavefront loop (gpu/frame_reuse.h, docs/REUSE.md §3-4): the key
+// that says whether two frames trace the same primary rays, and the partial re-render after a node move: the marking
+// pass lists the targets whose recorded segment cells meet the moved bounds, and only those are traced again
+// through the listed-target pipelines the adaptive refinement uses; every other target keeps its value in the
+// subpixel buffer.
+#include <algorithm>
+#include <cstring>
+
+#include "gpu/renderer_impl.h"
+
+namespace ht::gpu {
+
+namespace {
+
+template <typename T>
+void appendBytes(std::vector<std::byte>& out, const T& value) {
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(T));
+  std::memcpy(out.data() + at, &value, sizeof(T));
+}
+
+// Targets per marking dispatch: within the 65,535 workgroups a dispatch dimension is guaranteed.
+constexpr std::uint64_t kMarkTargetsPerDispatch = 1ull << 21;
+
+}  // namespace
+
+ReuseKey Renderer::Impl::reuseKey(const RenderSettings& settings) const {
+  ReuseKey key;
+  appendBytes(key.bytes, *static_cast<const FrameBlock*>(frame.mapped()));
+  appendBytes(key.bytes, settings.forceAllFeatures);
+  appendBytes(key.bytes, boundRayTable.get());
+  return key;
+}
+
+std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t targets,
+                                           std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
+                                           const std::function<void(double)>& progress) {
+  auto* list = static_cast<std::uint32_t*>(reuse.dirtyList.mapped());
+  list[0] = framePlan.gridCells[0];
+  list[1] = framePlan.gridCells[1];
+  list[2] = 0;  // count
+  FrameBlock& f = frameBlock();
+  f.refine = reuse.dirtyList.address();
+  f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
+  beginCommands();
+  PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+  const ComputePipeline& mark = pipeline(ShaderId::MarkDirty);
+  for (std::uint64_t first = 0; first < targets; first += kMarkTargetsPerDispatch) {
+    const std::uint64_t n = std::min(kMarkTargetsPerDispatch, targets - first);
+    rec.dispatch(mark, passConstants(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(targets), 0, 0),
+                 groupsFor(n), Stage::Mark);
+  }
+  submitAndWait();
+  rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+  const std::uint64_t dirty = list[2];
+  if (dirty > 0) {
+    const std::uint32_t spp = settings.spp;
+    tracePaths(camera, shape, spp, dirty * spp, std::min(perBatch, dirty * spp), TracedTargets::Dirty, settings,
+               stageMs, progress);
+  }
+  f.refine = 0;
+  f.refineInfo = glm::uvec4(0u);
+  return dirty;
+}
+
+Renderer::ReuseSnapshot Renderer::reuseSnapshot() const {
+  ReuseSnapshot snap;
+  const FrameReuseState& reuse = impl_->reuse;
+  snap.grid = reuse.grid();
+  if (!reuse.masksValid()) return snap;
+  snap.segmentMasks.resize(reuse.maskedTargets() * 2);
+  reuse.segmentMasks.download(snap.segmentMasks.data(), snap.segmentMasks.size() * sizeof(std::uint32_t));
+  const auto* list = static_cast<const std::uint32_t*>(reuse.dirtyList.mapped());
+  if (list && impl_->framePlan.mode == FrameReuse::PartialRetrace) {
+    snap.dirtyTargets.assign(list + FrameReuseState::kListFirst, list + FrameReuseState::kListFirst + list[2]);
+  }
+  return snap;
+}
+
+}  // namespace ht::gpu
