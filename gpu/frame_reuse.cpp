@@ -47,20 +47,28 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
     }
     return p;
   }
+  // Fixed by the key (paths): every frame of one view caches its primary hits or none does.
+  p.primaryCached = paths * kPrimaryHitBytesPerPath <= kPrimaryHitCacheBudget;
   const bool sameView = key == key_;
   if (sameView && !moved_ && hitsValid_) {
     p.mode = FrameReuse::CachedPrimaryHits;  // light values edited, or nothing at all
-  } else if (sameView && moved_ && !lightsEdited_ && masksValid_) {
+  } else if (sameView && moved_ && !lightsEdited_ && masksValid_ && (hitsValid_ || !p.primaryCached)) {
     p.mode = FrameReuse::PartialRetrace;
-    const gpu_shared::uvec2 cells = movedBounds_.empty()
-                                        ? gpu_shared::uvec2(0u)
-                                        : gpu_shared::ht_grid_bounds_mask(movedBounds_.lo, movedBounds_.hi, grid_);
-    p.gridCells[0] = cells.x;
-    p.gridCells[1] = cells.y;
+    if (!movedBounds_.empty()) {
+      const gpu_shared::uvec2 cells = gpu_shared::ht_grid_bounds_mask(movedBounds_.lo, movedBounds_.hi, grid_);
+      p.gridCells[0] = cells.x;
+      p.gridCells[1] = cells.y;
+      const glm::vec3 pad = gpu_shared::HT_GRID_PAD / glm::vec3(grid_.scale);
+      p.movedLo = movedBounds_.lo - pad;
+      p.movedHi = movedBounds_.hi + pad;
+    } else {  // nothing moved: an empty box no segment meets
+      p.movedLo = glm::vec3(1.0f);
+      p.movedHi = glm::vec3(-1.0f);
+    }
   }
-  p.recordHits = p.mode == FrameReuse::None && paths * kPrimaryHitBytesPerPath <= kPrimaryHitCacheBudget;
+  p.recordHits = p.mode == FrameReuse::None && p.primaryCached;
   p.recordSegments = true;
-  if (p.recordHits) {
+  if (p.primaryCached) {
     ensure(primaryRays, paths * sizeof(gpu_shared::HtRay), MemoryPlace::Device);
     ensure(primaryHits, paths * sizeof(gpu_shared::HtHit), MemoryPlace::Device);
   }
@@ -74,14 +82,22 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
 void FrameReuseState::frameDone(const ReuseKey& key, const ReusePlan& plan) {
   key_ = key;
   masksValid_ = plan.recordSegments;
-  hitsValid_ = plan.mode == FrameReuse::CachedPrimaryHits || plan.recordHits;
+  hitsValid_ = plan.primaryCached;
 }
 
-std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks, const std::uint32_t moved[2]) {
+std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks, const ReusePlan& plan,
+                                            std::span<const gpu_shared::HtRay> primaryRays,
+                                            std::span<const gpu_shared::HtHit> primaryHits, std::uint32_t spp) {
   std::vector<std::uint32_t> dirty;
   for (std::size_t t = 0; t < masks.size() / 2; ++t) {
-    if (((masks[2 * t] & moved[0]) | (masks[2 * t + 1] & moved[1])) != 0)
-      dirty.push_back(static_cast<std::uint32_t>(t));
+    bool hit = ((masks[2 * t] & plan.gridCells[0]) | (masks[2 * t + 1] & plan.gridCells[1])) != 0;
+    for (std::uint32_t s = 0; !hit && !primaryHits.empty() && s < spp; ++s) {
+      const gpu_shared::HtRay& r = primaryRays[t * spp + s];
+      const gpu_shared::HtHit& h = primaryHits[t * spp + s];
+      const float tEnd = h.triId != gpu_shared::HT_MISS ? h.t : r.tmax;
+      hit = gpu_shared::ht_segment_meets_box(r.origin, r.dir, r.tmin, tEnd, plan.movedLo, plan.movedHi);
+    }
+    if (hit) dirty.push_back(static_cast<std::uint32_t>(t));
   }
   return dirty;
 }

@@ -31,9 +31,13 @@ struct ReuseKey {
 // How the next frame is rendered, decided from the key and the edits since the last recorded frame.
 struct ReusePlan {
   FrameReuse mode = FrameReuse::None;
-  bool recordHits = false;              // copy the primary rays and hits into the cache (base pass)
-  bool recordSegments = false;          // record the per-target segment cells (every pass of the frame)
-  std::uint32_t gridCells[2] = {0, 0};  // PartialRetrace: the cells of the moved bounds (lo, hi words)
+  bool recordHits = false;      // copy the primary rays and hits into the cache (base pass)
+  bool recordSegments = false;  // record the per-target segment cells (every pass of the frame)
+  bool primaryCached = false;   // the cache holds every path's primary ray and hit once the frame ran: primary
+                                // segments stay out of the masks and the marking pass tests them exactly
+  // PartialRetrace: the cells of the moved bounds (lo, hi words) and those bounds padded by HT_GRID_PAD cells.
+  std::uint32_t gridCells[2] = {0, 0};
+  glm::vec3 movedLo{0.0f}, movedHi{0.0f};
 };
 
 class FrameReuseState {
@@ -47,7 +51,8 @@ class FrameReuseState {
 
   // Edits between frames. Light values: the cached hits stay valid, the segment masks too (lights move no
   // geometry; a reused frame records its shadow segments again). A node moved from `oldBounds` to `newBounds`: the
-  // masks stay valid, the hits do not. Anything else (replaceScene without bounds): nothing is kept.
+  // masks and hits stay valid for the marking pass (the partial re-render writes its targets' new hits). Anything
+  // else (replaceScene without bounds): nothing is kept.
   void lightsEdited() { lightsEdited_ = true; }
   void geometryMoved(const Bounds3& oldBounds, const Bounds3& newBounds);
   void invalidate();
@@ -60,9 +65,10 @@ class FrameReuseState {
   void frameDone(const ReuseKey& key, const ReusePlan& plan);
 
   // Sized by plan(): primary rays and hits of every path of the frame (path order), segment masks (2 words per
-  // target), and the dirty-target list (header: count; entries from kListFirst).
+  // target), and the dirty-target list (header: moved cells in words 0-1, the count in 2, the padded moved bounds'
+  // lo in 4-6 and hi in 8-10 as float bits; entries from kListFirst).
   DeviceBuffer primaryRays, primaryHits, segmentMasks, dirtyList;
-  static constexpr std::uint32_t kListFirst = 4;
+  static constexpr std::uint32_t kListFirst = 12;
 
  private:
   void ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPlace place);
@@ -76,8 +82,11 @@ class FrameReuseState {
 };
 
 // CPU reference of mark_dirty.comp: the targets (ascending) whose masks (2 words per target) share a cell with
-// `moved` (ht_grid_bounds_mask).
-std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks, const std::uint32_t moved[2]);
+// `plan.gridCells`, or, with cached primary rays and hits (`spp` per target; empty: none), one of whose primary
+// segments meets the box [plan.movedLo, plan.movedHi].
+std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks, const ReusePlan& plan,
+                                            std::span<const gpu_shared::HtRay> primaryRays,
+                                            std::span<const gpu_shared::HtHit> primaryHits, std::uint32_t spp);
 
 // Records a buffer-to-buffer copy between compute passes: waits for the passes before it and makes the copy
 // visible (and its source free to overwrite) to the passes after it.

@@ -39,6 +39,8 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   list[0] = framePlan.gridCells[0];
   list[1] = framePlan.gridCells[1];
   list[2] = 0;  // count
+  std::memcpy(list + 4, &framePlan.movedLo, sizeof(glm::vec3));
+  std::memcpy(list + 8, &framePlan.movedHi, sizeof(glm::vec3));
   FrameBlock& f = frameBlock();
   f.refine = reuse.dirtyList.address();
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
@@ -70,6 +72,17 @@ Renderer::ReuseSnapshot Renderer::reuseSnapshot() const {
   if (!reuse.masksValid()) return snap;
   snap.segmentMasks.resize(reuse.maskedTargets() * 2);
   reuse.segmentMasks.download(snap.segmentMasks.data(), snap.segmentMasks.size() * sizeof(std::uint32_t));
+  const ReusePlan& plan = impl_->framePlan;
+  snap.movedCells[0] = plan.gridCells[0];
+  snap.movedCells[1] = plan.gridCells[1];
+  snap.movedLo = plan.movedLo;
+  snap.movedHi = plan.movedHi;
+  if (plan.primaryCached) {
+    snap.primaryHits.resize(reuse.primaryHits.size() / sizeof(gpu_shared::HtHit));
+    reuse.primaryHits.download(snap.primaryHits.data(), reuse.primaryHits.size());
+    snap.primaryRays.resize(reuse.primaryRays.size() / sizeof(gpu_shared::HtRay));
+    reuse.primaryRays.download(snap.primaryRays.data(), reuse.primaryRays.size());
+  }
   const auto* list = static_cast<const std::uint32_t*>(reuse.dirtyList.mapped());
   if (list && impl_->framePlan.mode == FrameReuse::PartialRetrace) {
     snap.dirtyTargets.assign(list + FrameReuseState::kListFirst, list + FrameReuseState::kListFirst + list[2]);

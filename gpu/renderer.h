@@ -133,11 +133,17 @@ class Renderer {
   std::vector<std::uint32_t> traceOccluded(std::span<const gpu_shared::HtRay> rays, TraceStats* stats = nullptr);
 
   // The frame-reuse state (RenderSettings::reuse) for tests and benchmarks: per-target segment cells of the last
-  // frame that kept state (2 words per target, gpu/segment_cells.h), the grid they are counted on, and the targets
-  // the last partial re-render traced (in the marking pass's order). Empty when none is kept.
+  // frame that kept state (2 words per target, gpu/segment_cells.h), the grid they are counted on, the cached
+  // primary rays and hits (empty when not cached), the targets the last partial re-render traced (in the marking
+  // pass's order) with what that pass tested. Empty when no state is kept.
   struct ReuseSnapshot {
     std::vector<std::uint32_t> segmentMasks, dirtyTargets;
+    std::vector<gpu_shared::HtRay> primaryRays;
+    std::vector<gpu_shared::HtHit> primaryHits;
     gpu_shared::SegmentGrid grid{};
+    // The last partial re-render's moved cells and padded moved bounds (what its marking pass tested).
+    std::uint32_t movedCells[2] = {0, 0};
+    glm::vec3 movedLo{0.0f}, movedHi{0.0f};
   };
   ReuseSnapshot reuseSnapshot() const;
 

@@ -6,7 +6,10 @@
 // cells. A target's mask has one bit per cell (64 bits, two 32-bit words) for every cell any of its segments met:
 // primary and secondary rays up to their hit (misses to infinity) and every shadow ray to its light. A segment can
 // change after a node moves only if it meets the node's old or new bounds, so a target whose mask shares no cell
-// with those bounds (padded by HT_GRID_PAD cells against float rounding) keeps its value bit for bit.
+// with those bounds (padded by HT_GRID_PAD cells against float rounding) keeps its value bit for bit. Where the
+// primary rays and hits are cached (gpu/frame_reuse.h), primary segments stay out of the mask and the marking pass
+// tests them exactly against the padded bounds (ht_segment_meets_box): they are most of a display's segments and
+// the ones the coarse grid over-invalidates most.
 #ifndef HT_SEGMENT_CELLS_H
 #define HT_SEGMENT_CELLS_H
 #include "common/glsl_cpp.h"
@@ -96,6 +99,22 @@ HT_INLINE uvec2 ht_segment_cells(vec3 o, vec3 d, float t0, float t1, SegmentGrid
     mask |= ht_grid_box_mask(ca, cb);
   }
   return mask;
+}
+
+// Does the segment o + t d, t in [t0, t1], meet the box [lo, hi] (slab test)? The marking pass tests cached primary
+// segments against the moved bounds with it, padded by HT_GRID_PAD cells, which is exact where the grid is coarse.
+HT_INLINE bool ht_segment_meets_box(vec3 o, vec3 d, float t0, float t1, vec3 lo, vec3 hi) {
+  float a = t0, b = t1;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0.0f) {
+      if (o[k] < lo[k] || o[k] > hi[k]) return false;
+      continue;
+    }
+    float ta = (lo[k] - o[k]) / d[k], tb = (hi[k] - o[k]) / d[k];
+    a = max(a, min(ta, tb));
+    b = min(b, max(ta, tb));
+  }
+  return a <= b;
 }
 
 HT_SHARED_END

@@ -113,6 +113,10 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
     frameBlock().segmentMasks = reuse.segmentMasks.address();
     frameBlock().grid = reuse.grid();
   }
+  if (framePlan.primaryCached) {
+    frameBlock().primaryRays = reuse.primaryRays.address();
+    frameBlock().primaryHits = reuse.primaryHits.address();
+  }
   result.reuse = framePlan.mode;
 
   const double share = settings.refineSpp > 0 ? 0.8 : 1.0;  // progress: the refinement takes the rest

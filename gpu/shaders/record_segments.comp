@@ -4,20 +4,32 @@
 // of the current ray queue, after this depth's closest-hit trace and shadow trace and before gather_direct clears
 // the shadow slots: ORs the world-grid cells of the entry's segment (to its hit; a miss to infinity) and of every
 // shadow ray its path emitted at this depth (to the light) into the mask of the path's target (gpu/segment_cells.h).
+// With the primary hits cached (FRAME.primaryHits != 0) the primary segment stays out of the mask (mark_dirty.comp
+// tests it exactly), and a partial re-render writes the new primary hits of its listed targets into the cache.
 #include "gpu/shaders/common.glsl"
 #include "gpu/segment_cells.h"
 
 layout(constant_id = 0) const bool LISTED = false;  // paths of listed targets (a partial re-render)
 
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer HitCacheRef { uvec4 h[]; };
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= COUNTERS.queueCount[pc.queue]) return;
   uint path = queue_path(i);
-  uint entry = (pc.batchFirst + path) / FRAME.dims.z;
+  uint spp = FRAME.dims.z;
+  uint entry = (pc.batchFirst + path) / spp;
   uint target = LISTED ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;
   HtRay ray = load_ray(pc.queue, i);
   HtHit hit = load_hit(i);
-  uvec2 cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, hit.triId != HT_MISS ? hit.t : ray.tmax, FRAME.grid);
+  bool cachedPrimary = pc.depth == 0u && FRAME.primaryHits != 0ul;
+  uvec2 cells = uvec2(0u);
+  if (!cachedPrimary) {
+    cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, hit.triId != HT_MISS ? hit.t : ray.tmax, FRAME.grid);
+  } else if (LISTED) {
+    HitCacheRef(FRAME.primaryHits).h[target * spp + (pc.batchFirst + path) % spp] =
+        uvec4(floatBitsToUint(hit.t), hit.triId, floatBitsToUint(hit.u), floatBitsToUint(hit.v));
+  }
   uint lightCount = FRAME.scene.x;
   for (uint l = 0u; l < lightCount; ++l) {
     uint slot = path * lightCount + l;

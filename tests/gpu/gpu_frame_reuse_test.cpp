@@ -124,7 +124,8 @@ TEST(FrameReuse, OtherEditsAndOtherViewsRenderInFull) {
 }
 
 // The property test of docs/REUSE.md §4: random moves of random nodes; each partial re-render equals a fresh full
-// render of the edited scene bit for bit, and re-traces fewer targets than the frame has when the moved node is small.
+// render of the edited scene bit for bit, and re-traces fewer targets than the frame has when the moved node is small;
+// a light edit after the moves still re-shades the (updated) cached primary hits bit for bit.
 TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesEqualsAFullRender) {
   Scene scene = loadScene("builtin:showcase");
   const auto cams = cameras(scene);
@@ -153,6 +154,14 @@ TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesEqualsAFullRender) {
       traced += partial.tracedTargets;
       total += frameShape(camera).targets();
     }
+    // The partial re-renders kept the primary-hit cache up to date: a light edit now re-shades it.
+    LightEdit warmer;
+    warmer.color = glm::dvec3(1.0, 0.8, 0.6);
+    editLight(edited, 0, warmer);
+    renderer.updateLights(edited);
+    const gpu::RenderResult lit = renderer.render(camera, reuseSettings());
+    EXPECT_EQ(lit.reuse, FrameReuse::CachedPrimaryHits);
+    EXPECT_TRUE(sameBits(lit, fullRender(edited, camera)));
   }
   EXPECT_LT(traced, total) << "every target was re-traced: the masks select nothing";
 }
@@ -174,13 +183,24 @@ TEST(FrameReuse, MarkingPassMatchesItsCpuReference) {
   renderer.replaceSceneAfterMove(scene, old, moved);
   const gpu::RenderResult partial = renderer.render(camera, reuseSettings());
   ASSERT_EQ(partial.reuse, FrameReuse::PartialRetrace);
+  const gpu::Renderer::ReuseSnapshot after = renderer.reuseSnapshot();
+  ASSERT_FALSE(before.primaryHits.empty()) << "a small frame caches its primary hits";
+  gpu::ReusePlan plan;
+  plan.gridCells[0] = after.movedCells[0];
+  plan.gridCells[1] = after.movedCells[1];
+  plan.movedLo = after.movedLo;
+  plan.movedHi = after.movedHi;
   Bounds3 both = old;
   both.extend(moved.lo);
   both.extend(moved.hi);
   const gpu_shared::uvec2 cells = gpu_shared::ht_grid_bounds_mask(both.lo, both.hi, before.grid);
-  const std::uint32_t movedCells[2] = {cells.x, cells.y};
-  const std::vector<std::uint32_t> expected = gpu::markDirtyTargets(before.segmentMasks, movedCells);
-  std::vector<std::uint32_t> listed = renderer.reuseSnapshot().dirtyTargets;
+  EXPECT_EQ(plan.gridCells[0], cells.x);
+  EXPECT_EQ(plan.gridCells[1], cells.y);
+  EXPECT_TRUE(glm::all(glm::lessThan(plan.movedLo, glm::min(old.lo, moved.lo))));
+  EXPECT_TRUE(glm::all(glm::greaterThan(plan.movedHi, glm::max(old.hi, moved.hi))));
+  const std::vector<std::uint32_t> expected =
+      gpu::markDirtyTargets(before.segmentMasks, plan, before.primaryRays, before.primaryHits, reuseSettings().spp);
+  std::vector<std::uint32_t> listed = after.dirtyTargets;
   std::sort(listed.begin(), listed.end());
   EXPECT_EQ(listed, expected);
   EXPECT_EQ(partial.tracedTargets, expected.size());
@@ -202,7 +222,8 @@ bool segmentMeetsBox(glm::dvec3 o, glm::dvec3 d, double t0, double t1, glm::dvec
 }
 
 // Conservative: whenever a segment meets a box (inside or outside the grid's bounds, misses to infinity included),
-// its cells and the box's cells share a bit; and the cells are not simply all of them.
+// its cells and the box's cells share a bit, and the float slab test meets the padded box; and the cells are not
+// simply all of them.
 TEST(SegmentCells, EverySegmentThatMeetsABoxSharesOneOfItsCells) {
   gpu_shared::SegmentGrid grid{glm::vec4(-1.0f, -0.5f, -2.0f, 0.0f), glm::vec4(2.0f, 4.0f, 1.0f, 0.0f)};
   std::mt19937 rng(99);
@@ -222,6 +243,8 @@ TEST(SegmentCells, EverySegmentThatMeetsABoxSharesOneOfItsCells) {
     if (segmentMeetsBox(o, d, 0.0, t1, lo, hi)) {
       ++meeting;
       ASSERT_NE((seg.x & box.x) | (seg.y & box.y), 0u) << "segment " << i << " meets its box in no shared cell";
+      const glm::vec3 pad = gpu_shared::HT_GRID_PAD / glm::vec3(grid.scale);
+      ASSERT_TRUE(gpu_shared::ht_segment_meets_box(o, d, 0.0f, t1, lo - pad, hi + pad)) << "segment " << i;
     }
   }
   EXPECT_GT(meeting, 1000);
