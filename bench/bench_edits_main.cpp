@@ -4,7 +4,8 @@
 // the reuse state (Renderer B), a light edit (updateLights + the frame re-shaded from the cached primary hits) and a
 // node move (replaceSceneAfterMove, i.e. the BVH rebuild, + the partial re-render); the moved node alternates between
 // two positions. Reports medians of the times and of the per-run ratios, the fraction of targets re-traced and the
-// fraction of output values that actually changed (their ratio: the over-invalidation of the grid masks).
+// fraction of output values that actually changed (their ratio: the over-invalidation of the grid masks). Ratios
+// are given against both full frames: A's (no reuse) and B's own (which also records the state).
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -116,11 +117,22 @@ double changedFraction(const gpu::RenderResult& a, const gpu::RenderResult& b) {
   return values ? double(changed) / double(values) : 0.0;
 }
 
+// Fraction of the cached primary hits on the node's triangles.
+double nodeCoverage(const gpu::Renderer::ReuseSnapshot& snap, const SceneNode& node) {
+  std::size_t on = 0;
+  for (const gpu_shared::HtHit& h : snap.primaryHits) {
+    on += h.triId >= node.firstTriangle && h.triId < node.firstTriangle + node.triangleCount ? 1 : 0;
+  }
+  return snap.primaryHits.empty() ? 0.0 : double(on) / double(snap.primaryHits.size());
+}
+
 struct DisplayEdits {
   std::string display;
   std::uint64_t targets = 0;
+  double coverage = 0.0;  // fraction of primary samples that hit the moved node (the first recorded frame)
   TimingSeries full, recording, light, move, rebuild;
   std::vector<double> lightRatio, moveRatio, recordRatio, traced, changed;
+  std::vector<double> lightVsRecording, moveVsRecording;  // the same edits against the reusing Renderer's full frame
   std::vector<gpu::StageTiming> fullStages, lightStages, moveStages;  // of the last run
 };
 
@@ -142,9 +154,13 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
   const float intensity = scene.lights[0].intensity;
   // Run 0 is the warm-up (pipeline compilation of every variant, the partial re-render's included), not recorded.
   for (std::uint32_t run = 0; run <= o.runs; ++run) {
-    const gpu::RenderResult fullFrame = reference.render(camera, off);
+    // The two full frames alternate in order between runs (the first of a pair ran measurably slower here).
+    gpu::RenderResult fullFrame, recorded;  // recorded: the state the edits start from
+    if (run % 2) fullFrame = reference.render(camera, off);
+    recorded = reusing.render(camera, on);
+    if (run % 2 == 0) fullFrame = reference.render(camera, off);
     const double full = fullFrame.totalMs;
-    const gpu::RenderResult recorded = reusing.render(camera, on);  // the state the edits start from
+    if (run == 0) e.coverage = nodeCoverage(reusing.reuseSnapshot(), scene.nodes[node]);
 
     LightEdit dim;
     dim.intensity = intensity * (run % 2 ? 1.0 : 0.6);
@@ -175,6 +191,8 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     e.recordRatio.push_back(recorded.totalMs / full);
     e.lightRatio.push_back(light / full);
     e.moveRatio.push_back(move / full);
+    e.lightVsRecording.push_back(light / recorded.totalMs);
+    e.moveVsRecording.push_back(move / recorded.totalMs);
     e.traced.push_back(double(moved.tracedTargets) / double(e.targets));
     e.changed.push_back(changedFraction(lit, moved));
     e.fullStages = fullFrame.stages;
@@ -185,12 +203,14 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
 }
 
 void print(const DisplayEdits& e) {
-  std::printf("\n%s (%llu targets)\n", e.display.c_str(), static_cast<unsigned long long>(e.targets));
+  std::printf("\n%s (%llu targets; the moved node covers %.4f of the primary samples)\n", e.display.c_str(),
+              static_cast<unsigned long long>(e.targets), e.coverage);
   std::printf("  full frame, no reuse:         %9.1f ms\n", e.full.medianMs());
   std::printf("  full frame, recording reuse:  %9.1f ms   ratio %.3f\n", e.recording.medianMs(), median(e.recordRatio));
-  std::printf("  light edit (update + frame):  %9.1f ms   ratio %.3f\n", e.light.medianMs(), median(e.lightRatio));
-  std::printf("  node move (rebuild + frame):  %9.1f ms   ratio %.3f   (BVH rebuild %.1f ms)\n", e.move.medianMs(),
-              median(e.moveRatio), e.rebuild.medianMs());
+  std::printf("  light edit (update + frame):  %9.1f ms   ratio %.3f (vs recording %.3f)\n", e.light.medianMs(),
+              median(e.lightRatio), median(e.lightVsRecording));
+  std::printf("  node move (rebuild + frame):  %9.1f ms   ratio %.3f (vs recording %.3f)   (BVH rebuild %.1f ms)\n",
+              e.move.medianMs(), median(e.moveRatio), median(e.moveVsRecording), e.rebuild.medianMs());
   std::printf("  re-traced targets %.4f, changed output values %.4f\n", median(e.traced), median(e.changed));
   std::printf("  stages of the last run (GPU ms; readback: host):");
   for (const auto* stages : {&e.fullStages, &e.lightStages, &e.moveStages}) {
@@ -210,6 +230,9 @@ std::string csvRows(const DisplayEdits& e) {
                                                  {"ratio_recording", median(e.recordRatio)},
                                                  {"ratio_light_edit", median(e.lightRatio)},
                                                  {"ratio_node_move", median(e.moveRatio)},
+                                                 {"ratio_light_edit_vs_recording", median(e.lightVsRecording)},
+                                                 {"ratio_node_move_vs_recording", median(e.moveVsRecording)},
+                                                 {"node_coverage", e.coverage},
                                                  {"retraced_fraction", median(e.traced)},
                                                  {"changed_fraction", median(e.changed)}};
   for (const auto& [name, value] : rows) csv << e.display << "," << name << "," << value << "\n";
