@@ -28,7 +28,7 @@ void FrameReuseState::geometryMoved(const Bounds3& oldBounds, const Bounds3& new
 }
 
 void FrameReuseState::invalidate() {
-  hitsValid_ = masksValid_ = false;
+  hitsValid_ = masksValid_ = secondaryValid_ = false;
   lightsEdited_ = moved_ = false;
   movedBounds_ = Bounds3{};
 }
@@ -38,12 +38,14 @@ void FrameReuseState::ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPl
 }
 
 ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable, std::uint64_t paths,
-                                std::uint64_t targets) {
+                                std::uint64_t targets, std::uint32_t secondaryDepths) {
   ReusePlan p;
   if (!wanted || !reusable) {
     invalidate();
     if (!wanted) {  // free the memory
-      for (DeviceBuffer* b : {&primaryRays, &primaryHits, &segmentMasks, &dirtyList}) *b = DeviceBuffer();
+      for (DeviceBuffer* b : {&primaryRays, &primaryHits, &segmentMasks, &dirtyList, &secondaryCache}) {
+        *b = DeviceBuffer();
+      }
     }
     return p;
   }
@@ -67,6 +69,12 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
     }
   }
   p.recordHits = p.mode == FrameReuse::None && p.primaryCached;
+  const std::uint64_t secondaryBytes = paths * kSecondaryBytesPerPath * secondaryDepths;
+  const bool secondaryFits = p.primaryCached && secondaryDepths > 0 && secondaryBytes <= kSecondaryHitCacheBudget;
+  p.recordSecondary = p.recordHits && secondaryFits;
+  p.loadSecondary = p.mode == FrameReuse::CachedPrimaryHits && secondaryFits && secondaryValid_;
+  if (p.recordSecondary) ensure(secondaryCache, secondaryBytes, MemoryPlace::Device);
+  cachedPaths_ = paths;
   p.recordSegments = true;
   if (p.primaryCached) {
     ensure(primaryRays, paths * sizeof(gpu_shared::HtRay), MemoryPlace::Device);
@@ -83,6 +91,13 @@ void FrameReuseState::frameDone(const ReuseKey& key, const ReusePlan& plan) {
   key_ = key;
   masksValid_ = plan.recordSegments;
   hitsValid_ = plan.primaryCached;
+  secondaryValid_ = plan.recordSecondary || plan.loadSecondary;  // a partial re-render leaves them stale
+}
+
+FrameReuseState::SecondaryRegion FrameReuseState::secondaryRegion(std::uint32_t depth) const {
+  const VkDeviceSize base = (depth - 1) * cachedPaths_ * kSecondaryBytesPerPath;
+  const VkDeviceSize rays = cachedPaths_ * sizeof(gpu_shared::HtRay);
+  return {base, base + rays, base + rays + cachedPaths_ * sizeof(std::uint32_t)};
 }
 
 std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks, const ReusePlan& plan,

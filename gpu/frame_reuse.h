@@ -19,6 +19,11 @@ namespace ht::gpu {
 // without the cache (a light edit then costs a full frame).
 inline constexpr std::uint64_t kPrimaryHitCacheBudget = 1ull << 30;
 inline constexpr std::uint64_t kPrimaryHitBytesPerPath = sizeof(gpu_shared::HtRay) + sizeof(gpu_shared::HtHit);
+// The closest-hit queues of the later depths (mirror and glass bounces), which do not depend on the lights either:
+// per depth and path a ray, a queue entry's path index and a hit (52 B); the same kind of budget.
+inline constexpr std::uint64_t kSecondaryHitCacheBudget = 1ull << 30;
+inline constexpr std::uint64_t kSecondaryBytesPerPath =
+    sizeof(gpu_shared::HtRay) + sizeof(std::uint32_t) + sizeof(gpu_shared::HtHit);
 
 // The identity of a frame for reuse: its FrameBlock as filled for the base pass (camera, shape, spp, seed, filter,
 // depth, light count, region) and the settings outside that block. Two frames with equal keys trace the same
@@ -31,10 +36,12 @@ struct ReuseKey {
 // How the next frame is rendered, decided from the key and the edits since the last recorded frame.
 struct ReusePlan {
   FrameReuse mode = FrameReuse::None;
-  bool recordHits = false;      // copy the primary rays and hits into the cache (base pass)
-  bool recordSegments = false;  // record the per-target segment cells (every pass of the frame)
-  bool primaryCached = false;   // the cache holds every path's primary ray and hit once the frame ran: primary
-                                // segments stay out of the masks and the marking pass tests them exactly
+  bool recordHits = false;       // copy the primary rays and hits into the cache (base pass)
+  bool recordSecondary = false;  // copy the queues and hits of depths >= 1 into the secondary cache (base pass)
+  bool loadSecondary = false;    // CachedPrimaryHits: load those too, skipping every closest-hit trace
+  bool recordSegments = false;   // record the per-target segment cells (every pass of the frame)
+  bool primaryCached = false;    // the cache holds every path's primary ray and hit once the frame ran: primary
+                                 // segments stay out of the masks and the marking pass tests them exactly
   // PartialRetrace: the cells of the moved bounds (lo, hi words) and those bounds padded by HT_GRID_PAD cells.
   std::uint32_t gridCells[2] = {0, 0};
   glm::vec3 movedLo{0.0f}, movedHi{0.0f};
@@ -60,14 +67,22 @@ class FrameReuseState {
   // The plan of a frame with `key` of `paths` paths and `targets` targets; `wanted` = RenderSettings::reuse,
   // `reusable` = the frame is one chunk without adaptive refinement (the only frames whose state is kept). Until
   // frameDone, nothing is valid (a frame that throws leaves no half-written state behind).
-  ReusePlan plan(const ReuseKey& key, bool wanted, bool reusable, std::uint64_t paths, std::uint64_t targets);
+  // `secondaryDepths`: the depths after the primary one the frame traces (0 without mirrors and glass).
+  ReusePlan plan(const ReuseKey& key, bool wanted, bool reusable, std::uint64_t paths, std::uint64_t targets,
+                 std::uint32_t secondaryDepths);
   // After the frame planned last finished: what it recorded is now the state edits are measured against.
   void frameDone(const ReuseKey& key, const ReusePlan& plan);
 
   // Sized by plan(): primary rays and hits of every path of the frame (path order), segment masks (2 words per
   // target), and the dirty-target list (header: moved cells in words 0-1, the count in 2, the padded moved bounds'
   // lo in 4-6 and hi in 8-10 as float bits; entries from kListFirst).
-  DeviceBuffer primaryRays, primaryHits, segmentMasks, dirtyList;
+  // The secondary cache holds, for depth d >= 1, rays at region (d - 1) * paths * 52 B, then the queue entries' path
+  // indices and hits (secondaryRegion); entries of a batch start at its first path.
+  DeviceBuffer primaryRays, primaryHits, segmentMasks, dirtyList, secondaryCache;
+  struct SecondaryRegion {
+    VkDeviceSize rays, paths, hits;  // byte offsets of entry 0 of the depth's rays, path indices, hits
+  };
+  SecondaryRegion secondaryRegion(std::uint32_t depth) const;
   static constexpr std::uint32_t kListFirst = 12;
 
  private:
@@ -75,7 +90,8 @@ class FrameReuseState {
   VulkanContext::Impl& vk_;
   gpu_shared::SegmentGrid grid_{};
   ReuseKey key_;
-  bool hitsValid_ = false, masksValid_ = false;
+  bool hitsValid_ = false, masksValid_ = false, secondaryValid_ = false;
+  std::uint64_t cachedPaths_ = 0;
   std::uint64_t maskedTargets_ = 0;
   bool lightsEdited_ = false, moved_ = false;
   Bounds3 movedBounds_;

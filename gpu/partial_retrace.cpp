@@ -65,6 +65,26 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   return dirty;
 }
 
+void Renderer::Impl::copySecondary(std::uint32_t depth, std::uint32_t batchFirst, std::uint32_t count, bool load) {
+  const FrameReuseState::SecondaryRegion r = reuse.secondaryRegion(depth);
+  const std::uint32_t q = depth % 2;
+  const struct {
+    const DeviceBuffer& work;
+    VkDeviceSize cacheOffset, entryBytes;
+  } parts[] = {{work.rays[q], r.rays, sizeof(gpu_shared::HtRay)},
+               {work.queuePath[q], r.paths, sizeof(std::uint32_t)},
+               {work.hits, r.hits, sizeof(gpu_shared::HtHit)}};
+  for (const auto& part : parts) {
+    const VkDeviceSize at = part.cacheOffset + VkDeviceSize{batchFirst} * part.entryBytes;
+    const VkDeviceSize bytes = VkDeviceSize{count} * part.entryBytes;
+    if (load) {
+      recordComputeCopy(cmd, reuse.secondaryCache, at, part.work, 0, bytes);
+    } else {
+      recordComputeCopy(cmd, part.work, 0, reuse.secondaryCache, at, bytes);
+    }
+  }
+}
+
 Renderer::ReuseSnapshot Renderer::reuseSnapshot() const {
   ReuseSnapshot snap;
   const FrameReuseState& reuse = impl_->reuse;

@@ -174,6 +174,15 @@ struct Renderer::Impl {
   void tracePaths(const FrameCamera& camera, const FrameShape& shape, std::uint32_t spp, std::uint64_t totalPaths,
                   std::uint64_t perBatch, TracedTargets which, const RenderSettings& settings, StageTimes& stageMs,
                   const std::function<void(double)>& progress);
+  // Closest-hit passes per batch: the primary one, plus maxDepth more when mirrors or glass continue paths.
+  std::uint32_t depthPasses(const RenderSettings& settings) const {
+    const SceneFeatures& feat = scene.features();
+    const bool bounces = feat.mirrors || feat.glass || settings.forceAllFeatures;
+    return bounces ? settings.maxDepth + 1 : 1;
+  }
+  // Frame reuse: copies the queue `depth % 2`, its path indices and the hits of `depth` (>= 1) of the batch from
+  // (load) or into the secondary cache (frame_reuse.h), between the passes recorded into `cmd`.
+  void copySecondary(std::uint32_t depth, std::uint32_t batchFirst, std::uint32_t count, bool load);
   // Frame reuse (partial_retrace.cpp): the key of the frame fillFrame wrote; the marking pass and the re-trace of
   // the dirty targets of a partial re-render (returns how many).
   ReuseKey reuseKey(const RenderSettings& settings) const;

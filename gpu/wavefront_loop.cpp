@@ -108,7 +108,7 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   fillFrame(camera, shape, band, viewFirst, viewCount, settings);
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));
   const ReuseKey key = reuseKey(settings);
-  framePlan = reuse.plan(key, settings.reuse, reusable, targets * settings.spp, targets);
+  framePlan = reuse.plan(key, settings.reuse, reusable, targets * settings.spp, targets, depthPasses(settings) - 1);
   if (framePlan.recordSegments) {
     frameBlock().segmentMasks = reuse.segmentMasks.address();
     frameBlock().grid = reuse.grid();
@@ -168,12 +168,14 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   const bool lights = scene.lightCount() > 0 && (feat.lights || all);
   const bool mirror = feat.mirrors || all, glass = feat.glass || all,
              textures = (feat.textures && scene.textureCount() > 0) || all;
-  const std::uint32_t depthPasses = (mirror || glass) ? settings.maxDepth + 1 : 1;
+  const std::uint32_t depthPasses = this->depthPasses(settings);
   const bool listed = which != TracedTargets::All;
   // Frame reuse (gpu/frame_reuse.h): the base pass loads the cached primary rays and hits instead of running raygen
   // and the primary trace, or saves them; every pass but refinement records its segment cells.
   const bool loadHits = which == TracedTargets::All && framePlan.mode == FrameReuse::CachedPrimaryHits;
   const bool saveHits = which == TracedTargets::All && framePlan.recordHits;
+  const bool loadSecondary = loadHits && framePlan.loadSecondary;
+  const bool saveSecondary = saveHits && framePlan.recordSecondary;
   const bool record = which != TracedTargets::Refined && framePlan.recordSegments;
 
   const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape, listed));
@@ -227,11 +229,12 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
       auto recordSegments = [&] {
         if (record) overQueue(pipeline(ShaderId::RecordSegments, depthSpec({listed}, depth)), Stage::Record);
       };
-      if (depth > 0 || !loadHits) overQueue(traceClosest, Stage::Trace);
+      if (depth == 0 ? !loadHits : !loadSecondary) overQueue(traceClosest, Stage::Trace);
       if (depth == 0 && saveHits) {
         recordComputeCopy(cmd, work.rays[0], 0, reuse.primaryRays, batchFirst * sizeof(gpu_shared::HtRay), rayBytes);
         recordComputeCopy(cmd, work.hits, 0, reuse.primaryHits, batchFirst * sizeof(gpu_shared::HtHit), hitBytes);
       }
+      if (depth > 0 && (saveSecondary || loadSecondary)) copySecondary(depth, batchFirst, count, loadSecondary);
       overQueue(shade, Stage::Shade);
       rec.dispatch(afterShade, pc, 1, Stage::Queues);
       if (lights) {

@@ -28,6 +28,13 @@ bool sameBits(const gpu::RenderResult& a, const gpu::RenderResult& b) {
   return a.rgba.size() == b.rgba.size() && std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * 4) == 0;
 }
 
+double stageMs(const gpu::RenderResult& r, const std::string& name) {
+  for (const gpu::StageTiming& s : r.stages) {
+    if (s.name == name) return s.ms;
+  }
+  return 0.0;
+}
+
 gpu::RenderSettings reuseSettings() {
   gpu::RenderSettings s;
   s.spp = 2;
@@ -59,6 +66,7 @@ gpu::RenderResult fullRender(const Scene& scene, const gpu::FrameCamera& camera)
   return fresh.render(camera, s);
 }
 
+// Light values edited: no raygen and no closest-hit trace (primary and mirror/glass bounces come from the caches).
 TEST(FrameReuse, LightEditsReshadeTheCachedPrimaryHitsBitForBit) {
   Scene scene = loadScene("builtin:showcase");
   ASSERT_GE(scene.lights.size(), 2u);
@@ -79,6 +87,9 @@ TEST(FrameReuse, LightEditsReshadeTheCachedPrimaryHitsBitForBit) {
     renderer.updateLights(edited);
     const gpu::RenderResult reused = renderer.render(camera, reuseSettings());
     EXPECT_EQ(reused.reuse, FrameReuse::CachedPrimaryHits);
+    EXPECT_EQ(stageMs(reused, "raygen"), 0.0);
+    EXPECT_EQ(stageMs(reused, "trace"), 0.0) << "mirror and glass bounces come from the secondary cache too";
+    EXPECT_GT(stageMs(first, "trace"), 0.0);
     const gpu::RenderResult reference = fullRender(edited, camera);
     EXPECT_TRUE(sameBits(reused, reference));
     EXPECT_FALSE(sameBits(reused, first)) << "the light edit changed nothing";
