@@ -156,6 +156,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
   for (std::uint32_t run = 0; run <= o.runs; ++run) {
     // The two full frames alternate in order between runs (the first of a pair ran measurably slower here).
     gpu::RenderResult fullFrame, recorded;  // recorded: the state the edits start from
+    reusing.replaceScene(scene);            // drops the state: `recorded` is a full frame that records it
     if (run % 2) fullFrame = reference.render(camera, off);
     recorded = reusing.render(camera, on);
     if (run % 2 == 0) fullFrame = reference.render(camera, off);

@@ -71,7 +71,8 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
   p.recordHits = p.mode == FrameReuse::None && p.primaryCached;
   const std::uint64_t secondaryBytes = paths * kSecondaryBytesPerPath * secondaryDepths;
   const bool secondaryFits = p.primaryCached && secondaryDepths > 0 && secondaryBytes <= kSecondaryHitCacheBudget;
-  p.recordSecondary = p.recordHits && secondaryFits;
+  p.recordSecondary =
+      secondaryFits && (p.mode == FrameReuse::None || (p.mode == FrameReuse::CachedPrimaryHits && !secondaryValid_));
   p.loadSecondary = p.mode == FrameReuse::CachedPrimaryHits && secondaryFits && secondaryValid_;
   if (p.recordSecondary) ensure(secondaryCache, secondaryBytes, MemoryPlace::Device);
   cachedPaths_ = paths;

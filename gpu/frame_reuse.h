@@ -37,7 +37,8 @@ struct ReuseKey {
 struct ReusePlan {
   FrameReuse mode = FrameReuse::None;
   bool recordHits = false;       // copy the primary rays and hits into the cache (base pass)
-  bool recordSecondary = false;  // copy the queues and hits of depths >= 1 into the secondary cache (base pass)
+  bool recordSecondary = false;  // copy the queues and hits of depths >= 1 into the secondary cache (base pass;
+                                 // also in a CachedPrimaryHits frame after a partial re-render left them stale)
   bool loadSecondary = false;    // CachedPrimaryHits: load those too, skipping every closest-hit trace
   bool recordSegments = false;   // record the per-target segment cells (every pass of the frame)
   bool primaryCached = false;    // the cache holds every path's primary ray and hit once the frame ran: primary

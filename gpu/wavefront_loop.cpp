@@ -175,7 +175,7 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   const bool loadHits = which == TracedTargets::All && framePlan.mode == FrameReuse::CachedPrimaryHits;
   const bool saveHits = which == TracedTargets::All && framePlan.recordHits;
   const bool loadSecondary = loadHits && framePlan.loadSecondary;
-  const bool saveSecondary = saveHits && framePlan.recordSecondary;
+  const bool saveSecondary = which == TracedTargets::All && framePlan.recordSecondary;
   const bool record = which != TracedTargets::Refined && framePlan.recordSegments;
 
   const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape, listed));

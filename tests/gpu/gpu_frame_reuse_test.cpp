@@ -173,6 +173,14 @@ TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesEqualsAFullRender) {
     const gpu::RenderResult lit = renderer.render(camera, reuseSettings());
     EXPECT_EQ(lit.reuse, FrameReuse::CachedPrimaryHits);
     EXPECT_TRUE(sameBits(lit, fullRender(edited, camera)));
+    // That frame traced the bounces again (the moves left their cache stale) and cached them: the next light edit
+    // traces nothing.
+    warmer.intensity = 3.0;
+    editLight(edited, 0, warmer);
+    renderer.updateLights(edited);
+    const gpu::RenderResult relit = renderer.render(camera, reuseSettings());
+    EXPECT_EQ(stageMs(relit, "trace"), 0.0);
+    EXPECT_TRUE(sameBits(relit, fullRender(edited, camera)));
   }
   EXPECT_LT(traced, total) << "every target was re-traced: the masks select nothing";
 }
