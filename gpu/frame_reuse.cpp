@@ -81,7 +81,7 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
     ensure(primaryRays, paths * sizeof(gpu_shared::HtRay), MemoryPlace::Device);
     ensure(primaryHits, paths * sizeof(gpu_shared::HtHit), MemoryPlace::Device);
   }
-  ensure(segmentMasks, targets * 2 * sizeof(std::uint32_t), MemoryPlace::Device);
+  ensure(segmentMasks, targets * kMaskWords * sizeof(std::uint32_t), MemoryPlace::Device);
   ensure(dirtyList, (kListFirst + targets) * sizeof(std::uint32_t), MemoryPlace::HostReadback);
   maskedTargets_ = targets;
   invalidate();  // valid again once the frame finished (frameDone)
@@ -105,9 +105,11 @@ std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks
                                             std::span<const gpu_shared::HtRay> primaryRays,
                                             std::span<const gpu_shared::HtHit> primaryHits, std::uint32_t spp) {
   std::vector<std::uint32_t> dirty;
-  for (std::size_t t = 0; t < masks.size() / 2; ++t) {
-    bool hit = ((masks[2 * t] & plan.gridCells[0]) | (masks[2 * t + 1] & plan.gridCells[1])) != 0;
-    for (std::uint32_t s = 0; !hit && !primaryHits.empty() && s < spp; ++s) {
+  for (std::size_t t = 0; t < masks.size() / kMaskWords; ++t) {
+    const std::uint32_t* m = masks.data() + t * kMaskWords;
+    bool hit = ((m[0] & plan.gridCells[0]) | (m[1] & plan.gridCells[1])) != 0;
+    const bool primaryNear = ((m[2] & plan.gridCells[0]) | (m[3] & plan.gridCells[1])) != 0;
+    for (std::uint32_t s = 0; !hit && primaryNear && !primaryHits.empty() && s < spp; ++s) {
       const gpu_shared::HtRay& r = primaryRays[t * spp + s];
       const gpu_shared::HtHit& h = primaryHits[t * spp + s];
       const float tEnd = h.triId != gpu_shared::HT_MISS ? h.t : r.tmax;

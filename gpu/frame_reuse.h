@@ -74,7 +74,7 @@ class FrameReuseState {
   // After the frame planned last finished: what it recorded is now the state edits are measured against.
   void frameDone(const ReuseKey& key, const ReusePlan& plan);
 
-  // Sized by plan(): primary rays and hits of every path of the frame (path order), segment masks (2 words per
+  // Sized by plan(): primary rays and hits of every path of the frame (path order), segment masks (kMaskWords per
   // target), and the dirty-target list (header: moved cells in words 0-1, the count in 2, the padded moved bounds'
   // lo in 4-6 and hi in 8-10 as float bits; entries from kListFirst).
   // The secondary cache holds, for depth d >= 1, rays at region (d - 1) * paths * 52 B, then the queue entries' path
@@ -98,9 +98,13 @@ class FrameReuseState {
   Bounds3 movedBounds_;
 };
 
-// CPU reference of mark_dirty.comp: the targets (ascending) whose masks (2 words per target) share a cell with
-// `plan.gridCells`, or, with cached primary rays and hits (`spp` per target; empty: none), one of whose primary
-// segments meets the box [plan.movedLo, plan.movedHi].
+// Words of a target's segment mask: the cells of its segments but the cached primary ones (0-1), the cells of its
+// cached primary segments (2-3; zero without the cache), record_segments.comp.
+inline constexpr std::uint32_t kMaskWords = 4;
+
+// CPU reference of mark_dirty.comp: the targets (ascending) whose masks (kMaskWords per target) share a cell with
+// `plan.gridCells` in words 0-1, or, with cached primary rays and hits (`spp` per target; empty: none), in words
+// 2-3 and one of whose primary segments meets the box [plan.movedLo, plan.movedHi].
 std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks, const ReusePlan& plan,
                                             std::span<const gpu_shared::HtRay> primaryRays,
                                             std::span<const gpu_shared::HtHit> primaryHits, std::uint32_t spp);

@@ -90,7 +90,7 @@ Renderer::ReuseSnapshot Renderer::reuseSnapshot() const {
   const FrameReuseState& reuse = impl_->reuse;
   snap.grid = reuse.grid();
   if (!reuse.masksValid()) return snap;
-  snap.segmentMasks.resize(reuse.maskedTargets() * 2);
+  snap.segmentMasks.resize(reuse.maskedTargets() * kMaskWords);
   reuse.segmentMasks.download(snap.segmentMasks.data(), snap.segmentMasks.size() * sizeof(std::uint32_t));
   const ReusePlan& plan = impl_->framePlan;
   snap.movedCells[0] = plan.gridCells[0];

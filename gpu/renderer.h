@@ -133,7 +133,7 @@ class Renderer {
   std::vector<std::uint32_t> traceOccluded(std::span<const gpu_shared::HtRay> rays, TraceStats* stats = nullptr);
 
   // The frame-reuse state (RenderSettings::reuse) for tests and benchmarks: per-target segment cells of the last
-  // frame that kept state (2 words per target, gpu/segment_cells.h), the grid they are counted on, the cached
+  // frame that kept state (4 words per target, gpu/frame_reuse.h kMaskWords), the grid they are counted on, the cached
   // primary rays and hits (empty when not cached), the targets the last partial re-render traced (in the marking
   // pass's order) with what that pass tested. Empty when no state is kept.
   struct ReuseSnapshot {

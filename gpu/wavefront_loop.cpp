@@ -195,7 +195,7 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
     if (clear) {  // live flags of the shadow slots start cleared; gather_direct clears them after use
       vkCmdFillBuffer(cmd, work.shadowContrib.handle(), 0, VK_WHOLE_SIZE, 0);
       if (record && which == TracedTargets::All) {  // a full frame records every target's cells afresh
-        vkCmdFillBuffer(cmd, reuse.segmentMasks.handle(), 0, totalPaths / spp * 2 * sizeof(std::uint32_t), 0);
+        vkCmdFillBuffer(cmd, reuse.segmentMasks.handle(), 0, totalPaths / spp * kMaskWords * sizeof(std::uint32_t), 0);
       }
       VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
                         VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};

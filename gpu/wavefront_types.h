@@ -81,7 +81,7 @@ struct FrameBlock {
   vec4 background;     // rgb radiance of escaped rays
   vec4 ambient;        // rgb ambient irradiance on diffuse surfaces
   CameraBlock camera;  // the frame's camera model's parameters (camera_models/model_list.h)
-  // Frame reuse (gpu/frame_reuse.h): per-target segment cells, 2 words per target (device address; 0 = the frame
+  // Frame reuse (gpu/frame_reuse.h): per-target segment cells, 4 words per target (device address; 0 = the frame
   // records none), the cached primary rays and hits of every path (HtRay / HtHit per path in path order; 0 = none:
   // then the masks hold the primary segments too) and the world grid the cells are counted on (segment_cells.h).
   uint64_t segmentMasks;

@@ -4,7 +4,8 @@
 // target of the frame: a target whose segment cells meet the moved bounds' cells (FRAME.refine words 0-1) is
 // appended to the dirty list (count in word 2, entries from word FRAME.refineInfo.y) and its mask cleared for the
 // re-trace to record again. With the primary rays and hits cached (FRAME.primaryHits != 0), a target is also dirty
-// when a primary segment of one of its samples meets the padded moved bounds (FRAME.refine words 4-6 and 8-10, float
+// when its primary segments' cells (mask words 2-3) meet those cells and a primary segment of one of its samples
+// meets the padded moved bounds (FRAME.refine words 4-6 and 8-10, float
 // bits). List order varies with scheduling; a target's samples do not depend on it.
 // CPU reference: gpu::markDirtyTargets (gpu/frame_reuse.h).
 #include "gpu/shaders/common.glsl"
@@ -37,10 +38,12 @@ void main() {
   uint target = pc.batchFirst + gl_GlobalInvocationID.x;  // dispatched in slices of targets; batchCount: all
   bool dirty = false;
   if (target < pc.batchCount) {
-    uvec2 mask = uvec2(UintRef(FRAME.segmentMasks).v[2u * target], UintRef(FRAME.segmentMasks).v[2u * target + 1u]);
+    uvec4 mask = uvec4(UintRef(FRAME.segmentMasks).v[4u * target], UintRef(FRAME.segmentMasks).v[4u * target + 1u],
+                       UintRef(FRAME.segmentMasks).v[4u * target + 2u], UintRef(FRAME.segmentMasks).v[4u * target + 3u]);
     uvec2 moved = uvec2(UintRef(FRAME.refine).v[0], UintRef(FRAME.refine).v[1]);
     dirty = ((mask.x & moved.x) | (mask.y & moved.y)) != 0u;
-    if (!dirty && FRAME.primaryHits != 0ul) dirty = primary_meets_moved(target);
+    bool primaryNear = ((mask.z & moved.x) | (mask.w & moved.y)) != 0u;
+    if (!dirty && primaryNear) dirty = primary_meets_moved(target);
   }
   uvec4 ballot = subgroupBallot(dirty);
   uint total = subgroupBallotBitCount(ballot);
@@ -49,7 +52,6 @@ void main() {
   base = subgroupBroadcastFirst(base);
   if (dirty) {
     UintRef(FRAME.refine).v[FRAME.refineInfo.y + base + subgroupBallotExclusiveBitCount(ballot)] = target;
-    UintRef(FRAME.segmentMasks).v[2u * target] = 0u;
-    UintRef(FRAME.segmentMasks).v[2u * target + 1u] = 0u;
+    for (uint w = 0u; w < 4u; ++w) UintRef(FRAME.segmentMasks).v[4u * target + w] = 0u;
   }
 }

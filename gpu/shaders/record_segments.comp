@@ -4,8 +4,10 @@
 // of the current ray queue, after this depth's closest-hit trace and shadow trace and before gather_direct clears
 // the shadow slots: ORs the world-grid cells of the entry's segment (to its hit; a miss to infinity) and of every
 // shadow ray its path emitted at this depth (to the light) into the mask of the path's target (gpu/segment_cells.h).
-// With the primary hits cached (FRAME.primaryHits != 0) the primary segment stays out of the mask (mark_dirty.comp
-// tests it exactly), and a partial re-render writes the new primary hits of its listed targets into the cache.
+// Masks are 4 words per target: words 0-1 the cells of every segment but the cached primary ones; with the primary
+// hits cached (FRAME.primaryHits != 0) the primary segments' cells go to words 2-3 (mark_dirty.comp then tests the
+// cached segments exactly where those cells meet the moved bounds), and a partial re-render writes the new primary
+// hits of its listed targets into the cache.
 #include "gpu/shaders/common.glsl"
 #include "gpu/segment_cells.h"
 
@@ -23,12 +25,15 @@ void main() {
   HtRay ray = load_ray(pc.queue, i);
   HtHit hit = load_hit(i);
   bool cachedPrimary = pc.depth == 0u && FRAME.primaryHits != 0ul;
-  uvec2 cells = uvec2(0u);
-  if (!cachedPrimary) {
-    cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, hit.triId != HT_MISS ? hit.t : ray.tmax, FRAME.grid);
-  } else if (LISTED) {
-    HitCacheRef(FRAME.primaryHits).h[target * spp + (pc.batchFirst + path) % spp] =
-        uvec4(floatBitsToUint(hit.t), hit.triId, floatBitsToUint(hit.u), floatBitsToUint(hit.v));
+  uvec2 cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, hit.triId != HT_MISS ? hit.t : ray.tmax, FRAME.grid);
+  if (cachedPrimary) {  // words 2-3: the marking pass's quick reject before its exact test of the cached segments
+    if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], cells.x);
+    if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], cells.y);
+    cells = uvec2(0u);
+    if (LISTED) {
+      HitCacheRef(FRAME.primaryHits).h[target * spp + (pc.batchFirst + path) % spp] =
+          uvec4(floatBitsToUint(hit.t), hit.triId, floatBitsToUint(hit.u), floatBitsToUint(hit.v));
+    }
   }
   uint lightCount = FRAME.scene.x;
   for (uint l = 0u; l < lightCount; ++l) {
@@ -38,6 +43,6 @@ void main() {
       cells |= ht_segment_cells(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, FRAME.grid);
     }
   }
-  if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[2u * target], cells.x);
-  if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[2u * target + 1u], cells.y);
+  if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target], cells.x);
+  if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 1u], cells.y);
 }

@@ -192,7 +192,7 @@ TEST(FrameReuse, MarkingPassMatchesItsCpuReference) {
   gpu::Renderer renderer(sharedContext(), scene);
   renderer.render(camera, reuseSettings());
   const gpu::Renderer::ReuseSnapshot before = renderer.reuseSnapshot();
-  ASSERT_EQ(before.segmentMasks.size(), frameShape(camera).targets() * 2);
+  ASSERT_EQ(before.segmentMasks.size(), frameShape(camera).targets() * gpu::kMaskWords);
   const std::size_t index = *findNode(scene, "glow-sphere");
   const Bounds3 old = nodeWorldBounds(scene, index);
   glm::dmat4 world(1.0);
