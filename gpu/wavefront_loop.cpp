@@ -194,7 +194,7 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
     beginCommands();
     if (clear) {  // live flags of the shadow slots start cleared; gather_direct clears them after use
       vkCmdFillBuffer(cmd, work.shadowContrib.handle(), 0, VK_WHOLE_SIZE, 0);
-      if (record && which == TracedTargets::All) {  // a full frame records every target's cells afresh
+      if (record && which == TracedTargets::All && !loadHits) {  // a full frame records every target's cells afresh
         vkCmdFillBuffer(cmd, reuse.segmentMasks.handle(), 0, totalPaths / spp * kMaskWords * sizeof(std::uint32_t), 0);
       }
       VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -227,7 +227,7 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
           rec.dispatchIndirect(pass, pc, args, queueArgs, stage);
       };
       auto recordSegments = [&] {
-        if (record) overQueue(pipeline(ShaderId::RecordSegments, depthSpec({listed}, depth)), Stage::Record);
+        if (record) overQueue(pipeline(ShaderId::RecordSegments, depthSpec({listed, loadHits}, depth)), Stage::Record);
       };
       if (depth == 0 ? !loadHits : !loadSecondary) overQueue(traceClosest, Stage::Trace);
       if (depth == 0 && saveHits) {

@@ -12,6 +12,9 @@
 #include "gpu/segment_cells.h"
 
 layout(constant_id = 0) const bool LISTED = false;  // paths of listed targets (a partial re-render)
+// A frame re-shaded from cached hits (a light edit): its closest-hit segments are those already in the masks, so only
+// the shadow segments are added, to masks not cleared: the old shadow cells stay, a superset, still conservative.
+layout(constant_id = 1) const bool SHADOWS_ONLY = false;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer HitCacheRef { uvec4 h[]; };
 
@@ -25,8 +28,11 @@ void main() {
   HtRay ray = load_ray(pc.queue, i);
   HtHit hit = load_hit(i);
   bool cachedPrimary = pc.depth == 0u && FRAME.primaryHits != 0ul;
-  uvec2 cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, hit.triId != HT_MISS ? hit.t : ray.tmax, FRAME.grid);
-  if (cachedPrimary) {  // words 2-3: the marking pass's quick reject before its exact test of the cached segments
+  uvec2 cells = uvec2(0u);
+  if (!SHADOWS_ONLY) {
+    cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, hit.triId != HT_MISS ? hit.t : ray.tmax, FRAME.grid);
+  }
+  if (cachedPrimary && !SHADOWS_ONLY) {  // words 2-3: the marking pass's quick reject before its exact test of the cached segments
     if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], cells.x);
     if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], cells.y);
     cells = uvec2(0u);

@@ -150,6 +150,12 @@ TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesEqualsAFullRender) {
     Scene edited = scene;
     const gpu::RenderResult first = renderer.render(camera, reuseSettings());
     ASSERT_EQ(first.reuse, FrameReuse::None);
+    // A light moved first: its re-shaded frame adds the new shadow segments to the masks the moves are tested on.
+    LightEdit shift;
+    shift.position = glm::dvec3(edited.lights[0].position) + glm::dvec3(-0.4, 0.2, 0.1);
+    editLight(edited, 0, shift);
+    renderer.updateLights(edited);
+    ASSERT_EQ(renderer.render(camera, reuseSettings()).reuse, FrameReuse::CachedPrimaryHits);
     for (int move = 0; move < 3; ++move) {
       const std::string node = movable[rng() % movable.size()];
       SCOPED_TRACE(node + " move " + std::to_string(move));
