@@ -142,14 +142,15 @@ void Renderer::Impl::accumulateChunk(const FrameCamera& camera, const FrameShape
   };
   // The first frame samples every target; later ones, under the adaptive policy, the targets that need samples.
   if (!accumulator.policy().adaptive || accumulator.report().frames == 0) {
-    tracePaths(camera, shape, spp, targets * spp, perBatch, false, settings, stageMs, progress);
+    tracePaths(camera, shape, spp, targets * spp, perBatch, TracedTargets::All, settings, stageMs, progress);
     accumulator.mutableReport().tracedTargets += targets;
   } else {
     const std::uint64_t listed = selectRefinedTargets(shape, targets, 0.0f, stageMs, true);
     accumulator.mutableReport().tracedTargets += listed;
     if (listed > 0) {
       frameBlock().refineInfo.w = spp;  // != 0: shade keys the listed targets' paths through the list
-      tracePaths(camera, shape, spp, listed * spp, std::min(perBatch, listed * spp), true, settings, stageMs, progress);
+      tracePaths(camera, shape, spp, listed * spp, std::min(perBatch, listed * spp), TracedTargets::Refined, settings,
+                 stageMs, progress);
     }
   }
   const ComputePipeline& show = pipeline(ShaderId::AccumShow, {shape.model});

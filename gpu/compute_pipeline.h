@@ -22,7 +22,9 @@ enum class ShaderId {
   Resolve,
   Interleave,
   RefineSelect,
-  AccumShow
+  AccumShow,
+  RecordSegments,
+  MarkDirty
 };
 
 std::span<const std::uint32_t> embeddedSpirv(ShaderId id);

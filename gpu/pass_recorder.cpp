@@ -15,6 +15,8 @@ const char* stageName(Stage stage) {
     case Stage::Resolve: return "resolve";
     case Stage::Refine: return "refine";
     case Stage::Interleave: return "interleave";
+    case Stage::Record: return "record";  // segment cells of frames that keep reuse state (gpu/frame_reuse.h)
+    case Stage::Mark: return "mark";      // the marking pass of a partial re-render
     case Stage::Count: break;
   }
   return "?";

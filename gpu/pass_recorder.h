@@ -12,7 +12,19 @@
 
 namespace ht::gpu {
 
-enum class Stage : std::uint32_t { Raygen, Trace, Shade, Shadow, Queues, Resolve, Refine, Interleave, Count };
+enum class Stage : std::uint32_t {
+  Raygen,
+  Trace,
+  Shade,
+  Shadow,
+  Queues,
+  Resolve,
+  Refine,
+  Interleave,
+  Record,
+  Mark,
+  Count
+};
 const char* stageName(Stage stage);
 
 class PassRecorder {

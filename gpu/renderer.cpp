@@ -72,14 +72,15 @@ void checkShape(const FrameShape& shape, std::uint32_t spp) {
   }
 }
 
-Renderer::Impl::Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o)
+Renderer::Impl::Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o, const Bounds3& sceneBounds)
     : vk(v),
       scene(std::move(s)),
       layout(v.pipelines->layout()),
       descriptors(v, layout.setLayout()),
       frame(v, sizeof(FrameBlock), MemoryPlace::HostReadback),
       counters(v, sizeof(GpuCounters), MemoryPlace::HostReadback),
-      buildOptions(o) {
+      buildOptions(o),
+      reuse(v, sceneBounds) {
   VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
   qi.queryCount = kQueryCapacity;
@@ -169,6 +170,7 @@ void Renderer::Impl::updateLights(const Scene& s) {
   HT_VK(vkQueueWaitIdle(vk.queue));
   scene.updateLights(s);
   ++sceneGeneration;
+  reuse.lightsEdited();
 }
 
 void Renderer::Impl::bindScene() {
@@ -274,10 +276,12 @@ void Renderer::Impl::fillFrame(const FrameCamera& camera, const FrameShape& shap
 }
 
 Renderer::Renderer(VulkanContext& context, const Scene& scene, const bvh::BuildOptions& buildOptions)
-    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, buildOptions), buildOptions)) {}
+    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, buildOptions), buildOptions,
+                                   scene.bounds())) {}
 
 Renderer::Renderer(VulkanContext& context, const Scene& scene, bvh::GpuBvh bvh, const bvh::BuildOptions& buildOptions)
-    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, std::move(bvh)), buildOptions)) {}
+    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, std::move(bvh)), buildOptions,
+                                   scene.bounds())) {}
 
 Renderer::Renderer(VulkanContext& context, const Scene& scene, SceneBvh bvh, const bvh::BuildOptions& buildOptions)
     : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, std::move(bvh)), buildOptions)) {}
@@ -285,9 +289,19 @@ Renderer::Renderer(VulkanContext& context, const Scene& scene, SceneBvh bvh, con
 Renderer::~Renderer() = default;
 
 const bvh::BuildReport& Renderer::bvhReport() const { return impl_->scene.bvhReport(); }
-void Renderer::replaceScene(const Scene& scene, BvhLayoutPolicy policy) { impl_->replaceScene(scene, policy); }
+void Renderer::replaceScene(const Scene& scene, BvhLayoutPolicy policy) {
+  impl_->replaceScene(scene, policy);
+  impl_->reuse.invalidate();
+}
 void Renderer::updateLights(const Scene& scene) { impl_->updateLights(scene); }
-void Renderer::moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes) { impl_->moveNodes(scene, nodes); }
+void Renderer::moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes) {
+  impl_->moveNodes(scene, nodes);
+  impl_->reuse.invalidate();
+}
+void Renderer::replaceSceneAfterMove(const Scene& scene, const Bounds3& oldBounds, const Bounds3& newBounds) {
+  impl_->replaceScene(scene, BvhLayoutPolicy::Automatic);
+  impl_->reuse.geometryMoved(oldBounds, newBounds);
+}
 BvhStats Renderer::bvhStats() const { return impl_->bvhStats; }
 const SceneFeatures& Renderer::features() const { return impl_->scene.features(); }
 

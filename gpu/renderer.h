@@ -15,6 +15,7 @@
 #include "camera_models/ray_table.h"
 #include "gpu/accumulator.h"
 #include "gpu/scene_bvh.h"
+#include "gpu/segment_cells.h"
 #include "scene/scene.h"
 
 namespace ht::gpu {
@@ -52,13 +53,27 @@ struct RenderSettings {
   // of all its spp + refineSpp samples. refineSpp 0 = off; refineContrast 0 refines every target, > 1 none.
   std::uint32_t refineSpp = 0;
   float refineContrast = 0.08f;
-  RenderRegion region;                                // default: the whole frame
+  RenderRegion region;  // default: the whole frame
+  // Keep what the next frame of the same view can reuse after an edit (docs/REUSE.md §3, §4): the primary rays and
+  // hits of every sample (48 B per path, up to kPrimaryHitCacheBudget) and per target the world-grid cells its path
+  // segments met (8 B per target). Then a frame after updateLights re-shades the cached hits without raygen and
+  // primary trace, and a frame after replaceSceneAfterMove re-traces only the targets whose segments may meet the
+  // moved bounds; both equal a full render of the edited scene bit for bit. Only frames of one chunk of views
+  // without adaptive refinement keep state; others render in full.
+  bool reuse = false;
   std::function<void(double fractionDone)> progress;  // called after each batch of paths (optional)
 };
 
 struct StageTiming {
   std::string name;  // "raygen", "trace", "shade", "shadow", "resolve", "interleave", "readback", ...
   double ms = 0.0;   // GPU timestamp time summed over batches/bounces (readback: host wall time)
+};
+
+// What a frame took from the previous frame of the same view (RenderSettings::reuse).
+enum class FrameReuse : std::uint32_t {
+  None,               // rendered in full
+  CachedPrimaryHits,  // the light values changed (or nothing did): re-shaded from the cached primary hits
+  PartialRetrace,     // a node moved: only the targets whose path segments could meet it were traced again
 };
 
 struct RenderResult {
@@ -72,6 +87,8 @@ struct RenderResult {
   std::uint32_t nonFiniteSamples = 0;  // targets whose value was NaN/Inf and was written as 0 (should be 0)
   std::uint64_t refinedTargets = 0;    // targets traced again by adaptive refinement (RenderSettings::refineSpp)
   AccumulationReport accumulation;     // Renderer::accumulate only
+  FrameReuse reuse = FrameReuse::None;
+  std::uint64_t tracedTargets = 0;  // targets whose samples this frame computed (PartialRetrace: the dirty ones)
 };
 
 // Which BVH layout the Renderer traces and how its BVH changed since construction (tests and benchmarks: a node
@@ -116,8 +133,14 @@ class Renderer {
   // `scene` is this Renderer's scene with nodes `nodes` (indices into scene.nodes) moved by setNodeWorldMatrix. On the
   // two-level BVH: a refit of the moved instances, a top-level rebuild and an upload of what changed (no rebuild). On
   // the flattened BVH: the scene switches to the two-level BVH (built whole once; later moves take the fast path).
+  // Frame reuse (RenderSettings::reuse) after moveNodes: none, the next frame renders whole (the moved bounds are
+  // not known here; replaceSceneAfterMove gives them).
   void moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes);
   BvhStats bvhStats() const;
+  // replaceScene (a full BVH rebuild) after an edit that changed geometry only inside `oldBounds` and `newBounds` (a node moved: its
+  // world bounds before and after, e.g. nodeWorldBounds in scene/scene_edits.h): with RenderSettings::reuse the next
+  // frame of the same view re-traces only the targets whose last path segments met a grid cell of those bounds.
+  void replaceSceneAfterMove(const Scene& scene, const Bounds3& oldBounds, const Bounds3& newBounds);
 
   // Every view of the camera, whatever its model (camera_models/frame_camera.h). Large view arrays are rendered in
   // chunks of views (bounded device memory).
@@ -140,6 +163,21 @@ class Renderer {
   // traversal step limit (the lavapipe loop cap), naming how many rays did.
   std::vector<gpu_shared::HtHit> traceClosest(std::span<const gpu_shared::HtRay> rays, TraceStats* stats = nullptr);
   std::vector<std::uint32_t> traceOccluded(std::span<const gpu_shared::HtRay> rays, TraceStats* stats = nullptr);
+
+  // The frame-reuse state (RenderSettings::reuse) for tests and benchmarks: per-target segment cells of the last
+  // frame that kept state (4 words per target, gpu/frame_reuse.h kMaskWords), the grid they are counted on, the cached
+  // primary rays and hits (empty when not cached), the targets the last partial re-render traced (in the marking
+  // pass's order) with what that pass tested. Empty when no state is kept.
+  struct ReuseSnapshot {
+    std::vector<std::uint32_t> segmentMasks, dirtyTargets;
+    std::vector<gpu_shared::HtRay> primaryRays;
+    std::vector<gpu_shared::HtHit> primaryHits;
+    gpu_shared::SegmentGrid grid{};
+    // The last partial re-render's moved cells and padded moved bounds (what its marking pass tested).
+    std::uint32_t movedCells[2] = {0, 0};
+    glm::vec3 movedLo{0.0f}, movedHi{0.0f};
+  };
+  ReuseSnapshot reuseSnapshot() const;
 
   struct Impl;
 

@@ -13,6 +13,7 @@
 #include "gpu/compute_pipeline.h"
 #include "gpu/device_buffer.h"
 #include "gpu/frame_descriptors.h"
+#include "gpu/frame_reuse.h"
 #include "gpu/gpu_scene.h"
 #include "gpu/pass_recorder.h"
 #include "gpu/path_buffers.h"
@@ -50,6 +51,10 @@ std::vector<std::uint32_t> withConstant(std::vector<std::uint32_t> spec, std::ui
 // Throw GpuError naming the value out of range.
 void checkSettings(const RenderSettings& settings);
 void checkShape(const FrameShape& shape, std::uint32_t spp);
+
+// Which targets a call of tracePaths traces: every target of the chunk (its base pass), the targets adaptive
+// refinement listed, or the dirty targets of a partial re-render (gpu/frame_reuse.h).
+enum class TracedTargets { All, Refined, Dirty };
 
 // The rows a chunk renders of each of its views: `first` counted from the bottom (as targets count them), of views
 // `viewRows` rows high; the chunk's FrameShape::height is the band's row count (RenderSettings::region).
@@ -97,8 +102,10 @@ struct Renderer::Impl {
   BvhStats bvhStats;
   std::uint64_t sceneGeneration = 0;    // bumped by replaceScene and updateLights (accumulation keys)
   Accumulator* accumulating = nullptr;  // during accumulate(): the accumulation the chunks add to
+  FrameReuseState reuse;  // what the next frame of the same view may reuse (RenderSettings::reuse)
+  ReusePlan framePlan;    // the plan of the chunk being rendered
 
-  Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o);
+  Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o, const Bounds3& sceneBounds);
 
   ~Impl();
 
@@ -185,19 +192,39 @@ struct Renderer::Impl {
                  std::uint32_t viewCount, const RenderSettings& settings);
   // The wavefront frame loop (wavefront_loop.cpp).
   RenderResult render(const FrameCamera& camera, const RenderSettings& settings);
+  // reusable: the frame is this one chunk without refinement, so it may reuse and keep state (gpu/frame_reuse.h).
   void renderChunk(const FrameCamera& camera, const FrameShape& shape, const RowBand& band, std::uint32_t viewFirst,
-                   std::uint32_t viewCount, const RenderSettings& settings, StageTimes& stageMs, RenderResult& result);
-  // The samples of a single frame's chunk: the base pass, then adaptive refinement.
+                   std::uint32_t viewCount, const RenderSettings& settings, bool reusable, StageTimes& stageMs,
+                   RenderResult& result);
+  // The samples of a single frame's chunk: the base pass (or the dirty targets of a partial re-render), then
+  // adaptive refinement.
   void renderChunkSamples(const FrameCamera& camera, const FrameShape& shape, std::uint64_t targets,
                           std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
                           RenderResult& result);
   // Traces paths [0, totalPaths) of `spp` samples per target in batches of perBatch (a multiple of spp) and resolves
-  // them into the subpixel buffer. refining: the listed targets of FrameBlock.refine (refineInfo.w = the base spp),
-  // through the REFINING pipelines of raygen and resolve; else the chunk's base pass, its first call, which clears
-  // the shadow slots (gather_direct leaves every slot it used cleared for later batches).
+  // them into the subpixel buffer. Refined / Dirty: the listed targets of FrameBlock.refine (refineInfo.w = the base
+  // spp when refining, 0 for dirty targets), through the REFINING pipelines of raygen and resolve; else the chunk's
+  // base pass. The first call of a frame clears the shadow slots (gather_direct leaves every slot it used cleared for
+  // later batches). framePlan says whether the base pass loads or saves the cached primary hits and whether the
+  // passes record segment cells.
   void tracePaths(const FrameCamera& camera, const FrameShape& shape, std::uint32_t spp, std::uint64_t totalPaths,
-                  std::uint64_t perBatch, bool refining, const RenderSettings& settings, StageTimes& stageMs,
+                  std::uint64_t perBatch, TracedTargets which, const RenderSettings& settings, StageTimes& stageMs,
                   const std::function<void(double)>& progress);
+  // Closest-hit passes per batch: the primary one, plus maxDepth more when mirrors or glass continue paths.
+  std::uint32_t depthPasses(const RenderSettings& settings) const {
+    const SceneFeatures& feat = scene.features();
+    const bool bounces = feat.mirrors || feat.glass || settings.forceAllFeatures;
+    return bounces ? settings.maxDepth + 1 : 1;
+  }
+  // Frame reuse: copies the queue `depth % 2`, its path indices and the hits of `depth` (>= 1) of the batch from
+  // (load) or into the secondary cache (frame_reuse.h), between the passes recorded into `cmd`.
+  void copySecondary(std::uint32_t depth, std::uint32_t batchFirst, std::uint32_t count, bool load);
+  // Frame reuse (partial_retrace.cpp): the key of the frame fillFrame wrote; the marking pass and the re-trace of
+  // the dirty targets of a partial re-render (returns how many).
+  ReuseKey reuseKey(const RenderSettings& settings) const;
+  std::uint64_t retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t targets,
+                             std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
+                             const std::function<void(double)>& progress);
   // Adaptive refinement (refinement_pass.cpp); byError: the targets the accumulation's stop rule says need samples.
   std::uint64_t selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast,
                                      StageTimes& stageMs, bool byError = false);

@@ -72,7 +72,8 @@ RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSetti
         settings.progress((first + done * count) / views);
       };
     }
-    renderChunk(camera, shape, band, region.viewFirst + first, count, chunkSettings, stageMs, result);
+    const bool reusable = count == shape.views && settings.refineSpp == 0;
+    renderChunk(camera, shape, band, region.viewFirst + first, count, chunkSettings, reusable, stageMs, result);
     auto tRead = std::chrono::steady_clock::now();
     outputs.image.download(result.rgba.data() + viewPixels * first * 4, viewPixels * count * 16);
     readbackMs += msSince(tRead);
@@ -82,6 +83,7 @@ RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSetti
     auto stage = static_cast<Stage>(s);
     if (stage == Stage::Shadow && !lights) continue;
     if (stage == Stage::Refine && settings.refineSpp == 0 && !accumulating) continue;
+    if ((stage == Stage::Record || stage == Stage::Mark) && !settings.reuse) continue;
     result.stages.push_back({stageName(stage), stageMs[s]});
   }
   result.stages.push_back({"readback", readbackMs});
@@ -91,7 +93,7 @@ RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSetti
 
 void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& shape, const RowBand& band,
                                  std::uint32_t viewFirst, std::uint32_t viewCount, const RenderSettings& settings,
-                                 StageTimes& stageMs, RenderResult& result) {
+                                 bool reusable, StageTimes& stageMs, RenderResult& result) {
   const std::uint64_t targets =
       static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
   // Batch size: whole targets, bounded by the path-state memory budget.
@@ -105,6 +107,20 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   bindState();
   fillFrame(camera, shape, band, viewFirst, viewCount, settings);
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));
+  const ReuseKey key = reuseKey(settings);
+  // Frame reuse is for single frames: an accumulation step keeps no reuse state (and drops what was kept).
+  framePlan = reuse.plan(key, settings.reuse && !accumulating, reusable && !accumulating, targets * settings.spp,
+                         targets, depthPasses(settings) - 1);
+  if (framePlan.recordSegments) {
+    frameBlock().segmentMasks = reuse.segmentMasks.address();
+    frameBlock().grid = reuse.grid();
+  }
+  if (framePlan.primaryCached) {
+    frameBlock().primaryRays = reuse.primaryRays.address();
+    frameBlock().primaryHits = reuse.primaryHits.address();
+  }
+  result.reuse = framePlan.mode;
+
   if (accumulating) {
     accumulateChunk(camera, shape, band, viewFirst, viewCount, settings, perBatch, stageMs, result);
   } else {
@@ -121,15 +137,23 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   result.raysTraced += c.raysTraced;
   result.maxTraversalSteps = std::max(result.maxTraversalSteps, c.maxSteps);
   result.nonFiniteSamples += c.nanCount;
+  reuse.frameDone(key, framePlan);
 }
 
 void Renderer::Impl::renderChunkSamples(const FrameCamera& camera, const FrameShape& shape, std::uint64_t targets,
                                         std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
                                         RenderResult& result) {
   const double share = settings.refineSpp > 0 ? 0.8 : 1.0;  // progress: the refinement takes the rest
-  tracePaths(camera, shape, settings.spp, targets * settings.spp, perBatch, false, settings, stageMs, [&](double done) {
+  auto baseProgress = [&](double done) {
     if (settings.progress) settings.progress(done * share);
-  });
+  };
+  if (framePlan.mode == FrameReuse::PartialRetrace) {
+    result.tracedTargets += retraceDirty(camera, shape, targets, perBatch, settings, stageMs, baseProgress);
+  } else {
+    tracePaths(camera, shape, settings.spp, targets * settings.spp, perBatch, TracedTargets::All, settings, stageMs,
+               baseProgress);
+    result.tracedTargets += targets;
+  }
   if (settings.refineSpp > 0) {
     const std::uint64_t refined = selectRefinedTargets(shape, targets, settings.refineContrast, stageMs);
     result.refinedTargets += refined;
@@ -139,8 +163,8 @@ void Renderer::Impl::renderChunkSamples(const FrameCamera& camera, const FrameSh
       f.refineInfo.w = settings.spp;  // != 0: trace the listed targets, and keep the base samples in their mean
       const std::uint64_t refineBatch =
           std::min(perBatch / settings.refineSpp * settings.refineSpp, refined * settings.refineSpp);
-      tracePaths(camera, shape, settings.refineSpp, refined * settings.refineSpp, refineBatch, true, settings, stageMs,
-                 [&](double done) {
+      tracePaths(camera, shape, settings.refineSpp, refined * settings.refineSpp, refineBatch, TracedTargets::Refined,
+                 settings, stageMs, [&](double done) {
                    if (settings.progress) settings.progress(share + done * (1.0 - share));
                  });
     }
@@ -148,7 +172,7 @@ void Renderer::Impl::renderChunkSamples(const FrameCamera& camera, const FrameSh
 }
 
 void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& shape, std::uint32_t spp,
-                                std::uint64_t totalPaths, std::uint64_t perBatch, bool refining,
+                                std::uint64_t totalPaths, std::uint64_t perBatch, TracedTargets which,
                                 const RenderSettings& settings, StageTimes& stageMs,
                                 const std::function<void(double)>& progress) {
   const SceneFeatures& feat = scene.features();
@@ -156,56 +180,85 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   const bool lights = scene.lightCount() > 0 && (feat.lights || all);
   const bool mirror = feat.mirrors || all, glass = feat.glass || all,
              textures = (feat.textures && scene.textureCount() > 0) || all;
-  const std::uint32_t depthPasses = (mirror || glass) ? settings.maxDepth + 1 : 1;
+  const std::uint32_t depthPasses = this->depthPasses(settings);
+  const bool listed = which != TracedTargets::All;
+  // Frame reuse (gpu/frame_reuse.h): the base pass loads the cached primary rays and hits instead of running raygen
+  // and the primary trace, or saves them; every pass but refinement records its segment cells.
+  const bool loadHits = which == TracedTargets::All && framePlan.mode == FrameReuse::CachedPrimaryHits;
+  const bool saveHits = which == TracedTargets::All && framePlan.recordHits;
+  const bool loadSecondary = loadHits && framePlan.loadSecondary;
+  const bool saveSecondary = which == TracedTargets::All && framePlan.recordSecondary;
+  const bool record = which != TracedTargets::Refined && framePlan.recordSegments;
 
   const bool progressive = accumulating != nullptr;
-  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape, refining, progressive));
+  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape, listed, progressive));
   const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest, traceSpec({}));
   const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
   const std::vector<std::uint32_t> shadeFeatures = {lights, mirror, glass, textures};
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
-  std::vector<std::uint32_t> resolveSpec{shape.model, refining};
+  std::vector<std::uint32_t> resolveSpec{shape.model, listed};
   if (progressive) resolveSpec.push_back(1u);  // PROGRESSIVE, only when set (single frames keep their pipeline)
   const ComputePipeline& resolve = pipeline(ShaderId::Resolve, resolveSpec);
 
   const VkBuffer args = counters.handle();
-  bool clear = !refining || accumulating;  // a progressive frame may trace only a list: no base pass cleared
+  bool clear = which != TracedTargets::Refined || accumulating;  // a progressive frame may trace only a list
   for (std::uint64_t begin = 0; begin < totalPaths; begin += perBatch) {
     const auto count = static_cast<std::uint32_t>(std::min<std::uint64_t>(perBatch, totalPaths - begin));
     const auto batchFirst = static_cast<std::uint32_t>(begin);
     beginCommands();
     if (clear) {  // live flags of the shadow slots start cleared; gather_direct clears them after use
       vkCmdFillBuffer(cmd, work.shadowContrib.handle(), 0, VK_WHOLE_SIZE, 0);
+      if (record && which == TracedTargets::All && !loadHits) {  // a full frame records every target's cells afresh
+        vkCmdFillBuffer(cmd, reuse.segmentMasks.handle(), 0, totalPaths / spp * kMaskWords * sizeof(std::uint32_t), 0);
+      }
       VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
                         VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
       vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0,
                            nullptr, 0, nullptr);
       clear = false;
     }
+    const VkDeviceSize rayBytes = VkDeviceSize{count} * sizeof(gpu_shared::HtRay);
+    const VkDeviceSize hitBytes = VkDeviceSize{count} * sizeof(gpu_shared::HtHit);
     PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
-    rec.dispatch(raygen, passConstants(batchFirst, count, 0, 0), groupsFor(count), Stage::Raygen);
+    if (loadHits) {  // what raygen's first invocation writes: queue 0 holds the batch, the others are empty
+      const std::uint32_t queues[3] = {count, 0u, 0u};
+      vkCmdUpdateBuffer(cmd, counters.handle(), offsetof(GpuCounters, queueCount), sizeof(queues), queues);
+      recordComputeCopy(cmd, reuse.primaryRays, batchFirst * sizeof(gpu_shared::HtRay), work.rays[0], 0, rayBytes);
+      recordComputeCopy(cmd, reuse.primaryHits, batchFirst * sizeof(gpu_shared::HtHit), work.hits, 0, hitBytes);
+    } else {
+      rec.dispatch(raygen, passConstants(batchFirst, count, 0, 0), groupsFor(count), Stage::Raygen);
+    }
     for (std::uint32_t depth = 0; depth < depthPasses; ++depth) {
       const std::uint32_t q = depth % 2;
       PassConstants pc = passConstants(batchFirst, count, depth, q);
       const VkDeviceSize queueArgs = offsetof(GpuCounters, dispatch) + q * sizeof(glm::uvec4);
       const ComputePipeline& shade = pipeline(ShaderId::Shade, depthSpec(shadeFeatures, depth));
       const ComputePipeline& gather = pipeline(ShaderId::GatherDirect, depthSpec({}, depth));
-      if (depth == 0) {
-        rec.dispatch(traceClosest, pc, groupsFor(count), Stage::Trace);
-        rec.dispatch(shade, pc, groupsFor(count), Stage::Shade);
-      } else {
-        rec.dispatchIndirect(traceClosest, pc, args, queueArgs, Stage::Trace);
-        rec.dispatchIndirect(shade, pc, args, queueArgs, Stage::Shade);
+      auto overQueue = [&](const ComputePipeline& pass, Stage stage) {  // one invocation per entry of queue q
+        if (depth == 0)
+          rec.dispatch(pass, pc, groupsFor(count), stage);
+        else
+          rec.dispatchIndirect(pass, pc, args, queueArgs, stage);
+      };
+      auto recordSegments = [&] {
+        if (record) overQueue(pipeline(ShaderId::RecordSegments, depthSpec({listed, loadHits}, depth)), Stage::Record);
+      };
+      if (depth == 0 ? !loadHits : !loadSecondary) overQueue(traceClosest, Stage::Trace);
+      if (depth == 0 && saveHits) {
+        recordComputeCopy(cmd, work.rays[0], 0, reuse.primaryRays, batchFirst * sizeof(gpu_shared::HtRay), rayBytes);
+        recordComputeCopy(cmd, work.hits, 0, reuse.primaryHits, batchFirst * sizeof(gpu_shared::HtHit), hitBytes);
       }
+      if (depth > 0 && (saveSecondary || loadSecondary)) copySecondary(depth, batchFirst, count, loadSecondary);
+      overQueue(shade, Stage::Shade);
       rec.dispatch(afterShade, pc, 1, Stage::Queues);
       if (lights) {
         rec.dispatchIndirect(traceAny, pc, args, offsetof(GpuCounters, dispatch) + 2 * sizeof(glm::uvec4),
                              Stage::Shadow);
-        if (depth == 0)
-          rec.dispatch(gather, pc, groupsFor(count), Stage::Shadow);
-        else
-          rec.dispatchIndirect(gather, pc, args, queueArgs, Stage::Shadow);
+        recordSegments();  // before gather_direct clears the shadow slots
+        overQueue(gather, Stage::Shadow);
+      } else {
+        recordSegments();
       }
       rec.dispatch(endDepth, pc, 1, Stage::Queues);
     }

@@ -11,6 +11,7 @@
 #define HT_WAVEFRONT_TYPES_H
 #include "common/glsl_cpp.h"
 #include "camera_models/model_list.h"
+#include "gpu/segment_cells.h"
 #include "gpu/shader_interface.h"
 
 HT_SHARED_BEGIN
@@ -72,8 +73,9 @@ struct FrameBlock {
   uvec4 frame;         // x = seed, y = rows of a whole view (dims.y: of the band), z = targets per pixel;
                        // w unused (per-dispatch values travel in PassConstants)
   uvec4 refineInfo;    // adaptive refinement (refine_select.comp): x = contrast threshold (float bits), y = first
-                       // entry of the target list in `refine`, z = subgroup size the slots assume,
-                       // w = the base pass's spp while the listed targets are traced (resolve.comp averages
+                       // entry of the target list in `refine` (!= 0 while listed targets are traced: refinement
+                       // or a partial re-render, gpu/frame_reuse.h), z = subgroup size the slots assume,
+                       // w = the base pass's spp while refined targets are traced (resolve.comp averages
                        // its samples with theirs), 0 otherwise
   uvec4 flags;         // x = scene has vertex normals, y = scene has texcoords
   vec4 background;     // rgb radiance of escaped rays
@@ -85,6 +87,14 @@ struct FrameBlock {
   uint64_t accumTargets;
   uint64_t accumStats;  // AccumStats of the frame (device address)
   uvec4 accum;
+  // Frame reuse (gpu/frame_reuse.h): per-target segment cells, 4 words per target (device address; 0 = the frame
+  // records none), the cached primary rays and hits of every path (HtRay / HtHit per path in path order; 0 = none:
+  // then the masks hold the primary segments too) and the world grid the cells are counted on (segment_cells.h).
+  uint64_t segmentMasks;
+  uint64_t primaryRays;
+  uint64_t primaryHits;
+  uint64_t reuseUnused;
+  SegmentGrid grid;
 };
 
 // The accumulated samples of one target (docs/REUSE.md §1-§2): the sum of its n samples in sample order, and the

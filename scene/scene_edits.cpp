@@ -68,6 +68,13 @@ void setNodeWorldMatrix(Scene& scene, std::string_view name, const glm::dmat4& w
   node.world = world;
 }
 
+Bounds3 nodeWorldBounds(const Scene& scene, std::size_t index) {
+  Bounds3 b;
+  const SceneNode& node = scene.nodes.at(index);
+  for (std::uint32_t v = node.firstVertex; v < node.firstVertex + node.vertexCount; ++v) b.extend(scene.positions[v]);
+  return b;
+}
+
 void editLight(Scene& scene, std::size_t index, const LightEdit& edit) {
   const std::string what = "light " + std::to_string(index);
   if (index >= scene.lights.size()) {

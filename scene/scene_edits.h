@@ -25,6 +25,10 @@ struct LightEdit {
 // Throws SceneError for an index out of range, non-finite values, a zero direction or negative colour/intensity.
 void editLight(Scene& scene, std::size_t index, const LightEdit& edit);
 
+// The world bounds of the vertices of scene.nodes[index] as they are now (empty for a node without vertices): a
+// moved node's bounds before and after setNodeWorldMatrix are what gpu::Renderer::replaceSceneAfterMove takes.
+Bounds3 nodeWorldBounds(const Scene& scene, std::size_t index);
+
 // Index of node `name` in scene.nodes, or nullopt.
 std::optional<std::size_t> findNode(const Scene& scene, std::string_view name);
 

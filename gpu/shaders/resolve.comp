@@ -42,8 +42,8 @@ void main() {
   vec3 sum = vec3(0.0f);
   for (uint s = 0u; s < spp; ++s) sum += imageLoad(radianceBuffer, int(i * spp + s)).xyz;
   vec3 value = sum / float(spp);
-  if (REFINING) {
-    uint baseSpp = FRAME.refineInfo.w;
+  uint baseSpp = FRAME.refineInfo.w;
+  if (REFINING && baseSpp != 0u) {  // (a partial re-render lists targets with no base: their plain mean)
     bool subpixel = ht_model_has_subpixel_targets(MODEL);
     vec3 base = subpixel ? vec3(imageLoad(subpixelBuffer, int(target)).x)
                          : vec3(imageLoad(subpixelBuffer, int(3u * target)).x, imageLoad(subpixelBuffer, int(3u * target + 1u)).x,

@@ -139,14 +139,15 @@ float fresnel_dielectric(float cosI, float cosT, float eta) {
   return 0.5f * (rParl * rParl + rPerp * rPerp);
 }
 
-// The key of chunk path `chunkPath` (target x sample; in the refinement pass, listed target x sample) for its random
+// The key of chunk path `chunkPath` (target x sample; in the refinement pass or a partial re-render, listed target x
+// sample) for its random
 // choices: its target's index in the whole frame, its sample and the pass's spp (as footprint_sample keys its
 // position: a refined target's samples are those of a frame rendered at the refinement spp). Independent of how the
 // frame is cut into chunks of views or bands of rows (common.glsl frame_global_target).
 uint path_sample_key(uint chunkPath) {
   uint spp = FRAME.dims.z;
   uint entry = chunkPath / spp;
-  bool refining = FRAME.refineInfo.w != 0u;
+  bool refining = FRAME.refineInfo.y != 0u;  // listed targets: refinement or a partial re-render
   uint target = refining ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;
   uint globalTarget = frame_global_target(target);
   // Progressive frames key by the absolute sample index, without the frame's spp, so that k frames of N samples

@@ -68,12 +68,7 @@ TEST_F(GpuRegion, RowBandsOfALenticularPanelAreTheWholeFramesRows) {
 }
 
 TEST_F(GpuRegion, ViewRangesAndBandsOfAProjectorArrayAreTheWholeFramesPixels) {
-  const DisplayConfig display = parseDisplayConfig(R"({"name": "wall", "model": "projector-array", "spp": 2,
-      "projectorArray": {"screen": {"width": 160, "height": 90}, "observerDistance": 300, "observerHeight": 0,
-      "angularScattering": "auto", "image": {"width": 24, "height": 12},
-      "projectors": [{"position": [-10, 0, -180]}, {"position": [0, 0, -180]}, {"position": [10, 0, -180]},
-                     {"position": [20, 0, -180]}]}})",
-                                                   "wall.json", ".");
+  const DisplayConfig display = smallProjectorArray();
   const gpu::FrameCamera camera = gpu::makeDisplayCamera(display, scene_->bounds()).camera;
   gpu::Renderer renderer(sharedContext(), *scene_);
   const gpu::RenderResult whole = renderer.render(camera, regionSettings(2));

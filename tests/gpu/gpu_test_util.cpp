@@ -103,6 +103,15 @@ void addIcosphere(Scene& s, glm::vec3 center, float radius, int subdivisions, st
   }
 }
 
+DisplayConfig smallProjectorArray() {
+  return parseDisplayConfig(R"({"name": "wall", "model": "projector-array", "spp": 2,
+      "projectorArray": {"screen": {"width": 160, "height": 90}, "observerDistance": 300, "observerHeight": 0,
+      "angularScattering": "auto", "image": {"width": 24, "height": 12},
+      "projectors": [{"position": [-10, 0, -180]}, {"position": [0, 0, -180]}, {"position": [10, 0, -180]},
+                     {"position": [20, 0, -180]}]}})",
+                            "wall.json", ".");
+}
+
 Scene loadBunnyOrEmpty() {
   const char* path = "/usr/share/glmark2/models/bunny.obj";
   if (!std::filesystem::exists(path)) return Scene{};

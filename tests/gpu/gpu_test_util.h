@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "camera_models/camera_params.h"
+#include "camera_models/display_config.h"
 #include "camera_models/ray_table.h"
 #include "gpu/renderer.h"
 #include "gpu/vulkan_context.h"
@@ -41,6 +42,9 @@ DiffuseMirrorGlass addDiffuseMirrorGlass(Scene& s);
 
 // An 8 x 6 table of rays converging on the origin from z = 2 (the ray-table model's test camera).
 std::shared_ptr<const RayTable> testRayTable();
+
+// A 4-projector array of 24 x 12 images (several small views of pixel targets).
+DisplayConfig smallProjectorArray();
 
 // Loads /usr/share/glmark2/models/bunny.obj (the Debian glmark2-data package); empty scene if absent.
 Scene loadBunnyOrEmpty();

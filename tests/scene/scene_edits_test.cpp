@@ -119,6 +119,28 @@ TEST(SceneEdits, MovedNodeEqualsLoadingWithTheNewMatrix) {
   EXPECT_EQ(moved.nodes[1].world, columnMajor(m));
 }
 
+// nodeWorldBounds (what Renderer::replaceSceneAfterMove takes) follows the node's vertices through a move, and
+// covers only them.
+TEST(SceneEdits, NodeWorldBoundsFollowTheMovedVertices) {
+  Scene scene = loadScene("builtin:showcase");
+  const std::size_t index = *findNode(scene, "glow-sphere");
+  const SceneNode node = scene.nodes[index];
+  const Bounds3 before = nodeWorldBounds(scene, index);
+  ASSERT_FALSE(before.empty());
+  EXPECT_LT(glm::length(before.extent()), glm::length(scene.bounds().extent()));
+  glm::dmat4 world(1.0);
+  world[3] = glm::dvec4(0.5, -0.25, 0.125, 1.0);
+  setNodeWorldMatrix(scene, "glow-sphere", world);
+  const Bounds3 after = nodeWorldBounds(scene, index);
+  EXPECT_NEAR(after.lo.x - before.lo.x, 0.5f, 1e-5f);
+  EXPECT_NEAR(after.hi.y - before.hi.y, -0.25f, 1e-5f);
+  EXPECT_NEAR(after.hi.z - before.hi.z, 0.125f, 1e-5f);
+  for (std::uint32_t v = node.firstVertex; v < node.firstVertex + node.vertexCount; ++v) {
+    EXPECT_TRUE(glm::all(glm::greaterThanEqual(scene.positions[v], after.lo)) &&
+                glm::all(glm::lessThanEqual(scene.positions[v], after.hi)));
+  }
+}
+
 // A mirroring matrix flips the winding back, as the loader does for a mirrored node; moving back restores it.
 TEST(SceneEdits, MirroringKeepsFrontFacesAndMovingBackRestores) {
   TempDir dir;

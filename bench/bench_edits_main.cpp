@@ -1,0 +1,264 @@
+// bench_edits_main.cpp - holotrace-bench-edits: what a frame after an edit costs with frame reuse
+// (RenderSettings::reuse, docs/REUSE.md §3-4) against a full frame of the same view, measured in the same run.
+// Per display, --runs times: a full frame without reuse (Renderer A, the reference cost), a full frame that records
+// the reuse state (Renderer B), a light edit (updateLights + the frame re-shaded from the cached primary hits) and a
+// node move (replaceSceneAfterMove, i.e. the BVH rebuild, + the partial re-render); the moved node alternates between
+// two positions. Reports medians of the times and of the per-run ratios, the fraction of targets re-traced and the
+// fraction of output values that actually changed (their ratio: the over-invalidation of the grid masks). Ratios
+// are given against both full frames: A's (no reuse) and B's own (which also records the state).
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench/bench_main.h"
+#include "bench/output_file.h"
+#include "bench/timing_series.h"
+#include "camera_models/display_config.h"
+#include "cli/arguments.h"
+#include "common/error.h"
+#include "gpu/display_camera.h"
+#include "gpu/renderer.h"
+#include "gpu/vulkan_context.h"
+#include "scene/load_scene.h"
+#include "scene/scene_edits.h"
+
+namespace ht::bench {
+namespace {
+
+const char* const kCommand = "holotrace-bench-edits";
+
+struct EditOptions {
+  std::vector<std::string> displays{"builtin:portrait", "bench/configs/quality-hpo-14.json"};
+  std::string scene = "builtin:showcase", node = "green-sphere";
+  double scale = 1.0, move = 0.05;
+  std::uint32_t spp = 1, runs = 5;
+  int deviceIndex = -1;
+  std::optional<std::string> csvPath;
+};
+
+const std::array<cli::OptionSpec, 9> kSpecs = {{
+    {"--displays", "", "LIST", "comma-separated displays (default builtin:portrait,bench/configs/quality-hpo-14.json)"},
+    {"--scene", "", "SPEC", "scene (default builtin:showcase)"},
+    {"--node", "", "NAME", "the node moved (default green-sphere)"},
+    {"--move", "", "F", "move distance as a fraction of the scene's diagonal (default 0.05)"},
+    {"--scale", "", "F", "panel / projector image size factor (default 1 = the display's own size)"},
+    {"--spp", "", "N", "samples per target (default 1)"},
+    {"--runs", "", "N", "timed runs after one warm-up (default 5)"},
+    {"--device", "", "N", "Vulkan device index (default: automatic)"},
+    {"--csv", "", "PATH", "one row per display and quantity"},
+}};
+
+std::optional<EditOptions> parseOptions(std::span<const std::string> args) {
+  if (cli::wantsHelp(args)) {
+    std::cout << "Usage: " << kCommand << " [options]\n\n"
+              << "Times a light edit and a node move with frame reuse against a full frame of the same view.\n\n"
+                 "Options:\n"
+              << cli::formatOptions(kSpecs);
+    return std::nullopt;
+  }
+  const cli::ParsedArguments parsed = cli::parseArguments(kCommand, kSpecs, args);
+  EditOptions o;
+  if (auto list = parsed.text("--displays")) {
+    o.displays.clear();
+    std::stringstream stream(*list);
+    for (std::string item; std::getline(stream, item, ',');) {
+      if (!item.empty()) o.displays.push_back(item);
+    }
+    if (o.displays.empty()) throw UsageError(cli::usageMessage(kCommand, "--displays is empty"));
+  }
+  o.scene = parsed.textOr("--scene", o.scene);
+  o.node = parsed.textOr("--node", o.node);
+  o.move = parsed.numberValue("--move", 1e-4, 1.0).value_or(o.move);
+  o.scale = parsed.numberValue("--scale", 0.01, 1.0).value_or(o.scale);
+  o.spp = parsed.unsignedValue("--spp", 1, 4096).value_or(o.spp);
+  o.runs = parsed.unsignedValue("--runs", 1, 1000).value_or(o.runs);
+  if (auto device = parsed.unsignedValue("--device", 0, 255)) o.deviceIndex = int(*device);
+  o.csvPath = parsed.text("--csv");
+  return o;
+}
+
+// The display at `scale` of its panel (lenticular, integral) or image (pinhole; projectors without a measured
+// homography) size.
+DisplayConfig scaledDisplay(const std::string& spec, double scale) {
+  DisplayConfig d = resolveDisplay(spec);
+  auto scaled = [scale](auto& v) { v = std::max<std::uint32_t>(1, std::uint32_t(v * scale + 0.5)); };
+  if (d.calibration) {
+    scaled(d.calibration->screenW);
+    scaled(d.calibration->screenH);
+  }
+  if (d.projectorArray) {
+    for (ProjectorConfig& p : d.projectorArray->projectors) {
+      if (p.homography) continue;  // a measured pixel mapping belongs to its image size
+      scaled(p.width);
+      scaled(p.height);
+    }
+  }
+  if (d.pinhole.width) scaled(*d.pinhole.width);
+  if (d.pinhole.height) scaled(*d.pinhole.height);
+  return d;
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Fraction of output values (channels of every pixel of every view) that differ between two frames.
+double changedFraction(const gpu::RenderResult& a, const gpu::RenderResult& b) {
+  std::size_t changed = 0, values = 0;
+  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
+    if (i % 4 == 3) continue;
+    ++values;
+    changed += a.rgba[i] != b.rgba[i] ? 1 : 0;
+  }
+  return values ? double(changed) / double(values) : 0.0;
+}
+
+// Fraction of the cached primary hits on the node's triangles.
+double nodeCoverage(const gpu::Renderer::ReuseSnapshot& snap, const SceneNode& node) {
+  std::size_t on = 0;
+  for (const gpu_shared::HtHit& h : snap.primaryHits) {
+    on += h.triId >= node.firstTriangle && h.triId < node.firstTriangle + node.triangleCount ? 1 : 0;
+  }
+  return snap.primaryHits.empty() ? 0.0 : double(on) / double(snap.primaryHits.size());
+}
+
+struct DisplayEdits {
+  std::string display;
+  std::uint64_t targets = 0;
+  double coverage = 0.0;  // fraction of primary samples that hit the moved node (the first recorded frame)
+  TimingSeries full, recording, light, move, rebuild;
+  std::vector<double> lightRatio, moveRatio, recordRatio, traced, changed;
+  std::vector<double> lightVsRecording, moveVsRecording;  // the same edits against the reusing Renderer's full frame
+  std::vector<gpu::StageTiming> fullStages, lightStages, moveStages;  // of the last run
+};
+
+DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const EditOptions& o) {
+  Scene scene = loadScene(o.scene);
+  const std::size_t node = findNode(scene, o.node).value_or(scene.nodes.size());
+  if (node == scene.nodes.size())
+    throw UsageError(cli::usageMessage(kCommand, "--node: " + o.scene + " has no node '" + o.node + "'"));
+  if (scene.lights.empty())
+    throw UsageError(cli::usageMessage(kCommand, "--scene: " + o.scene + " has no light to edit"));
+  const gpu::FrameCamera camera = gpu::makeDisplayCamera(scaledDisplay(spec, o.scale), scene.bounds()).camera;
+  gpu::Renderer reference(context, scene), reusing(context, scene);
+  gpu::RenderSettings off, on;
+  off.spp = on.spp = o.spp;
+  on.reuse = true;
+  DisplayEdits e{spec, frameShape(camera).targets(), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  std::cout << kCommand << ": " << spec << " x " << o.scale << ", " << e.targets << " targets" << std::endl;
+  const glm::dvec3 step(o.move * glm::length(scene.bounds().extent()), 0.0, 0.0);
+  const float intensity = scene.lights[0].intensity;
+  // Run 0 is the warm-up (pipeline compilation of every variant, the partial re-render's included), not recorded.
+  for (std::uint32_t run = 0; run <= o.runs; ++run) {
+    // The two full frames alternate in order between runs (the first of a pair ran measurably slower here).
+    gpu::RenderResult fullFrame, recorded;  // recorded: the state the edits start from
+    reusing.replaceScene(scene);            // drops the state: `recorded` is a full frame that records it
+    if (run % 2) fullFrame = reference.render(camera, off);
+    recorded = reusing.render(camera, on);
+    if (run % 2 == 0) fullFrame = reference.render(camera, off);
+    const double full = fullFrame.totalMs;
+    if (run == 0) e.coverage = nodeCoverage(reusing.reuseSnapshot(), scene.nodes[node]);
+
+    LightEdit dim;
+    dim.intensity = intensity * (run % 2 ? 1.0 : 0.6);
+    editLight(scene, 0, dim);
+    auto t0 = std::chrono::steady_clock::now();
+    reusing.updateLights(scene);
+    const gpu::RenderResult lit = reusing.render(camera, on);
+    const double light = msSince(t0);
+    if (lit.reuse != gpu::FrameReuse::CachedPrimaryHits) throw GpuError("the light edit did not reuse the cache");
+
+    const Bounds3 before = nodeWorldBounds(scene, node);
+    glm::dmat4 world = scene.nodes[node].world;
+    world[3] += glm::dvec4(run % 2 ? -step : step, 0.0);
+    setNodeWorldMatrix(scene, o.node, world);
+    t0 = std::chrono::steady_clock::now();
+    reusing.replaceSceneAfterMove(scene, before, nodeWorldBounds(scene, node));
+    const double rebuild = msSince(t0);
+    const gpu::RenderResult moved = reusing.render(camera, on);
+    const double move = msSince(t0);
+    if (moved.reuse != gpu::FrameReuse::PartialRetrace) throw GpuError("the node move did not re-render partially");
+    if (run == 0) continue;
+
+    e.full.ms.push_back(full);
+    e.recording.ms.push_back(recorded.totalMs);
+    e.light.ms.push_back(light);
+    e.rebuild.ms.push_back(rebuild);
+    e.move.ms.push_back(move);
+    e.recordRatio.push_back(recorded.totalMs / full);
+    e.lightRatio.push_back(light / full);
+    e.moveRatio.push_back(move / full);
+    e.lightVsRecording.push_back(light / recorded.totalMs);
+    e.moveVsRecording.push_back(move / recorded.totalMs);
+    e.traced.push_back(double(moved.tracedTargets) / double(e.targets));
+    e.changed.push_back(changedFraction(lit, moved));
+    e.fullStages = fullFrame.stages;
+    e.lightStages = lit.stages;
+    e.moveStages = moved.stages;
+  }
+  return e;
+}
+
+void print(const DisplayEdits& e) {
+  std::printf("\n%s (%llu targets; the moved node covers %.4f of the primary samples)\n", e.display.c_str(),
+              static_cast<unsigned long long>(e.targets), e.coverage);
+  std::printf("  full frame, no reuse:         %9.1f ms\n", e.full.medianMs());
+  std::printf("  full frame, recording reuse:  %9.1f ms   ratio %.3f\n", e.recording.medianMs(), median(e.recordRatio));
+  std::printf("  light edit (update + frame):  %9.1f ms   ratio %.3f (vs recording %.3f)\n", e.light.medianMs(),
+              median(e.lightRatio), median(e.lightVsRecording));
+  std::printf("  node move (rebuild + frame):  %9.1f ms   ratio %.3f (vs recording %.3f)   (BVH rebuild %.1f ms)\n",
+              e.move.medianMs(), median(e.moveRatio), median(e.moveVsRecording), e.rebuild.medianMs());
+  std::printf("  re-traced targets %.4f, changed output values %.4f\n", median(e.traced), median(e.changed));
+  std::printf("  stages of the last run (GPU ms; readback: host):");
+  for (const auto* stages : {&e.fullStages, &e.lightStages, &e.moveStages}) {
+    std::printf("\n   %s", stages == &e.fullStages ? "full " : stages == &e.lightStages ? "light" : "move ");
+    for (const gpu::StageTiming& s : *stages) std::printf(" %s %.1f", s.name.c_str(), s.ms);
+  }
+  std::printf("\n");
+}
+
+std::string csvRows(const DisplayEdits& e) {
+  std::ostringstream csv;
+  const std::pair<const char*, double> rows[] = {{"full_ms", e.full.medianMs()},
+                                                 {"recording_ms", e.recording.medianMs()},
+                                                 {"light_edit_ms", e.light.medianMs()},
+                                                 {"node_move_ms", e.move.medianMs()},
+                                                 {"bvh_rebuild_ms", e.rebuild.medianMs()},
+                                                 {"ratio_recording", median(e.recordRatio)},
+                                                 {"ratio_light_edit", median(e.lightRatio)},
+                                                 {"ratio_node_move", median(e.moveRatio)},
+                                                 {"ratio_light_edit_vs_recording", median(e.lightVsRecording)},
+                                                 {"ratio_node_move_vs_recording", median(e.moveVsRecording)},
+                                                 {"node_coverage", e.coverage},
+                                                 {"retraced_fraction", median(e.traced)},
+                                                 {"changed_fraction", median(e.changed)}};
+  for (const auto& [name, value] : rows) csv << e.display << "," << name << "," << value << "\n";
+  return csv.str();
+}
+
+int run(const EditOptions& o) {
+  gpu::VulkanContext context({o.deviceIndex, false});
+  std::string csv = "display,quantity,value\n";
+  for (const std::string& display : o.displays) {
+    const DisplayEdits e = measure(context, display, o);
+    print(e);
+    csv += csvRows(e);
+  }
+  if (o.csvPath) writeTextFile(*o.csvPath, csv);
+  return 0;
+}
+
+}  // namespace
+}  // namespace ht::bench
+
+int main(int argc, char** argv) {
+  // parseOptions prints its own --help text.
+  return ht::bench::benchMain(
+      argc, argv, ht::bench::kCommand,
+      [](const std::vector<std::string>& a, std::string*) { return ht::bench::parseOptions(a); },
+      [](const auto& options) { return ht::bench::run(options); });
+}

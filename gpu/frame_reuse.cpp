@@ -1,0 +1,137 @@
+// frame_reuse.cpp - see frame_reuse.h.
+#include "gpu/frame_reuse.h"
+
+#include <algorithm>
+
+namespace ht::gpu {
+
+FrameReuseState::FrameReuseState(VulkanContext::Impl& vk, const Bounds3& sceneBounds) : vk_(vk) {
+  glm::vec3 lo(0.0f), extent(1.0f);
+  if (!sceneBounds.empty()) {
+    lo = sceneBounds.lo;
+    extent = sceneBounds.extent();
+  }
+  // A flat scene (zero extent along an axis) still gets cells of a finite size there.
+  const float largest = std::max({extent.x, extent.y, extent.z, 1e-6f});
+  extent = glm::max(extent, glm::vec3(largest * 1e-3f));
+  grid_.origin = glm::vec4(lo, 0.0f);
+  grid_.scale = glm::vec4(static_cast<float>(gpu_shared::HT_GRID_CELLS) / extent, 0.0f);
+}
+
+void FrameReuseState::geometryMoved(const Bounds3& oldBounds, const Bounds3& newBounds) {
+  moved_ = true;
+  for (const Bounds3& b : {oldBounds, newBounds}) {
+    if (b.empty()) continue;
+    movedBounds_.extend(b.lo);
+    movedBounds_.extend(b.hi);
+  }
+}
+
+void FrameReuseState::invalidate() {
+  hitsValid_ = masksValid_ = secondaryValid_ = false;
+  lightsEdited_ = moved_ = false;
+  movedBounds_ = Bounds3{};
+}
+
+void FrameReuseState::ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPlace place) {
+  if (buffer.size() < bytes) buffer = DeviceBuffer(vk_, bytes, place);
+}
+
+ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable, std::uint64_t paths,
+                                std::uint64_t targets, std::uint32_t secondaryDepths) {
+  ReusePlan p;
+  if (!wanted || !reusable) {
+    invalidate();
+    if (!wanted) {  // free the memory
+      for (DeviceBuffer* b : {&primaryRays, &primaryHits, &segmentMasks, &dirtyList, &secondaryCache}) {
+        *b = DeviceBuffer();
+      }
+    }
+    return p;
+  }
+  // Fixed by the key (paths): every frame of one view caches its primary hits or none does.
+  p.primaryCached = paths * kPrimaryHitBytesPerPath <= kPrimaryHitCacheBudget;
+  const bool sameView = key == key_;
+  if (sameView && !moved_ && hitsValid_) {
+    p.mode = FrameReuse::CachedPrimaryHits;  // light values edited, or nothing at all
+  } else if (sameView && moved_ && !lightsEdited_ && masksValid_ && (hitsValid_ || !p.primaryCached)) {
+    p.mode = FrameReuse::PartialRetrace;
+    if (!movedBounds_.empty()) {
+      const gpu_shared::uvec2 cells = gpu_shared::ht_grid_bounds_mask(movedBounds_.lo, movedBounds_.hi, grid_);
+      p.gridCells[0] = cells.x;
+      p.gridCells[1] = cells.y;
+      const glm::vec3 pad = gpu_shared::HT_GRID_PAD / glm::vec3(grid_.scale);
+      p.movedLo = movedBounds_.lo - pad;
+      p.movedHi = movedBounds_.hi + pad;
+    } else {  // nothing moved: an empty box no segment meets
+      p.movedLo = glm::vec3(1.0f);
+      p.movedHi = glm::vec3(-1.0f);
+    }
+  }
+  p.recordHits = p.mode == FrameReuse::None && p.primaryCached;
+  const std::uint64_t secondaryBytes = paths * kSecondaryBytesPerPath * secondaryDepths;
+  const bool secondaryFits = p.primaryCached && secondaryDepths > 0 && secondaryBytes <= kSecondaryHitCacheBudget;
+  p.recordSecondary =
+      secondaryFits && (p.mode == FrameReuse::None || (p.mode == FrameReuse::CachedPrimaryHits && !secondaryValid_));
+  p.loadSecondary = p.mode == FrameReuse::CachedPrimaryHits && secondaryFits && secondaryValid_;
+  if (p.recordSecondary) ensure(secondaryCache, secondaryBytes, MemoryPlace::Device);
+  cachedPaths_ = paths;
+  p.recordSegments = true;
+  if (p.primaryCached) {
+    ensure(primaryRays, paths * sizeof(gpu_shared::HtRay), MemoryPlace::Device);
+    ensure(primaryHits, paths * sizeof(gpu_shared::HtHit), MemoryPlace::Device);
+  }
+  ensure(segmentMasks, targets * kMaskWords * sizeof(std::uint32_t), MemoryPlace::Device);
+  ensure(dirtyList, (kListFirst + targets) * sizeof(std::uint32_t), MemoryPlace::HostReadback);
+  maskedTargets_ = targets;
+  invalidate();  // valid again once the frame finished (frameDone)
+  return p;
+}
+
+void FrameReuseState::frameDone(const ReuseKey& key, const ReusePlan& plan) {
+  key_ = key;
+  masksValid_ = plan.recordSegments;
+  hitsValid_ = plan.primaryCached;
+  secondaryValid_ = plan.recordSecondary || plan.loadSecondary;  // a partial re-render leaves them stale
+}
+
+FrameReuseState::SecondaryRegion FrameReuseState::secondaryRegion(std::uint32_t depth) const {
+  const VkDeviceSize base = (depth - 1) * cachedPaths_ * kSecondaryBytesPerPath;
+  const VkDeviceSize rays = cachedPaths_ * sizeof(gpu_shared::HtRay);
+  return {base, base + rays, base + rays + cachedPaths_ * sizeof(std::uint32_t)};
+}
+
+std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks, const ReusePlan& plan,
+                                            std::span<const gpu_shared::HtRay> primaryRays,
+                                            std::span<const gpu_shared::HtHit> primaryHits, std::uint32_t spp) {
+  std::vector<std::uint32_t> dirty;
+  for (std::size_t t = 0; t < masks.size() / kMaskWords; ++t) {
+    const std::uint32_t* m = masks.data() + t * kMaskWords;
+    bool hit = ((m[0] & plan.gridCells[0]) | (m[1] & plan.gridCells[1])) != 0;
+    const bool primaryNear = ((m[2] & plan.gridCells[0]) | (m[3] & plan.gridCells[1])) != 0;
+    for (std::uint32_t s = 0; !hit && primaryNear && !primaryHits.empty() && s < spp; ++s) {
+      const gpu_shared::HtRay& r = primaryRays[t * spp + s];
+      const gpu_shared::HtHit& h = primaryHits[t * spp + s];
+      const float tEnd = h.triId != gpu_shared::HT_MISS ? h.t : r.tmax;
+      hit = gpu_shared::ht_segment_meets_box(r.origin, r.dir, r.tmin, tEnd, plan.movedLo, plan.movedHi);
+    }
+    if (hit) dirty.push_back(static_cast<std::uint32_t>(t));
+  }
+  return dirty;
+}
+
+void recordComputeCopy(VkCommandBuffer cmd, const DeviceBuffer& src, VkDeviceSize srcOffset, const DeviceBuffer& dst,
+                       VkDeviceSize dstOffset, VkDeviceSize bytes) {
+  VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                         VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0,
+                       nullptr, 0, nullptr);
+  const VkBufferCopy region{srcOffset, dstOffset, bytes};
+  vkCmdCopyBuffer(cmd, src.handle(), dst.handle(), 1, &region);
+  VkMemoryBarrier after{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &after, 0,
+                       nullptr, 0, nullptr);
+}
+
+}  // namespace ht::gpu

@@ -1,0 +1,117 @@
+// frame_reuse.h - what a Renderer keeps of the last frame of one view for the edits that follow (docs/REUSE.md §3,
+// §4): the primary rays and hits of the frame's samples (a light edit re-shades them and skips raygen and the
+// primary trace) and, per target, the world-grid cells its path segments met (a node move re-traces only the
+// targets whose cells meet the moved node's old or new bounds). Internal to gpu/.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "common/bounds3.h"
+#include "gpu/device_buffer.h"
+#include "gpu/renderer.h"
+#include "gpu/segment_cells.h"
+
+namespace ht::gpu {
+
+// Device memory the primary-hit cache may take (48 B per path: the ray and its hit). Frames with more paths render
+// without the cache (a light edit then costs a full frame).
+inline constexpr std::uint64_t kPrimaryHitCacheBudget = 1ull << 30;
+inline constexpr std::uint64_t kPrimaryHitBytesPerPath = sizeof(gpu_shared::HtRay) + sizeof(gpu_shared::HtHit);
+// The closest-hit queues of the later depths (mirror and glass bounces), which do not depend on the lights either:
+// per depth and path a ray, a queue entry's path index and a hit (52 B); the same kind of budget.
+inline constexpr std::uint64_t kSecondaryHitCacheBudget = 1ull << 30;
+inline constexpr std::uint64_t kSecondaryBytesPerPath =
+    sizeof(gpu_shared::HtRay) + sizeof(std::uint32_t) + sizeof(gpu_shared::HtHit);
+
+// The identity of a frame for reuse: its FrameBlock as filled for the base pass (camera, shape, spp, seed, filter,
+// depth, light count, region) and the settings outside that block. Two frames with equal keys trace the same
+// primary rays.
+struct ReuseKey {
+  std::vector<std::byte> bytes;
+  bool operator==(const ReuseKey&) const = default;
+};
+
+// How the next frame is rendered, decided from the key and the edits since the last recorded frame.
+struct ReusePlan {
+  FrameReuse mode = FrameReuse::None;
+  bool recordHits = false;       // copy the primary rays and hits into the cache (base pass)
+  bool recordSecondary = false;  // copy the queues and hits of depths >= 1 into the secondary cache (base pass;
+                                 // also in a CachedPrimaryHits frame after a partial re-render left them stale)
+  bool loadSecondary = false;    // CachedPrimaryHits: load those too, skipping every closest-hit trace
+  bool recordSegments = false;   // record the per-target segment cells (every pass of the frame)
+  bool primaryCached = false;    // the cache holds every path's primary ray and hit once the frame ran: primary
+                                 // segments stay out of the masks and the marking pass tests them exactly
+  // PartialRetrace: the cells of the moved bounds (lo, hi words) and those bounds padded by HT_GRID_PAD cells.
+  std::uint32_t gridCells[2] = {0, 0};
+  glm::vec3 movedLo{0.0f}, movedHi{0.0f};
+};
+
+class FrameReuseState {
+ public:
+  // The world grid of the segment masks, over `sceneBounds` (fixed at load: later moves do not change it).
+  FrameReuseState(VulkanContext::Impl& vk, const Bounds3& sceneBounds);
+
+  const gpu_shared::SegmentGrid& grid() const { return grid_; }
+  bool masksValid() const { return masksValid_; }
+  std::uint64_t maskedTargets() const { return maskedTargets_; }  // targets of the frame the masks belong to
+
+  // Edits between frames. Light values: the cached hits stay valid, the segment masks too (lights move no
+  // geometry; a reused frame records its shadow segments again). A node moved from `oldBounds` to `newBounds`: the
+  // masks and hits stay valid for the marking pass (the partial re-render writes its targets' new hits). Anything
+  // else (replaceScene without bounds): nothing is kept.
+  void lightsEdited() { lightsEdited_ = true; }
+  void geometryMoved(const Bounds3& oldBounds, const Bounds3& newBounds);
+  void invalidate();
+
+  // The plan of a frame with `key` of `paths` paths and `targets` targets; `wanted` = RenderSettings::reuse,
+  // `reusable` = the frame is one chunk without adaptive refinement (the only frames whose state is kept). Until
+  // frameDone, nothing is valid (a frame that throws leaves no half-written state behind).
+  // `secondaryDepths`: the depths after the primary one the frame traces (0 without mirrors and glass).
+  ReusePlan plan(const ReuseKey& key, bool wanted, bool reusable, std::uint64_t paths, std::uint64_t targets,
+                 std::uint32_t secondaryDepths);
+  // After the frame planned last finished: what it recorded is now the state edits are measured against.
+  void frameDone(const ReuseKey& key, const ReusePlan& plan);
+
+  // Sized by plan(): primary rays and hits of every path of the frame (path order), segment masks (kMaskWords per
+  // target), and the dirty-target list (header: moved cells in words 0-1, the count in 2, the padded moved bounds'
+  // lo in 4-6 and hi in 8-10 as float bits; entries from kListFirst).
+  // The secondary cache holds, for depth d >= 1, rays at region (d - 1) * paths * 52 B, then the queue entries' path
+  // indices and hits (secondaryRegion); entries of a batch start at its first path.
+  DeviceBuffer primaryRays, primaryHits, segmentMasks, dirtyList, secondaryCache;
+  struct SecondaryRegion {
+    VkDeviceSize rays, paths, hits;  // byte offsets of entry 0 of the depth's rays, path indices, hits
+  };
+  SecondaryRegion secondaryRegion(std::uint32_t depth) const;
+  static constexpr std::uint32_t kListFirst = 12;
+
+ private:
+  void ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPlace place);
+  VulkanContext::Impl& vk_;
+  gpu_shared::SegmentGrid grid_{};
+  ReuseKey key_;
+  bool hitsValid_ = false, masksValid_ = false, secondaryValid_ = false;
+  std::uint64_t cachedPaths_ = 0;
+  std::uint64_t maskedTargets_ = 0;
+  bool lightsEdited_ = false, moved_ = false;
+  Bounds3 movedBounds_;
+};
+
+// Words of a target's segment mask: the cells of its segments but the cached primary ones (0-1), the cells of its
+// cached primary segments (2-3; zero without the cache), record_segments.comp.
+inline constexpr std::uint32_t kMaskWords = 4;
+
+// CPU reference of mark_dirty.comp: the targets (ascending) whose masks (kMaskWords per target) share a cell with
+// `plan.gridCells` in words 0-1, or, with cached primary rays and hits (`spp` per target; empty: none), in words
+// 2-3 and one of whose primary segments meets the box [plan.movedLo, plan.movedHi].
+std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks, const ReusePlan& plan,
+                                            std::span<const gpu_shared::HtRay> primaryRays,
+                                            std::span<const gpu_shared::HtHit> primaryHits, std::uint32_t spp);
+
+// Records a buffer-to-buffer copy between compute passes: waits for the passes before it and makes the copy
+// visible (and its source free to overwrite) to the passes after it.
+void recordComputeCopy(VkCommandBuffer cmd, const DeviceBuffer& src, VkDeviceSize srcOffset, const DeviceBuffer& dst,
+                       VkDeviceSize dstOffset, VkDeviceSize bytes);
+
+}  // namespace ht::gpu

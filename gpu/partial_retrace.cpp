@@ -1,0 +1,113 @@
+// partial_retrace.cpp - the frame-reuse side of the wavefront loop (gpu/frame_reuse.h, docs/REUSE.md §3-4): the key
+// that says whether two frames trace the same primary rays, and the partial re-render after a node move: the marking
+// pass lists the targets whose recorded segment cells meet the moved bounds, and only those are traced again
+// through the listed-target pipelines the adaptive refinement uses; every other target keeps its value in the
+// subpixel buffer.
+#include <algorithm>
+#include <cstring>
+
+#include "gpu/renderer_impl.h"
+
+namespace ht::gpu {
+
+namespace {
+
+template <typename T>
+void appendBytes(std::vector<std::byte>& out, const T& value) {
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(T));
+  std::memcpy(out.data() + at, &value, sizeof(T));
+}
+
+// Targets per marking dispatch: within the 65,535 workgroups a dispatch dimension is guaranteed.
+constexpr std::uint64_t kMarkTargetsPerDispatch = 1ull << 21;
+
+}  // namespace
+
+ReuseKey Renderer::Impl::reuseKey(const RenderSettings& settings) const {
+  ReuseKey key;
+  appendBytes(key.bytes, *static_cast<const FrameBlock*>(frame.mapped()));
+  appendBytes(key.bytes, settings.forceAllFeatures);
+  appendBytes(key.bytes, boundRayTable.get());
+  return key;
+}
+
+std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t targets,
+                                           std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
+                                           const std::function<void(double)>& progress) {
+  auto* list = static_cast<std::uint32_t*>(reuse.dirtyList.mapped());
+  list[0] = framePlan.gridCells[0];
+  list[1] = framePlan.gridCells[1];
+  list[2] = 0;  // count
+  std::memcpy(list + 4, &framePlan.movedLo, sizeof(glm::vec3));
+  std::memcpy(list + 8, &framePlan.movedHi, sizeof(glm::vec3));
+  FrameBlock& f = frameBlock();
+  f.refine = reuse.dirtyList.address();
+  f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
+  beginCommands();
+  PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+  const ComputePipeline& mark = pipeline(ShaderId::MarkDirty);
+  for (std::uint64_t first = 0; first < targets; first += kMarkTargetsPerDispatch) {
+    const std::uint64_t n = std::min(kMarkTargetsPerDispatch, targets - first);
+    rec.dispatch(mark, passConstants(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(targets), 0, 0),
+                 groupsFor(n), Stage::Mark);
+  }
+  submitAndWait();
+  rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+  const std::uint64_t dirty = list[2];
+  if (dirty > 0) {
+    const std::uint32_t spp = settings.spp;
+    tracePaths(camera, shape, spp, dirty * spp, std::min(perBatch, dirty * spp), TracedTargets::Dirty, settings,
+               stageMs, progress);
+  }
+  f.refine = 0;
+  f.refineInfo = glm::uvec4(0u);
+  return dirty;
+}
+
+void Renderer::Impl::copySecondary(std::uint32_t depth, std::uint32_t batchFirst, std::uint32_t count, bool load) {
+  const FrameReuseState::SecondaryRegion r = reuse.secondaryRegion(depth);
+  const std::uint32_t q = depth % 2;
+  const struct {
+    const DeviceBuffer& work;
+    VkDeviceSize cacheOffset, entryBytes;
+  } parts[] = {{work.rays[q], r.rays, sizeof(gpu_shared::HtRay)},
+               {work.queuePath[q], r.paths, sizeof(std::uint32_t)},
+               {work.hits, r.hits, sizeof(gpu_shared::HtHit)}};
+  for (const auto& part : parts) {
+    const VkDeviceSize at = part.cacheOffset + VkDeviceSize{batchFirst} * part.entryBytes;
+    const VkDeviceSize bytes = VkDeviceSize{count} * part.entryBytes;
+    if (load) {
+      recordComputeCopy(cmd, reuse.secondaryCache, at, part.work, 0, bytes);
+    } else {
+      recordComputeCopy(cmd, part.work, 0, reuse.secondaryCache, at, bytes);
+    }
+  }
+}
+
+Renderer::ReuseSnapshot Renderer::reuseSnapshot() const {
+  ReuseSnapshot snap;
+  const FrameReuseState& reuse = impl_->reuse;
+  snap.grid = reuse.grid();
+  if (!reuse.masksValid()) return snap;
+  snap.segmentMasks.resize(reuse.maskedTargets() * kMaskWords);
+  reuse.segmentMasks.download(snap.segmentMasks.data(), snap.segmentMasks.size() * sizeof(std::uint32_t));
+  const ReusePlan& plan = impl_->framePlan;
+  snap.movedCells[0] = plan.gridCells[0];
+  snap.movedCells[1] = plan.gridCells[1];
+  snap.movedLo = plan.movedLo;
+  snap.movedHi = plan.movedHi;
+  if (plan.primaryCached) {
+    snap.primaryHits.resize(reuse.primaryHits.size() / sizeof(gpu_shared::HtHit));
+    reuse.primaryHits.download(snap.primaryHits.data(), reuse.primaryHits.size());
+    snap.primaryRays.resize(reuse.primaryRays.size() / sizeof(gpu_shared::HtRay));
+    reuse.primaryRays.download(snap.primaryRays.data(), reuse.primaryRays.size());
+  }
+  const auto* list = static_cast<const std::uint32_t*>(reuse.dirtyList.mapped());
+  if (list && impl_->framePlan.mode == FrameReuse::PartialRetrace) {
+    snap.dirtyTargets.assign(list + FrameReuseState::kListFirst, list + FrameReuseState::kListFirst + list[2]);
+  }
+  return snap;
+}
+
+}  // namespace ht::gpu

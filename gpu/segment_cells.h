@@ -1,0 +1,121 @@
+// segment_cells.h - the conservative per-target summary of a frame's path segments that partial re-render tests
+// against a moved node (docs/REUSE.md §4), one source for the GLSL recording pass and its C++ reference.
+//
+// The world grid is 4 x 4 x 4 cells over the scene's bounds at load; the cells at the grid's faces reach to
+// infinity, so every point of space lies in exactly one cell and nodes moved outside the load bounds still map to
+// cells. A target's mask has one bit per cell (64 bits, two 32-bit words) for every cell any of its segments met:
+// primary and secondary rays up to their hit (misses to infinity) and every shadow ray to its light. A segment can
+// change after a node moves only if it meets the node's old or new bounds, so a target whose mask shares no cell
+// with those bounds (padded by HT_GRID_PAD cells against float rounding) keeps its value bit for bit. Where the
+// primary rays and hits are cached (gpu/frame_reuse.h), primary segments stay out of the mask and the marking pass
+// tests them exactly against the padded bounds (ht_segment_meets_box): they are most of a display's segments and
+// the ones the coarse grid over-invalidates most.
+#ifndef HT_SEGMENT_CELLS_H
+#define HT_SEGMENT_CELLS_H
+#include "common/glsl_cpp.h"
+#ifdef HT_GLSL
+#define HT_SEGMENT_NAN(x) isnan(x)
+#else
+#include <cmath>
+#define HT_SEGMENT_NAN(x) std::isnan(x)
+#endif
+
+HT_SHARED_BEGIN
+
+HT_CONST uint HT_GRID_CELLS = 4u;             // per axis: 64 cells, one bit each
+HT_CONST float HT_GRID_PAD = 1.0f / 1024.0f;  // cells: pads moved bounds over the rounding of segment points
+HT_CONST float HT_GRID_T_INFINITY = 3.4e38f;  // beyond any ray's tmax (3e38 for rays that run to infinity)
+
+// The grid in the FrameBlock: cell coordinate = (p - origin) * scale, cells [0, 4) per axis.
+struct SegmentGrid {
+  vec4 origin;  // xyz: the scene's lower bounds corner
+  vec4 scale;   // xyz: cells per world unit (4 / extent)
+};
+
+// The cell of cell coordinate c along one axis, the face cells reaching to +-infinity.
+HT_INLINE uint ht_grid_cell(float c) { return uint(clamp(floor(c), 0.0f, float(HT_GRID_CELLS - 1u))); }
+
+// The mask of the cells [a, b] (inclusive, per axis): bit (z * 4 + y) * 4 + x; word 0 holds layers z = 0, 1.
+HT_INLINE uvec2 ht_grid_box_mask(uvec3 a, uvec3 b) {
+  uint row = ((2u << b.x) - 1u) & ~((1u << a.x) - 1u);
+  uint layer = 0u;
+  for (uint y = a.y; y <= b.y; ++y) layer |= row << (4u * y);
+  uvec2 mask = uvec2(0u, 0u);
+  for (uint z = a.z; z <= b.z; ++z) {
+    if (z < 2u) {
+      mask.x |= layer << (16u * z);
+    } else {
+      mask.y |= layer << (16u * (z - 2u));
+    }
+  }
+  return mask;
+}
+
+// The cells of the world box [lo, hi] padded by HT_GRID_PAD cells (the moved node's old or new bounds).
+HT_INLINE uvec2 ht_grid_bounds_mask(vec3 lo, vec3 hi, SegmentGrid g) {
+  vec3 origin = vec3(g.origin.x, g.origin.y, g.origin.z), scale = vec3(g.scale.x, g.scale.y, g.scale.z);
+  vec3 a = (lo - origin) * scale - vec3(HT_GRID_PAD), b = (hi - origin) * scale + vec3(HT_GRID_PAD);
+  return ht_grid_box_mask(uvec3(ht_grid_cell(a.x), ht_grid_cell(a.y), ht_grid_cell(a.z)),
+                          uvec3(ht_grid_cell(b.x), ht_grid_cell(b.y), ht_grid_cell(b.z)));
+}
+
+// The cells the segment o + t d, t in [t0, t1], meets (t1 up to 3e38 for a miss). The segment is cut where it
+// crosses the cell planes of its dominant axis; each piece marks its slab along that axis times the cells between
+// its end points along the other two (exact along the dominant axis, a bounding range along the others). Pieces
+// share their computed end parameters, so they cover [t0, t1] without gaps; the rounding of the end points stays
+// far below HT_GRID_PAD for segments within a hundred grids of the scene. A NaN segment meets every cell.
+HT_INLINE uvec2 ht_segment_cells(vec3 o, vec3 d, float t0, float t1, SegmentGrid g) {
+  vec3 origin = vec3(g.origin.x, g.origin.y, g.origin.z), scale = vec3(g.scale.x, g.scale.y, g.scale.z);
+  vec3 p0 = (o - origin) * scale, v = d * scale;
+  if (HT_SEGMENT_NAN(p0.x) || HT_SEGMENT_NAN(p0.y) || HT_SEGMENT_NAN(p0.z) || HT_SEGMENT_NAN(v.x) ||
+      HT_SEGMENT_NAN(v.y) || HT_SEGMENT_NAN(v.z) || HT_SEGMENT_NAN(t0) || HT_SEGMENT_NAN(t1))
+    return uvec2(0xffffffffu, 0xffffffffu);
+  int axis = 2;
+  if (abs(v.x) >= abs(v.y) && abs(v.x) >= abs(v.z)) {
+    axis = 0;
+  } else if (abs(v.y) >= abs(v.z)) {
+    axis = 1;
+  }
+  float pa = p0[axis], va = v[axis];
+  uvec2 mask = uvec2(0u, 0u);
+  for (uint s = 0u; s < HT_GRID_CELLS; ++s) {
+    float lo = t0, hi = t1;
+    if (va != 0.0f) {
+      // Parameters where the segment's line crosses the slab's lower and upper planes (face slabs: unbounded).
+      float tLow = s == 0u ? (va > 0.0f ? -HT_GRID_T_INFINITY : HT_GRID_T_INFINITY) : (float(s) - pa) / va;
+      float tHigh =
+          s == HT_GRID_CELLS - 1u ? (va > 0.0f ? HT_GRID_T_INFINITY : -HT_GRID_T_INFINITY) : (float(s + 1u) - pa) / va;
+      lo = max(t0, min(tLow, tHigh));
+      hi = min(t1, max(tLow, tHigh));
+    } else if (ht_grid_cell(pa) != s) {
+      continue;
+    }
+    if (!(lo <= hi)) continue;
+    vec3 a = p0 + lo * v, b = p0 + hi * v;
+    uvec3 ca = uvec3(ht_grid_cell(min(a.x, b.x)), ht_grid_cell(min(a.y, b.y)), ht_grid_cell(min(a.z, b.z)));
+    uvec3 cb = uvec3(ht_grid_cell(max(a.x, b.x)), ht_grid_cell(max(a.y, b.y)), ht_grid_cell(max(a.z, b.z)));
+    ca[axis] = s;
+    cb[axis] = s;
+    mask |= ht_grid_box_mask(ca, cb);
+  }
+  return mask;
+}
+
+// Does the segment o + t d, t in [t0, t1], meet the box [lo, hi] (slab test)? The marking pass tests cached primary
+// segments against the moved bounds with it, padded by HT_GRID_PAD cells, which is exact where the grid is coarse.
+HT_INLINE bool ht_segment_meets_box(vec3 o, vec3 d, float t0, float t1, vec3 lo, vec3 hi) {
+  float a = t0, b = t1;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0.0f) {
+      if (o[k] < lo[k] || o[k] > hi[k]) return false;
+      continue;
+    }
+    float ta = (lo[k] - o[k]) / d[k], tb = (hi[k] - o[k]) / d[k];
+    a = max(a, min(ta, tb));
+    b = min(b, max(ta, tb));
+  }
+  return a <= b;
+}
+
+HT_SHARED_END
+#endif

@@ -1,0 +1,54 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// record_segments: for frames that keep reuse state (gpu/frame_reuse.h, docs/REUSE.md §4), one invocation per entry
+// of the current ray queue, after this depth's closest-hit trace and shadow trace and before gather_direct clears
+// the shadow slots: ORs the world-grid cells of the entry's segment (to its hit; a miss to infinity) and of every
+// shadow ray its path emitted at this depth (to the light) into the mask of the path's target (gpu/segment_cells.h).
+// Masks are 4 words per target: words 0-1 the cells of every segment but the cached primary ones; with the primary
+// hits cached (FRAME.primaryHits != 0) the primary segments' cells go to words 2-3 (mark_dirty.comp then tests the
+// cached segments exactly where those cells meet the moved bounds), and a partial re-render writes the new primary
+// hits of its listed targets into the cache.
+#include "gpu/shaders/common.glsl"
+#include "gpu/segment_cells.h"
+
+layout(constant_id = 0) const bool LISTED = false;  // paths of listed targets (a partial re-render)
+// A frame re-shaded from cached hits (a light edit): its closest-hit segments are those already in the masks, so only
+// the shadow segments are added, to masks not cleared: the old shadow cells stay, a superset, still conservative.
+layout(constant_id = 1) const bool SHADOWS_ONLY = false;
+
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer HitCacheRef { uvec4 h[]; };
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= COUNTERS.queueCount[pc.queue]) return;
+  uint path = queue_path(i);
+  uint spp = FRAME.dims.z;
+  uint entry = (pc.batchFirst + path) / spp;
+  uint target = LISTED ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;
+  HtRay ray = load_ray(pc.queue, i);
+  HtHit hit = load_hit(i);
+  bool cachedPrimary = pc.depth == 0u && FRAME.primaryHits != 0ul;
+  uvec2 cells = uvec2(0u);
+  if (!SHADOWS_ONLY) {
+    cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, hit.triId != HT_MISS ? hit.t : ray.tmax, FRAME.grid);
+  }
+  if (cachedPrimary && !SHADOWS_ONLY) {  // words 2-3: the marking pass's quick reject before its exact test of the cached segments
+    if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], cells.x);
+    if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], cells.y);
+    cells = uvec2(0u);
+    if (LISTED) {
+      HitCacheRef(FRAME.primaryHits).h[target * spp + (pc.batchFirst + path) % spp] =
+          uvec4(floatBitsToUint(hit.t), hit.triId, floatBitsToUint(hit.u), floatBitsToUint(hit.v));
+    }
+  }
+  uint lightCount = FRAME.scene.x;
+  for (uint l = 0u; l < lightCount; ++l) {
+    uint slot = path * lightCount + l;
+    if (imageLoad(shadowContribBuffer, int(slot)).w != 0.0f) {  // live: emitted at this depth (occluded or not)
+      HtRay shadow = load_shadow_ray(slot);
+      cells |= ht_segment_cells(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, FRAME.grid);
+    }
+  }
+  if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target], cells.x);
+  if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 1u], cells.y);
+}

@@ -1,0 +1,283 @@
+// Frame reuse after edits (RenderSettings::reuse, gpu/frame_reuse.h, docs/REUSE.md §3-4): a frame after a light edit
+// re-shades the cached primary hits, a frame after a node move re-traces only the targets whose recorded segment
+// cells meet the moved bounds; both equal a full render of the edited scene by a fresh Renderer, bit for bit, on
+// builtin:showcase (mirror, glass, textures, a point light and a sun casting shadows) through several display models.
+// Plus the C++ reference of the segment cells (conservative against an exact segment-box test) and of the marking
+// pass (the GPU's dirty list == the CPU's from the same masks).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+
+#include "camera_models/display_config.h"
+#include "camera_models/lenticular_params.h"
+#include "gpu/display_camera.h"
+#include "gpu/frame_reuse.h"
+#include "gpu/segment_cells.h"
+#include "gpu_test_util.h"
+#include "scene/load_scene.h"
+#include "scene/scene_edits.h"
+
+namespace ht::test {
+namespace {
+
+using gpu::FrameReuse;
+
+bool sameBits(const gpu::RenderResult& a, const gpu::RenderResult& b) {
+  return a.rgba.size() == b.rgba.size() && std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * 4) == 0;
+}
+
+double stageMs(const gpu::RenderResult& r, const std::string& name) {
+  for (const gpu::StageTiming& s : r.stages) {
+    if (s.name == name) return s.ms;
+  }
+  return 0.0;
+}
+
+gpu::RenderSettings reuseSettings() {
+  gpu::RenderSettings s;
+  s.spp = 2;
+  s.maxDepth = 3;
+  s.seed = 11;
+  s.reuse = true;
+  return s;
+}
+
+// Small cameras of three display models around `scene`: a Portrait-calibrated lenticular panel (subpixel targets),
+// a pinhole image and a 4-view projector array (pixel targets, several views).
+std::vector<std::pair<std::string, gpu::FrameCamera>> cameras(const Scene& scene) {
+  DisplayConfig portrait = builtinDisplay("portrait");
+  portrait.calibration->screenW = 48;
+  portrait.calibration->screenH = 36;
+  const Bounds3 b = scene.bounds();
+  const DisplayConfig wall = smallProjectorArray();
+  return {{"lenticular", makeLenticularParams(portrait, b)},
+          {"pinhole",
+           lookAt(b.center() + glm::vec3(0.3f, 0.5f, 2.0f) * glm::length(b.extent()), b.center(), 35.0f, 40, 30)},
+          {"projector-array", gpu::makeDisplayCamera(wall, b).camera}};
+}
+
+// A fresh Renderer's full frame of `scene`.
+gpu::RenderResult fullRender(const Scene& scene, const gpu::FrameCamera& camera) {
+  gpu::Renderer fresh(sharedContext(), scene);
+  gpu::RenderSettings s = reuseSettings();
+  s.reuse = false;
+  return fresh.render(camera, s);
+}
+
+// Light values edited: no raygen and no closest-hit trace (primary and mirror/glass bounces come from the caches).
+TEST(FrameReuse, LightEditsReshadeTheCachedPrimaryHitsBitForBit) {
+  Scene scene = loadScene("builtin:showcase");
+  ASSERT_GE(scene.lights.size(), 2u);
+  for (const auto& [name, camera] : cameras(scene)) {
+    SCOPED_TRACE(name);
+    Scene edited = scene;
+    gpu::Renderer renderer(sharedContext(), edited);
+    const gpu::RenderResult first = renderer.render(camera, reuseSettings());
+    EXPECT_EQ(first.reuse, FrameReuse::None);
+    LightEdit moveAndTint;
+    moveAndTint.position = glm::dvec3(edited.lights[0].position) + glm::dvec3(0.3, -0.1, 0.2);
+    moveAndTint.color = glm::dvec3(1.0, 0.5, 0.25);
+    moveAndTint.intensity = edited.lights[0].intensity * 1.7;
+    editLight(edited, 0, moveAndTint);
+    LightEdit dimSun;
+    dimSun.intensity = edited.lights[1].intensity * 0.5;
+    editLight(edited, 1, dimSun);
+    renderer.updateLights(edited);
+    const gpu::RenderResult reused = renderer.render(camera, reuseSettings());
+    EXPECT_EQ(reused.reuse, FrameReuse::CachedPrimaryHits);
+    EXPECT_EQ(stageMs(reused, "raygen"), 0.0);
+    EXPECT_EQ(stageMs(reused, "trace"), 0.0) << "mirror and glass bounces come from the secondary cache too";
+    EXPECT_GT(stageMs(first, "trace"), 0.0);
+    const gpu::RenderResult reference = fullRender(edited, camera);
+    EXPECT_TRUE(sameBits(reused, reference));
+    EXPECT_FALSE(sameBits(reused, first)) << "the light edit changed nothing";
+    // Unchanged since: the next frame also re-shades the cache, and is the same frame.
+    const gpu::RenderResult again = renderer.render(camera, reuseSettings());
+    EXPECT_EQ(again.reuse, FrameReuse::CachedPrimaryHits);
+    EXPECT_TRUE(sameBits(again, reference));
+  }
+}
+
+TEST(FrameReuse, OtherEditsAndOtherViewsRenderInFull) {
+  Scene scene = loadScene("builtin:showcase");
+  const auto cams = cameras(scene);
+  const gpu::FrameCamera& camera = cams[1].second;
+  gpu::Renderer renderer(sharedContext(), scene);
+  renderer.render(camera, reuseSettings());
+  glm::dmat4 lifted(1.0);
+  lifted[3] = glm::dvec4(0.0, 0.3, 0.0, 1.0);
+  setNodeWorldMatrix(scene, "green-sphere", lifted);
+  renderer.replaceScene(scene);  // no bounds: nothing is kept
+  gpu::RenderResult after = renderer.render(camera, reuseSettings());
+  EXPECT_EQ(after.reuse, FrameReuse::None);
+  EXPECT_TRUE(sameBits(after, fullRender(scene, camera)));
+  gpu::RenderSettings otherSeed = reuseSettings();
+  otherSeed.seed = 12;
+  EXPECT_EQ(renderer.render(camera, otherSeed).reuse, FrameReuse::None);
+  EXPECT_EQ(renderer.render(cams[0].second, otherSeed).reuse, FrameReuse::None);
+  EXPECT_EQ(renderer.render(cams[0].second, otherSeed).reuse, FrameReuse::CachedPrimaryHits);
+  gpu::RenderSettings off = otherSeed;
+  off.reuse = false;
+  EXPECT_EQ(renderer.render(cams[0].second, off).reuse, FrameReuse::None);
+  EXPECT_EQ(renderer.render(cams[0].second, otherSeed).reuse, FrameReuse::None) << "a frame without reuse keeps none";
+  // A light edit and a node move together: nothing is kept.
+  LightEdit dim;
+  dim.intensity = 1.0;
+  editLight(scene, 0, dim);
+  renderer.updateLights(scene);
+  const Bounds3 old = nodeWorldBounds(scene, *findNode(scene, "green-sphere"));
+  setNodeWorldMatrix(scene, "green-sphere", glm::dmat4(1.0));
+  renderer.replaceSceneAfterMove(scene, old, nodeWorldBounds(scene, *findNode(scene, "green-sphere")));
+  after = renderer.render(cams[0].second, otherSeed);
+  EXPECT_EQ(after.reuse, FrameReuse::None);
+}
+
+// The property test of docs/REUSE.md §4: random moves of random nodes; each partial re-render equals a fresh full
+// render of the edited scene bit for bit, and re-traces fewer targets than the frame has when the moved node is small;
+// a light edit after the moves still re-shades the (updated) cached primary hits bit for bit.
+TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesEqualsAFullRender) {
+  Scene scene = loadScene("builtin:showcase");
+  const auto cams = cameras(scene);
+  std::mt19937 rng(1234);
+  std::uniform_real_distribution<double> offset(-0.25, 0.25);
+  const std::vector<std::string> movable = {"mirror-sphere", "red-box", "green-sphere", "glass-sphere", "glow-sphere"};
+  std::uint64_t traced = 0, total = 0;
+  for (const auto& [name, camera] : cams) {
+    SCOPED_TRACE(name);
+    gpu::Renderer renderer(sharedContext(), scene);
+    Scene edited = scene;
+    const gpu::RenderResult first = renderer.render(camera, reuseSettings());
+    ASSERT_EQ(first.reuse, FrameReuse::None);
+    // A light moved first: its re-shaded frame adds the new shadow segments to the masks the moves are tested on.
+    LightEdit shift;
+    shift.position = glm::dvec3(edited.lights[0].position) + glm::dvec3(-0.4, 0.2, 0.1);
+    editLight(edited, 0, shift);
+    renderer.updateLights(edited);
+    ASSERT_EQ(renderer.render(camera, reuseSettings()).reuse, FrameReuse::CachedPrimaryHits);
+    for (int move = 0; move < 3; ++move) {
+      const std::string node = movable[rng() % movable.size()];
+      SCOPED_TRACE(node + " move " + std::to_string(move));
+      const std::size_t index = *findNode(edited, node);
+      const Bounds3 before = nodeWorldBounds(edited, index);
+      glm::dmat4 world = edited.nodes[index].world;
+      world[3] += glm::dvec4(offset(rng), offset(rng), offset(rng), 0.0);
+      setNodeWorldMatrix(edited, node, world);
+      renderer.replaceSceneAfterMove(edited, before, nodeWorldBounds(edited, index));
+      const gpu::RenderResult partial = renderer.render(camera, reuseSettings());
+      EXPECT_EQ(partial.reuse, FrameReuse::PartialRetrace);
+      EXPECT_TRUE(sameBits(partial, fullRender(edited, camera)));
+      traced += partial.tracedTargets;
+      total += frameShape(camera).targets();
+    }
+    // The partial re-renders kept the primary-hit cache up to date: a light edit now re-shades it.
+    LightEdit warmer;
+    warmer.color = glm::dvec3(1.0, 0.8, 0.6);
+    editLight(edited, 0, warmer);
+    renderer.updateLights(edited);
+    const gpu::RenderResult lit = renderer.render(camera, reuseSettings());
+    EXPECT_EQ(lit.reuse, FrameReuse::CachedPrimaryHits);
+    EXPECT_TRUE(sameBits(lit, fullRender(edited, camera)));
+    // That frame traced the bounces again (the moves left their cache stale) and cached them: the next light edit
+    // traces nothing.
+    warmer.intensity = 3.0;
+    editLight(edited, 0, warmer);
+    renderer.updateLights(edited);
+    const gpu::RenderResult relit = renderer.render(camera, reuseSettings());
+    EXPECT_EQ(stageMs(relit, "trace"), 0.0);
+    EXPECT_TRUE(sameBits(relit, fullRender(edited, camera)));
+  }
+  EXPECT_LT(traced, total) << "every target was re-traced: the masks select nothing";
+}
+
+// The GPU marking pass lists exactly the targets the C++ reference picks from the masks the previous frame recorded.
+TEST(FrameReuse, MarkingPassMatchesItsCpuReference) {
+  Scene scene = loadScene("builtin:showcase");
+  const gpu::FrameCamera camera = cameras(scene)[0].second;
+  gpu::Renderer renderer(sharedContext(), scene);
+  renderer.render(camera, reuseSettings());
+  const gpu::Renderer::ReuseSnapshot before = renderer.reuseSnapshot();
+  ASSERT_EQ(before.segmentMasks.size(), frameShape(camera).targets() * gpu::kMaskWords);
+  const std::size_t index = *findNode(scene, "glow-sphere");
+  const Bounds3 old = nodeWorldBounds(scene, index);
+  glm::dmat4 world(1.0);
+  world[3] = glm::dvec4(-0.2, 0.1, 0.0, 1.0);
+  setNodeWorldMatrix(scene, "glow-sphere", world);
+  const Bounds3 moved = nodeWorldBounds(scene, index);
+  renderer.replaceSceneAfterMove(scene, old, moved);
+  const gpu::RenderResult partial = renderer.render(camera, reuseSettings());
+  ASSERT_EQ(partial.reuse, FrameReuse::PartialRetrace);
+  const gpu::Renderer::ReuseSnapshot after = renderer.reuseSnapshot();
+  ASSERT_FALSE(before.primaryHits.empty()) << "a small frame caches its primary hits";
+  gpu::ReusePlan plan;
+  plan.gridCells[0] = after.movedCells[0];
+  plan.gridCells[1] = after.movedCells[1];
+  plan.movedLo = after.movedLo;
+  plan.movedHi = after.movedHi;
+  Bounds3 both = old;
+  both.extend(moved.lo);
+  both.extend(moved.hi);
+  const gpu_shared::uvec2 cells = gpu_shared::ht_grid_bounds_mask(both.lo, both.hi, before.grid);
+  EXPECT_EQ(plan.gridCells[0], cells.x);
+  EXPECT_EQ(plan.gridCells[1], cells.y);
+  EXPECT_TRUE(glm::all(glm::lessThan(plan.movedLo, glm::min(old.lo, moved.lo))));
+  EXPECT_TRUE(glm::all(glm::greaterThan(plan.movedHi, glm::max(old.hi, moved.hi))));
+  const std::vector<std::uint32_t> expected =
+      gpu::markDirtyTargets(before.segmentMasks, plan, before.primaryRays, before.primaryHits, reuseSettings().spp);
+  std::vector<std::uint32_t> listed = after.dirtyTargets;
+  std::sort(listed.begin(), listed.end());
+  EXPECT_EQ(listed, expected);
+  EXPECT_EQ(partial.tracedTargets, expected.size());
+  EXPECT_GT(expected.size(), 0u);
+}
+
+// Does the segment o + t d, t in [t0, t1], meet the box [lo, hi]? (Slab test in double precision.)
+bool segmentMeetsBox(glm::dvec3 o, glm::dvec3 d, double t0, double t1, glm::dvec3 lo, glm::dvec3 hi) {
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0.0) {
+      if (o[a] < lo[a] || o[a] > hi[a]) return false;
+      continue;
+    }
+    double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+  }
+  return t0 <= t1;
+}
+
+// Conservative: whenever a segment meets a box (inside or outside the grid's bounds, misses to infinity included),
+// its cells and the box's cells share a bit, and the float slab test meets the padded box; and the cells are not
+// simply all of them.
+TEST(SegmentCells, EverySegmentThatMeetsABoxSharesOneOfItsCells) {
+  gpu_shared::SegmentGrid grid{glm::vec4(-1.0f, -0.5f, -2.0f, 0.0f), glm::vec4(2.0f, 4.0f, 1.0f, 0.0f)};
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<float> coord(-4.0f, 4.0f), size(0.0f, 2.0f), unit(-1.0f, 1.0f);
+  int meeting = 0, cellsMarked = 0, segments = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const glm::vec3 o(coord(rng), coord(rng), coord(rng));
+    glm::vec3 d(unit(rng), unit(rng), unit(rng));
+    if (i % 7 == 0) d.y = 0.0f;  // axis-parallel directions
+    const float t1 = i % 3 == 0 ? 3.0e38f : std::abs(coord(rng)) * 3.0f;
+    const glm::vec3 lo(coord(rng), coord(rng), coord(rng));
+    const glm::vec3 hi = lo + glm::vec3(size(rng), size(rng), size(rng));
+    const gpu_shared::uvec2 seg = gpu_shared::ht_segment_cells(o, d, 0.0f, t1, grid);
+    const gpu_shared::uvec2 box = gpu_shared::ht_grid_bounds_mask(lo, hi, grid);
+    ++segments;
+    cellsMarked += __builtin_popcount(seg.x) + __builtin_popcount(seg.y);
+    if (segmentMeetsBox(o, d, 0.0, t1, lo, hi)) {
+      ++meeting;
+      ASSERT_NE((seg.x & box.x) | (seg.y & box.y), 0u) << "segment " << i << " meets its box in no shared cell";
+      const glm::vec3 pad = gpu_shared::HT_GRID_PAD / glm::vec3(grid.scale);
+      ASSERT_TRUE(gpu_shared::ht_segment_meets_box(o, d, 0.0f, t1, lo - pad, hi + pad)) << "segment " << i;
+    }
+  }
+  EXPECT_GT(meeting, 1000);
+  EXPECT_LT(cellsMarked, segments * 40) << "segments mark most of the 64 cells";
+  const gpu_shared::uvec2 nan =
+      gpu_shared::ht_segment_cells(glm::vec3(std::nanf("")), glm::vec3(1.0f), 0.0f, 1.0f, grid);
+  EXPECT_EQ(nan.x & nan.y, 0xffffffffu);
+}
+
+}  // namespace
+}  // namespace ht::test
