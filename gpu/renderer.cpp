@@ -284,7 +284,8 @@ Renderer::Renderer(VulkanContext& context, const Scene& scene, bvh::GpuBvh bvh, 
                                    scene.bounds())) {}
 
 Renderer::Renderer(VulkanContext& context, const Scene& scene, SceneBvh bvh, const bvh::BuildOptions& buildOptions)
-    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, std::move(bvh)), buildOptions)) {}
+    : impl_(std::make_unique<Impl>(context.impl(), GpuScene(context.impl(), scene, std::move(bvh)), buildOptions,
+                                   scene.bounds())) {}
 
 Renderer::~Renderer() = default;
 

@@ -24,7 +24,8 @@ struct JobHead {
 };
 static_assert(std::is_trivially_copyable_v<JobHead>);
 // A field added to RenderSettings changes pixels on every rank only if the job carries it: add it to JobHead,
-// headOf() and jobOf(), then update this size.
+// headOf() and jobOf(), then update this size. RenderSettings::reuse is not sent: a reused frame equals a full one
+// bit for bit, and a rank's units are bands or groups of views, which keep no reuse state.
 static_assert(sizeof(gpu::RenderSettings) == 80,
               "gpu::RenderSettings changed: send the new field in the cluster job (server/cluster_job.cpp)");
 
