@@ -102,8 +102,8 @@ struct Renderer::Impl {
   BvhStats bvhStats;
   std::uint64_t sceneGeneration = 0;    // bumped by replaceScene and updateLights (accumulation keys)
   Accumulator* accumulating = nullptr;  // during accumulate(): the accumulation the chunks add to
-  FrameReuseState reuse;  // what the next frame of the same view may reuse (RenderSettings::reuse)
-  ReusePlan framePlan;    // the plan of the chunk being rendered
+  FrameReuseState reuse;                // what the next frame of the same view may reuse (RenderSettings::reuse)
+  ReusePlan framePlan;                  // the plan of the chunk being rendered
 
   Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o, const Bounds3& sceneBounds);
 

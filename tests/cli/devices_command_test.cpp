@@ -22,10 +22,16 @@ struct DevicesRun {
   std::string out, err;
 };
 
-// Only the explicit file is looked at: USB off, drive roots that do not exist.
+// Only the explicit file is looked at: USB off, drive roots that do not exist, no X server asked for monitors (the
+// MONITOR column is tested on Xvfb, tests/present/devices_monitor_xvfb_test.cpp).
 DevicesRun runDevicesOnly(std::vector<std::string> extra) {
-  std::vector<std::string> args = {
-      "devices", "--no-usb", "--mountinfo", "/nonexistent/mountinfo", "--by-label", "/nonexistent/by-label"};
+  std::vector<std::string> args = {"devices",
+                                   "--no-usb",
+                                   "--no-monitors",
+                                   "--mountinfo",
+                                   "/nonexistent/mountinfo",
+                                   "--by-label",
+                                   "/nonexistent/by-label"};
   args.insert(args.end(), extra.begin(), extra.end());
   std::ostringstream out, err;
   const int code = runCli(args, out, err);

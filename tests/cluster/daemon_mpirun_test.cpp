@@ -223,6 +223,9 @@ std::vector<std::vector<std::uint8_t>> streamOf(v1::Holotrace::Stub& stub, const
   v1::StreamRequest request;
   *request.mutable_render() = render;
   request.set_frames_per_second(1);  // tick k has seed + k while a frame takes < 1 s (a late tick is skipped)
+  // Independent frames, the default under mpirun (every rank renders a share); a single daemon defaults to
+  // progressive accumulation, so the comparison names the mode.
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);
   auto reader = stub.StreamFrames(&context, request);
   std::vector<std::vector<std::uint8_t>> frames;
   ReceivedFrame frame;
