@@ -295,9 +295,13 @@ void Renderer::replaceScene(const Scene& scene, BvhLayoutPolicy policy) {
   impl_->reuse.invalidate();
 }
 void Renderer::updateLights(const Scene& scene) { impl_->updateLights(scene); }
-void Renderer::moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes) {
+void Renderer::moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes, std::optional<MovedBounds> moved) {
   impl_->moveNodes(scene, nodes);
-  impl_->reuse.invalidate();
+  if (moved) {
+    impl_->reuse.geometryMoved(moved->before, moved->after);
+  } else {
+    impl_->reuse.invalidate();
+  }
 }
 void Renderer::replaceSceneAfterMove(const Scene& scene, const Bounds3& oldBounds, const Bounds3& newBounds) {
   impl_->replaceScene(scene, BvhLayoutPolicy::Automatic);

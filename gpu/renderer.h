@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <variant>
@@ -103,6 +104,11 @@ struct BvhStats {
   double lastUploadMs = 0.0;          // and the upload of the changed ranges (all three included in lastUpdateMs)
 };
 
+// Where moved geometry was and is (Renderer::moveNodes).
+struct MovedBounds {
+  Bounds3 before, after;
+};
+
 struct TraceStats {
   double gpuMs = 0.0;  // timestamp time of the trace dispatches only
   std::uint32_t maxSteps = 0;
@@ -133,13 +139,15 @@ class Renderer {
   // `scene` is this Renderer's scene with nodes `nodes` (indices into scene.nodes) moved by setNodeWorldMatrix. On the
   // two-level BVH: a refit of the moved instances, a top-level rebuild and an upload of what changed (no rebuild). On
   // the flattened BVH: the scene switches to the two-level BVH (built whole once; later moves take the fast path).
-  // Frame reuse (RenderSettings::reuse) after moveNodes: none, the next frame renders whole (the moved bounds are
-  // not known here; replaceSceneAfterMove gives them).
-  void moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes);
+  // Frame reuse (RenderSettings::reuse): with `moved` (the moved nodes' world bounds before and after, e.g. unions of
+  // nodeWorldBounds, scene/scene_edits.h) the next frame of the same view re-traces only the targets whose last path
+  // segments met a grid cell of those bounds (docs/REUSE.md §4); without it, the next frame renders whole.
+  void moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes, std::optional<MovedBounds> moved = {});
   BvhStats bvhStats() const;
-  // replaceScene (a full BVH rebuild) after an edit that changed geometry only inside `oldBounds` and `newBounds` (a node moved: its
-  // world bounds before and after, e.g. nodeWorldBounds in scene/scene_edits.h): with RenderSettings::reuse the next
-  // frame of the same view re-traces only the targets whose last path segments met a grid cell of those bounds.
+  // replaceScene (a full BVH rebuild) after an edit that changed geometry only inside `oldBounds` and `newBounds` (a
+  // node moved: its world bounds before and after, e.g. nodeWorldBounds in scene/scene_edits.h): with
+  // RenderSettings::reuse the next frame of the same view re-traces only the targets whose last path segments met a
+  // grid cell of those bounds.
   void replaceSceneAfterMove(const Scene& scene, const Bounds3& oldBounds, const Bounds3& newBounds);
 
   // Every view of the camera, whatever its model (camera_models/frame_camera.h). Large view arrays are rendered in

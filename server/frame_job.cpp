@@ -33,6 +33,7 @@ gpu::RenderSettings jobSettings(const FrameJob& job) {
   settings.seed = job.seed;
   settings.refineSpp = job.refineSpp;
   settings.refineContrast = job.refineContrast;
+  settings.reuse = job.reuse;
   return settings;
 }
 

@@ -22,6 +22,7 @@ struct FrameJob {
   std::uint32_t refineSpp = 0;  // adaptive refinement (gpu::RenderSettings::refineSpp); 0 = off
   float refineContrast = gpu::RenderSettings{}.refineContrast;
   std::uint32_t seed = 0;
+  bool reuse = false;                              // RenderRequest.reuse_after_edits (gpu::RenderSettings::reuse)
   gpu::CameraPath path = gpu::CameraPath::Native;  // RenderRequest.quilt
   DistributedFrames* cluster = nullptr;            // set under mpirun: every rank renders a share (docs/CLUSTER.md §8)
 };

@@ -31,6 +31,10 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
+static_assert(static_cast<int>(gpu::FrameReuse::None) == v1::FRAME_REUSE_NONE &&
+              static_cast<int>(gpu::FrameReuse::CachedPrimaryHits) == v1::FRAME_REUSE_CACHED_PRIMARY_HITS &&
+              static_cast<int>(gpu::FrameReuse::PartialRetrace) == v1::FRAME_REUSE_PARTIAL_RETRACE);
+
 v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame, const EncodedFrame& encoded,
                            v1::PixelFormat format, double queueMs) {
   v1::FrameHeader header;
@@ -41,6 +45,8 @@ v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame
   header.set_views(encoded.views);
   header.set_render_ms(frame.totalMs);
   header.set_queue_ms(queueMs);
+  header.set_reuse(static_cast<v1::FrameReuse>(frame.reuse));  // same order as gpu::FrameReuse
+  header.set_traced_targets(frame.tracedTargets);
   for (const auto& stage : frame.stages) {
     auto* s = header.add_stages();
     s->set_name(stage.name);

@@ -51,6 +51,7 @@ FrameJob checkRenderRequest(ServiceState& state, const holotrace::v1::RenderRequ
   job.seed = request.seed();
   job.refineSpp = request.refine_spp();
   if (request.refine_contrast() > 0.0f) job.refineContrast = request.refine_contrast();
+  job.reuse = request.reuse_after_edits();
   job.path = request.quilt() ? gpu::CameraPath::Quilt : gpu::CameraPath::Native;
   job.cluster = state.cluster;
   gpu::FrameShape shape;

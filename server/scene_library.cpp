@@ -7,6 +7,7 @@
 #include "bvh/gpu_layout.h"
 #include "frame_io/quilt_file.h"
 #include "scene/load_scene.h"
+#include "scene/scene_edits.h"
 #include "server/path_rules.h"
 
 namespace ht::server {
@@ -328,6 +329,21 @@ std::vector<std::uint32_t> movedNodes(const Scene& before, const Scene& after) {
   return moved;
 }
 
+// Where the moved nodes' geometry was and is: what a frame that reuses the previous one re-traces around
+// (gpu::Renderer::moveNodes, docs/REUSE.md §4).
+gpu::MovedBounds movedBounds(const Scene& before, const Scene& after, const std::vector<std::uint32_t>& moved) {
+  gpu::MovedBounds bounds;
+  for (const std::uint32_t n : moved) {
+    for (const auto& [scene, into] : {std::pair{&before, &bounds.before}, std::pair{&after, &bounds.after}}) {
+      const Bounds3 b = nodeWorldBounds(*scene, n);
+      if (b.empty()) continue;
+      into->extend(b.lo);
+      into->extend(b.hi);
+    }
+  }
+  return bounds;
+}
+
 }  // namespace
 
 SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, const std::string& id, bool movesGeometry,
@@ -354,7 +370,8 @@ SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, cons
             if (newRenderer)
               content->renderer = adopt(new gpu::Renderer(context, content->scene, std::move(bvh)));
             else if (movesGeometry)
-              content->renderer->moveNodes(content->scene, moved);
+              content->renderer->moveNodes(content->scene, moved,
+                                           movedBounds(session->content->scene, content->scene, moved));
             else
               content->renderer->updateLights(content->scene);
           },

@@ -185,6 +185,18 @@ class DaemonTest(unittest.TestCase):
         with self.assertRaises(InvalidArgument):
             self.client.update_scene(scene, lights={5: {"intensity": 1.0}})
 
+    def test_frames_reuse_their_predecessor_after_edits(self):
+        scene = self.fresh_scene()
+        self.client.update_scene(scene, lights={0: {"intensity": 1.0}})  # the session's own renderer from here on
+        first = self.client.render_frame(scene, "tiny", spp=1, reuse_after_edits=True)
+        self.assertEqual(first.reuse, "none")
+        self.client.update_scene(scene, nodes={"model": translation(0.1, 0.0, 0.0)})
+        moved = self.client.render_frame(scene, "tiny", spp=1, reuse_after_edits=True)
+        full = self.client.render_frame(scene, "tiny", spp=1)
+        self.assertEqual((moved.reuse, full.reuse), ("partial-retrace", "none"))
+        self.assertLess(moved.traced_targets, full.traced_targets)
+        np.testing.assert_array_equal(moved.pixels, full.pixels)
+
     # ---- quilt images and panels (docs/SERVICE.md §11-12) -----------------------------------------------------
 
     def test_upload_quilt_renders_as_the_loaded_file(self):
@@ -262,6 +274,17 @@ class PresentOnXvfbTest(unittest.TestCase):
         self.assertEqual((panel.geometry, panel.x_display), ("64x48+0+0", self.xvfb.display))
         with self.assertRaises(InvalidArgument):  # the wall has no sink (and no single panel image)
             self.client.present(quilt, "wall")
+
+    def test_stream_present_on_shows_the_frames_on_the_panel(self):
+        scene = self.client.load_scene("builtin:sphere")
+        before = self.client.status().panels[0].submitted
+        with self.client.stream(scene, "tiny", fps=20.0, spp=1, frames=2, mode="independent",
+                                present_on="tiny") as frames:
+            self.assertEqual(len(list(frames)), 2)
+        self.assertGreaterEqual(self.client.status().panels[0].submitted, before + 2)
+        with self.assertRaises(InvalidArgument):
+            with self.client.stream(scene, "tiny", frames=1, present_on="no-such-display") as frames:
+                list(frames)
 
 
 if __name__ == "__main__":

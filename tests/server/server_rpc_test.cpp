@@ -278,6 +278,48 @@ TEST_F(ServerTest, UpdateSceneNodeMovesAfterTheFirstDoNotRebuildTheBvh) {
   EXPECT_NE(third.bytes, second.bytes);
 }
 
+// RenderRequest.reuse_after_edits (docs/REUSE.md §3-§4): after a light edit the frame re-shades the cached hits, after
+// a node move it re-traces only the targets near the node, and each equals a full render of the edited scene bit
+// for bit. A frame without the flag drops the kept state (the next one records afresh).
+TEST_F(ServerTest, FramesReuseTheirPredecessorAfterEdits) {
+  v1::SceneHandle showcase;
+  ASSERT_TRUE(loadScene(*stub_, "builtin:showcase", &showcase).ok());
+  v1::RenderRequest reusing = tinyRequest(showcase.scene_id());
+  reusing.set_reuse_after_edits(true);
+  const v1::RenderRequest full = tinyRequest(showcase.scene_id());
+  v1::UpdateSceneRequest lightEdit;
+  lightEdit.set_scene_id(showcase.scene_id());
+  v1::LightUpdate* light = lightEdit.add_lights();
+  light->set_index(0);
+  light->set_intensity(1.0);
+  ASSERT_TRUE(updateScene(*stub_, lightEdit).ok());  // the session's first edit: its own renderer from here on
+  ReceivedFrame recorded, relit, relitFull, again, moved, movedFull;
+  ASSERT_TRUE(renderOne(*stub_, reusing, &recorded).ok());
+  EXPECT_EQ(recorded.header.reuse(), v1::FRAME_REUSE_NONE);
+  light->set_intensity(3.0);
+  ASSERT_TRUE(updateScene(*stub_, lightEdit).ok());
+  ASSERT_TRUE(renderOne(*stub_, reusing, &relit).ok());
+  ASSERT_TRUE(renderOne(*stub_, full, &relitFull).ok());
+  EXPECT_EQ(relit.header.reuse(), v1::FRAME_REUSE_CACHED_PRIMARY_HITS);
+  EXPECT_EQ(relitFull.header.reuse(), v1::FRAME_REUSE_NONE);
+  EXPECT_NE(relit.bytes, recorded.bytes) << "the light edit changed nothing";
+  EXPECT_EQ(relit.bytes, relitFull.bytes) << "the re-shaded frame differs from a full render";
+
+  ASSERT_TRUE(renderOne(*stub_, reusing, &again).ok());
+  EXPECT_EQ(again.header.reuse(), v1::FRAME_REUSE_NONE) << "a frame without the flag left state behind";
+  v1::UpdateSceneRequest move;
+  move.set_scene_id(showcase.scene_id());
+  *move.add_nodes() = translation("glow-sphere", 0.05, 0.0, 0.0);
+  ASSERT_TRUE(updateScene(*stub_, move).ok());
+  ASSERT_TRUE(renderOne(*stub_, reusing, &moved).ok());
+  ASSERT_TRUE(renderOne(*stub_, full, &movedFull).ok());
+  EXPECT_EQ(moved.header.reuse(), v1::FRAME_REUSE_PARTIAL_RETRACE);
+  EXPECT_LT(moved.header.traced_targets(), movedFull.header.traced_targets());
+  EXPECT_GT(movedFull.header.traced_targets(), 0u);
+  EXPECT_NE(moved.bytes, again.bytes) << "the node move changed nothing";
+  EXPECT_EQ(moved.bytes, movedFull.bytes) << "the partial re-render differs from a full render";
+}
+
 // Lights: a dimmed, recoloured light changes the frame; an index past the scene's lights is refused.
 TEST_F(ServerTest, UpdateSceneChangesALight) {
   v1::SceneHandle showcase;

@@ -325,17 +325,23 @@ class Client:
     # ---- frames -------------------------------------------------------------------------------------------------
 
     @staticmethod
-    def _render_request(scene, display, spp, seed, quilt, format, refine_spp, refine_contrast):
+    def _render_request(scene, display, spp, seed, quilt, format, refine_spp, refine_contrast,
+                        reuse_after_edits=False):
         return pb.RenderRequest(scene_id=_id(scene, "scene"), display_id=_id(display, "display"),
                                 format=pixel_format(format), spp=int(spp), seed=int(seed), quilt=bool(quilt),
-                                refine_spp=int(refine_spp), refine_contrast=float(refine_contrast))
+                                refine_spp=int(refine_spp), refine_contrast=float(refine_contrast),
+                                reuse_after_edits=bool(reuse_after_edits))
 
     def render_frame(self, scene, display, spp=0, seed=0, quilt=False, format="rgba8", refine_spp=0,
-                     refine_contrast=0.0, timeout=None):
+                     refine_contrast=0.0, timeout=None, reuse_after_edits=False):
         """One frame (RenderFrame) as a Frame: pixels (views, h, w, 4) for 'rgba8' / 'rgba16f', PNG bytes in
-        .data for 'png'. spp 0 = the display's default; quilt = a lenticular display's quilt cameras."""
+        .data for 'png'. spp 0 = the display's default; quilt = a lenticular display's quilt cameras.
+        reuse_after_edits: keep what the next frame of the same request can reuse after update_scene() (a light
+        edit re-shades cached hits, a node move re-traces only around the node; the frame is the same bits either
+        way; Frame.reuse / .traced_targets say what it did), docs/SERVICE.md §4.2."""
         self._check_open()
-        request = self._render_request(scene, display, spp, seed, quilt, format, refine_spp, refine_contrast)
+        request = self._render_request(scene, display, spp, seed, quilt, format, refine_spp, refine_contrast,
+                                       reuse_after_edits)
         assembler = FrameAssembler("RenderFrame")
         frame = None
         try:
@@ -348,14 +354,14 @@ class Client:
         return frame
 
     def render(self, scene, display, spp=0, seed=0, quilt=False, format="rgba8", refine_spp=0,
-               refine_contrast=0.0, timeout=None):
+               refine_contrast=0.0, timeout=None, reuse_after_edits=False):
         """One frame as a numpy array (views, height, width, 4), row 0 = top: uint8 sRGB ('rgba8') or float16
         linear ('rgba16f')."""
         if pixel_format(format) == pb.PIXEL_FORMAT_PNG:
             raise InvalidArgument("render() returns pixels: use format 'rgba8' or 'rgba16f', or render_png()",
                                   grpc.StatusCode.INVALID_ARGUMENT, "render")
         return self.render_frame(scene, display, spp, seed, quilt, format, refine_spp, refine_contrast,
-                                 timeout).pixels
+                                 timeout, reuse_after_edits).pixels
 
     def render_png(self, scene, display, spp=0, seed=0, quilt=False, refine_spp=0, refine_contrast=0.0,
                    timeout=None):
@@ -364,11 +370,12 @@ class Client:
                                  timeout).data
 
     def stream(self, scene, display, fps=10.0, spp=0, seed=0, quilt=False, format="rgba8", refine_spp=0,
-               refine_contrast=0.0, frames=None, mode="progressive"):
+               refine_contrast=0.0, frames=None, mode="progressive", present_on=""):
         """StreamFrames as a FrameStream: iterate it for Frames, the newest one each time (stream.py); it ends after
         `frames` frames (None = until closed). Use it in a `with` block, or close() it. mode "progressive" (frames add
         samples until converged; a converged stream then sends nothing until the scene changes) or "independent"
-        (a new frame every tick), docs/SERVICE.md §4.1."""
+        (a new frame every tick), docs/SERVICE.md §4.1. present_on: a display id with a panel sink (daemon config
+        "present") that also shows every new frame on its panel (docs/SERVICE.md §11)."""
         self._check_open()
         if not fps > 0:
             raise ValueError(f"fps must be > 0, got {fps!r}")
@@ -377,7 +384,7 @@ class Client:
             raise ValueError(f"mode must be 'progressive' or 'independent', got {mode!r}")
         request = pb.StreamRequest(
             render=self._render_request(scene, display, spp, seed, quilt, format, refine_spp, refine_contrast),
-            frames_per_second=float(fps), mode=modes[mode])
+            frames_per_second=float(fps), mode=modes[mode], present_on=str(present_on))
         return FrameStream(self._stub.StreamFrames(request), frames)
 
     def capture(self, scene, display, name, frames=1, format="png", layout="auto", spp=0, seed=0, quilt=False,

@@ -18,6 +18,8 @@ PIXEL_FORMATS = {
 }
 _NAMES = {value: name for name, value in PIXEL_FORMATS.items()}
 _NAMES[pb.PIXEL_FORMAT_UNSPECIFIED] = "rgba8"
+_REUSE = {pb.FRAME_REUSE_NONE: "none", pb.FRAME_REUSE_CACHED_PRIMARY_HITS: "cached-primary-hits",
+          pb.FRAME_REUSE_PARTIAL_RETRACE: "partial-retrace"}
 _DTYPES = {"rgba8": np.dtype(np.uint8), "rgba16f": np.dtype("<f2")}
 
 
@@ -50,6 +52,8 @@ class Frame:
     dropped_frames: int = 0
     skipped: int = 0
     stages: dict = field(default_factory=dict)
+    reuse: str = "none"       # RenderRequest.reuse_after_edits: "none", "cached-primary-hits" or "partial-retrace"
+    traced_targets: int = 0   # targets the frame traced (a partial re-render: the dirty ones)
 
 
 class FrameAssembler:
@@ -104,7 +108,8 @@ class FrameAssembler:
         views = max(1, header.views)
         frame = Frame(frame_id=header.frame_id, width=header.width, height=header.height, views=views, format=name,
                       data=data, render_ms=header.render_ms, queue_ms=header.queue_ms,
-                      dropped_frames=header.dropped_frames, stages={s.name: s.ms for s in header.stages})
+                      dropped_frames=header.dropped_frames, stages={s.name: s.ms for s in header.stages},
+                      reuse=_REUSE.get(header.reuse, f"reuse-{header.reuse}"), traced_targets=header.traced_targets)
         dtype = _DTYPES.get(name)
         if dtype is not None:
             shape = (views, header.height, header.width, 4)
