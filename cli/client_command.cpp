@@ -23,7 +23,7 @@ namespace v1 = holotrace::v1;
 using Stub = v1::Holotrace::Stub;
 constexpr const char* kCommand = "holotrace client";
 
-const std::array<OptionSpec, 15> kOptions = {{
+const std::array<OptionSpec, 16> kOptions = {{
     {"--socket", "", "ADDR", "daemon address (default unix:$XDG_RUNTIME_DIR/holotrace/holotraced.sock)"},
     {"--scene", "", "SPEC", "scene below the daemon's scene root, or builtin:NAME (default builtin:showcase)"},
     {"--upload", "", "FILE",
@@ -38,6 +38,8 @@ const std::array<OptionSpec, 15> kOptions = {{
     {"--frames", "", "N", "stream: stop after N frames (default 10); capture: file count (default 1)"},
     {"--mode", "", "MODE",
      "stream: progressive (default: frames add samples until converged, then the stream ends here) | independent"},
+    {"--present-on", "", "ID",
+     "stream: also show every frame on display ID's panel sink (the daemon config's \"present\")"},
     {"--name", "", "NAME", "capture: file name prefix under the daemon's output root"},
     {"--exr", "", "", "capture: linear half EXR instead of 8-bit PNG"},
     {"--move", "", "NODE=X,Y,Z",
@@ -233,6 +235,7 @@ int stream(Stub& stub, const ParsedArguments& a, std::ostream& out) {
     throw UsageError(usageMessage(kCommand, "--mode " + mode + ": expected progressive or independent"));
   }
   request.set_mode(mode == "progressive" ? v1::STREAM_MODE_PROGRESSIVE : v1::STREAM_MODE_INDEPENDENT);
+  request.set_present_on(a.textOr("--present-on", ""));
   const std::uint32_t frames = a.unsignedValue("--frames", 1, 1'000'000).value_or(10);
   grpc::ClientContext context;
   auto reader = stub.StreamFrames(&context, request);
