@@ -141,11 +141,10 @@ float fresnel_dielectric(float cosI, float cosT, float eta) {
 
 // The key of chunk path `chunkPath` (target x sample; in the refinement pass or a partial re-render, listed target x
 // sample) for its random choices (glass: reflect or refract). Keyed by the target's index in the whole frame and the
-// path's absolute sample index (samples accumulated so far + its sample in this frame), without the frame's spp, as
+// path's absolute sample index (samples accumulated so far + its sample in this pass), without the pass's spp, as
 // footprint_sample_progressive keys its position: a single frame of N samples, a partial re-render of it, and k
-// progressive frames of N/k samples all draw the same choices (docs/REUSE.md §6 item 3), so the progressive frame
-// at N samples is the single frame's bits. The adaptive refinement pass of a single frame samples the positions of a
-// frame at the refinement spp; it keeps a key of its own (with the spp) so its choices are not the base pass's.
+// progressive frames of N/k samples all draw the same choices (docs/REUSE.md §6 item 3), so the progressive frame at
+// N samples is the single frame's bits; a refined target's samples stay those of a frame at the refinement spp.
 // Independent of how the frame is cut into chunks of views or bands of rows (common.glsl frame_global_target).
 uint path_sample_key(uint chunkPath) {
   uint spp = FRAME.dims.z;
@@ -153,11 +152,7 @@ uint path_sample_key(uint chunkPath) {
   bool listed = FRAME.refineInfo.y != 0u;  // listed targets: refinement, a progressive list or a partial re-render
   uint target = listed ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;
   uint globalTarget = frame_global_target(target);
-  bool progressive = FRAME.accum.x != 0u;
-  if (!progressive && FRAME.refineInfo.w != 0u) {  // a single frame's adaptive refinement pass
-    return ht_hash(globalTarget * 0x9E3779B9u ^ ht_hash(chunkPath % spp + spp * 0x68E31DA4u));
-  }
-  uint sampleIndex = (progressive ? accum_samples_so_far(globalTarget) : 0u) + chunkPath % spp;
+  uint sampleIndex = (FRAME.accum.x != 0u ? accum_samples_so_far(globalTarget) : 0u) + chunkPath % spp;
   return ht_hash(globalTarget * 0x9E3779B9u ^ ht_hash(sampleIndex ^ 0x5BD1E995u));
 }
 

@@ -177,7 +177,7 @@ const std::map<std::string, std::map<std::string, std::string>>& pinnedDigests()
            {"oblique", "3b1e11cc7aa395311786dab6786721d85075df09709418e59b3ba289544acc29"},
            {"ray-table", "e54478afc95b18bc4a7157981617ac94141e4709d3d1e5488e34c9b68f90a2f7"},
            {"lenticular-gaussian", "d781d14d70243e69f1ac82532dce01fb8bfb4f95bde20f89dbfa36885c3902fd"},
-           {"lenticular-refined", "879ca6205a68329076a01497de9221ffc291373fff9d1e7746f490eb846c7ea9"},
+           {"lenticular-refined", "288acaf3c12e2b0505f853f368ec2232436d9045da9117bbb1f54ef165c5be63"},
            {"pinhole-tent-unspecialized", "4d4d7d2954e672bf4cd44887bd9f779be733ea1e046caecfc5723a118d737997"},
        }},
   };
