@@ -140,23 +140,20 @@ float fresnel_dielectric(float cosI, float cosT, float eta) {
 }
 
 // The key of chunk path `chunkPath` (target x sample; in the refinement pass or a partial re-render, listed target x
-// sample) for its random
-// choices: its target's index in the whole frame, its sample and the pass's spp (as footprint_sample keys its
-// position: a refined target's samples are those of a frame rendered at the refinement spp). Independent of how the
-// frame is cut into chunks of views or bands of rows (common.glsl frame_global_target).
+// sample) for its random choices (glass: reflect or refract). Keyed by the target's index in the whole frame and the
+// path's absolute sample index (samples accumulated so far + its sample in this pass), without the pass's spp, as
+// footprint_sample_progressive keys its position: a single frame of N samples, a partial re-render of it, and k
+// progressive frames of N/k samples all draw the same choices (docs/REUSE.md §6 item 3), so the progressive frame at
+// N samples is the single frame's bits; a refined target's samples stay those of a frame at the refinement spp.
+// Independent of how the frame is cut into chunks of views or bands of rows (common.glsl frame_global_target).
 uint path_sample_key(uint chunkPath) {
   uint spp = FRAME.dims.z;
   uint entry = chunkPath / spp;
-  bool refining = FRAME.refineInfo.y != 0u;  // listed targets: refinement or a partial re-render
-  uint target = refining ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;
+  bool listed = FRAME.refineInfo.y != 0u;  // listed targets: refinement, a progressive list or a partial re-render
+  uint target = listed ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;
   uint globalTarget = frame_global_target(target);
-  // Progressive frames key by the absolute sample index, without the frame's spp, so that k frames of N samples
-  // draw what one frame of k*N does (docs/REUSE.md §6 item 3; single frames keep their key, and their bits).
-  if (FRAME.accum.x != 0u) {
-    uint sampleIndex = accum_samples_so_far(globalTarget) + chunkPath % spp;
-    return ht_hash(globalTarget * 0x9E3779B9u ^ ht_hash(sampleIndex ^ 0x5BD1E995u));
-  }
-  return ht_hash(globalTarget * 0x9E3779B9u ^ ht_hash(chunkPath % spp + spp * 0x68E31DA4u));
+  uint sampleIndex = (FRAME.accum.x != 0u ? accum_samples_so_far(globalTarget) : 0u) + chunkPath % spp;
+  return ht_hash(globalTarget * 0x9E3779B9u ^ ht_hash(sampleIndex ^ 0x5BD1E995u));
 }
 
 void main() {

@@ -160,23 +160,25 @@ std::vector<PinCase> pinCases(const Bounds3& bounds) {
 
 // Device name -> case name -> SHA-256 of the frame, rendered by this test. Re-pinned when glass's random Fresnel
 // choice became keyed by the frame-wide target and sample instead of the path's index within its chunk
-// (gpu/shaders/shade.comp path_sample_key), so that a band of rows or a range of views renders the whole frame's bits.
+// (gpu/shaders/shade.comp path_sample_key), so that a band of rows or a range of views renders the whole frame's bits;
+// again when that choice became keyed by the absolute sample index instead of (sample, spp), the key progressive
+// frames use, so that a progressive stream at N samples shows the single N-sample frame's bits (docs/REUSE.md §6).
 const std::map<std::string, std::map<std::string, std::string>>& pinnedDigests() {
   static const std::map<std::string, std::map<std::string, std::string>> table = {
       {"llvmpipe (LLVM 15.0.6, 256 bits)",  // Mesa 22.3.6 lavapipe, AMD EPYC (AVX2)
        {
-           {"lenticular-portrait", "cef668f57ec44c470fe6f913ffc6d74a0aecc9b6e38f93c460e44afefcc71349"},
-           {"lenticular-gen3", "fd07332cd31eaa74584ccbe3be7e8e27039739a2612e7d0cdce6cb2a867df682"},
-           {"quilt-portrait", "2bd7416baa567e74e87c51fb9272350f5e51f1cd8efaddf9bd1c6cd05450ea42"},
-           {"pinhole", "9ec601018828570e8578fc3e46060dd51bd94b6b79851fbb8618ffa5d58bd1a2"},
-           {"projector-array", "ef4186f7a69b801619a47d8a45252e53a1be117002647f5758328721242dae32"},
-           {"integral", "e94df7f23a163432549c4c6c5eb64918d09166da80c9770083e2df5e3a4ae3fc"},
-           {"capture-grid", "dd50eff487bfaa48a58efa6037565f0ac15d2919ce6e666ec995daae7d496dca"},
-           {"oblique", "127b34fbdcacf0f2edc89afb516ed04fcc74266e3c334383c873b1aed723c86b"},
-           {"ray-table", "0f9bfd588837650a7fe65634beb48368ffc5a83df5d93e3acbdac5f6c8c2d8f5"},
-           {"lenticular-gaussian", "18842dedf00b28abc02e75a0f4ecec6ee7d8c575a2ec818f5c3dd2511391c56d"},
-           {"lenticular-refined", "86ef0dc581ed4e40107e0f13bcad40dc2dcb87d1a1c3ac57537cdc7efd4e6b1f"},
-           {"pinhole-tent-unspecialized", "d523e6e00c95355336603d09c95d11ba32799dcf3a2f2a237d88e908fef0b02c"},
+           {"lenticular-portrait", "6583ead153c08897778f1ba68d2d307dde3fe63976663467c5cfaea2c25fa65a"},
+           {"lenticular-gen3", "09f0c50c51a38fa7e2bfc82034866c39f13fa4b4c54e3687e0a0d967c96016f4"},
+           {"quilt-portrait", "6edc777c662c86a086baa996524b80f402528d3dc55aa6efbe982a2c0b214137"},
+           {"pinhole", "57b47e06c5bf35fa23c9a551432fd58019ef6275bcaea7d86fc74df9cdb1f6f2"},
+           {"projector-array", "1b7c6b992f3b07f40d94024887d7795e3e18d0122e31a1b35c3f35eb6a3e9225"},
+           {"integral", "596480e2a2b22b72d2ce7db5dadbaff9157144e022fda0e840770981824e1356"},
+           {"capture-grid", "9280c84d0551953d13aa1fe1b6116b3f2bc3d2035906be5802e0386081f7abc5"},
+           {"oblique", "3b1e11cc7aa395311786dab6786721d85075df09709418e59b3ba289544acc29"},
+           {"ray-table", "e54478afc95b18bc4a7157981617ac94141e4709d3d1e5488e34c9b68f90a2f7"},
+           {"lenticular-gaussian", "d781d14d70243e69f1ac82532dce01fb8bfb4f95bde20f89dbfa36885c3902fd"},
+           {"lenticular-refined", "288acaf3c12e2b0505f853f368ec2232436d9045da9117bbb1f54ef165c5be63"},
+           {"pinhole-tent-unspecialized", "4d4d7d2954e672bf4cd44887bd9f779be733ea1e046caecfc5723a118d737997"},
        }},
   };
   return table;
