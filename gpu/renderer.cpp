@@ -158,6 +158,7 @@ void Renderer::Impl::moveNodes(const Scene& s, std::span<const std::uint32_t> mo
     HT_VK(vkQueueWaitIdle(vk.queue));
     if (scene.moveInstances(s, moved)) bindScene();
     descriptors.flush();
+    ++sceneGeneration;  // another scene version: accumulations restart (installScene bumps it on the other path)
     bvhStats.instanceUpdates++;
     bvhStats.lastRefitMs = scene.twoLevel()->timings().refitMs;
     bvhStats.lastTopLevelMs = scene.twoLevel()->timings().topLevelMs;

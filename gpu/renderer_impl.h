@@ -100,7 +100,8 @@ struct Renderer::Impl {
 
   bvh::BuildOptions buildOptions;
   BvhStats bvhStats;
-  std::uint64_t sceneGeneration = 0;    // bumped by replaceScene and updateLights (accumulation keys)
+  std::uint64_t sceneGeneration =
+      0;  // bumped by every scene change: replaceScene, moveNodes, updateLights (accumulation keys)
   Accumulator* accumulating = nullptr;  // during accumulate(): the accumulation the chunks add to
   FrameReuseState reuse;                // what the next frame of the same view may reuse (RenderSettings::reuse)
   ReusePlan framePlan;                  // the plan of the chunk being rendered

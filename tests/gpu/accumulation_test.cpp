@@ -7,12 +7,14 @@
 
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "camera_models/display_model_registry.h"
 #include "gpu/accumulation_error.h"
 #include "gpu_test_util.h"
+#include "scene/scene.h"
 #include "scene/scene_edits.h"
 
 namespace ht::test {
@@ -139,6 +141,39 @@ TEST(Accumulation, SceneEditOrCameraChangeRestartsTheSums) {
   EXPECT_TRUE(renderer.accumulate(moved, settings, accumulator).accumulation.restarted);
   settings.spp = 3;  // another per-frame count continues the same accumulation
   EXPECT_FALSE(renderer.accumulate(moved, settings, accumulator).accumulation.restarted);
+}
+
+// Node moves restart the sums too: the first move of a flattened scene switches it to the two-level BVH (a full
+// build), the second takes the fast path (refit + top level) and must bump the scene version all the same (it did
+// not when both landed: a stream after a session's second move summed samples of two scenes).
+TEST(Accumulation, NodeMovesOnBothBvhPathsRestartTheSums) {
+  Scene scene = loadScene("builtin:showcase");
+  const std::optional<std::size_t> node = findNode(scene, "glow-sphere");
+  ASSERT_TRUE(node);
+  gpu::Renderer renderer(sharedContext(), scene);
+  const FrameCamera camera = lookAt(glm::vec3(0.0f, 0.3f, 2.5f), glm::vec3(0.0f), 40.0f, 16, 12);
+  gpu::AccumulationPolicy uniform;
+  uniform.adaptive = false;
+  gpu::Accumulator accumulator(uniform);
+  gpu::RenderSettings settings;
+  settings.spp = 2;
+  settings.seed = 7;
+  renderer.accumulate(camera, settings, accumulator);
+  EXPECT_EQ(renderer.accumulate(camera, settings, accumulator).accumulation.minSamples, 4u);
+  const std::uint32_t moved[] = {static_cast<std::uint32_t>(*node)};
+  for (int move = 1; move <= 2; ++move) {
+    SCOPED_TRACE("move " + std::to_string(move));
+    setNodeWorldMatrix(scene, "glow-sphere",
+                       glm::translate(scene.nodes[*node].world, glm::dvec3(0.1 * move, 0.05, 0.0)));
+    renderer.moveNodes(scene, moved);
+    const gpu::RenderResult frame = renderer.accumulate(camera, settings, accumulator);
+    EXPECT_TRUE(frame.accumulation.restarted);
+    EXPECT_EQ(frame.accumulation.maxSamples, 2u);
+    gpu::Renderer fresh(sharedContext(), scene);
+    gpu::Accumulator clean(uniform);
+    EXPECT_TRUE(sameBits(frame, fresh.accumulate(camera, settings, clean)));
+  }
+  EXPECT_EQ(renderer.bvhStats().instanceUpdates, 1u) << "the second move did not take the two-level fast path";
 }
 
 // The adaptive policy: after the first frame only targets above the target error get samples; the accumulation
