@@ -9,8 +9,10 @@
 //      120 fps until converged; the process CPU time per wall second while it accumulates (rendering) and in
 //      --runs windows of --idle-seconds after convergence; ratio = idle / rendering, and the frames the device
 //      rendered meanwhile (must be 0).
-// --case selects the scenario: only "static" is implemented; light-edit / node-move cases (partial re-render, issue 16
-// items 3-4) plug in as further cases of runCase().
+// --case selects the scenario: "static" (the two above) or "node-move": per run a fresh accumulation converges (its
+// time), then --node moves by 5 % of the scene's diagonal along x and the same accumulation converges again, only
+// its targets near the move restarted (docs/REUSE.md §4 in streams); ratio = re-convergence time / first
+// convergence time, and the fraction of targets restarted.
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -41,6 +43,7 @@
 #include "gpu/vulkan_context.h"
 #include "holotrace/v1/holotrace.grpc.pb.h"
 #include "scene/scene.h"
+#include "scene/scene_edits.h"
 #include "server/daemon.h"
 #include "server/process_stats.h"
 
@@ -55,16 +58,18 @@ struct StreamOptions {
   std::string display = "configs/portrait.json";
   std::string scene = "builtin:showcase";
   std::string benchCase = "static";
+  std::string node = "glow-sphere";
   double scale = 0.25;
   std::uint32_t spp = 8, frameSpp = 2, referenceSpp = 64, runs = 5, maxSpp = 64;
   double targetError = 0.02, idleSeconds = 2.0;
   int deviceIndex = -1;
 };
 
-const std::array<cli::OptionSpec, 12> kSpecs = {{
+const std::array<cli::OptionSpec, 13> kSpecs = {{
     {"--display", "", "FILE", "display config JSON (default configs/portrait.json)"},
     {"--scene", "", "SPEC", "scene (default builtin:showcase)"},
-    {"--case", "", "NAME", "scenario: static (default; light-edit / node-move: not implemented yet)"},
+    {"--case", "", "NAME", "scenario: static (default) | node-move (re-convergence after moving --node)"},
+    {"--node", "", "NAME", "node-move: the scene node to move (default glow-sphere)"},
     {"--scale", "", "F", "scale of the panel / projector images, DPI kept per panel width (default 0.25)"},
     {"--spp", "", "N", "samples of the single frame whose PSNR progressive frames must reach (default 8)"},
     {"--frame-spp", "", "N", "samples per target of one progressive frame (default 2)"},
@@ -89,9 +94,10 @@ std::optional<StreamOptions> parse(std::span<const std::string> args, std::strin
   o.display = parsed.textOr("--display", o.display);
   o.scene = parsed.textOr("--scene", o.scene);
   o.benchCase = parsed.textOr("--case", o.benchCase);
-  if (o.benchCase != "static") {
-    throw UsageError(std::string(kCommand) + ": --case " + o.benchCase + ": only 'static' is implemented");
+  if (o.benchCase != "static" && o.benchCase != "node-move") {
+    throw UsageError(std::string(kCommand) + ": --case " + o.benchCase + ": expected static or node-move");
   }
+  o.node = parsed.textOr("--node", o.node);
   o.scale = parsed.numberValue("--scale", 0.01, 1.0).value_or(o.scale);
   o.spp = parsed.unsignedValue("--spp", 1, 1024).value_or(o.spp);
   o.frameSpp = parsed.unsignedValue("--frame-spp", 1, 1024).value_or(o.frameSpp);
@@ -227,6 +233,72 @@ void timeToQuality(const StreamOptions& o, const DisplayConfig& display, const S
       o.spp, median(singleMs), median(uniformRatio), median(adaptiveRatio), median(uniformSppRatio));
 }
 
+// Frames until the stop rule holds everywhere (at most 200); their summed time, count and the first frame's report.
+struct Convergence {
+  double ms = 0.0;
+  std::uint32_t frames = 0;
+  gpu::AccumulationReport first;
+};
+
+Convergence converge(gpu::Renderer& renderer, const gpu::FrameCamera& camera, const gpu::RenderSettings& frame,
+                     gpu::Accumulator& accumulator) {
+  Convergence c;
+  for (bool done = false; !done && c.frames < 200;) {
+    const gpu::RenderResult shown = renderer.accumulate(camera, frame, accumulator);
+    if (c.frames == 0) c.first = shown.accumulation;
+    c.ms += shown.totalMs;
+    c.frames += 1;
+    done = shown.accumulation.converged;
+  }
+  return c;
+}
+
+void nodeMove(const StreamOptions& o, const DisplayConfig& display, Scene scene) {
+  const std::optional<std::size_t> node = findNode(scene, o.node);
+  if (!node) throw UsageError(std::string(kCommand) + ": --node " + o.node + ": no such node in " + o.scene);
+  gpu::VulkanContext context({o.deviceIndex, false});
+  gpu::Renderer renderer(context, scene);
+  const gpu::DisplayCamera camera = gpu::makeDisplayCamera(display, scene.bounds());
+  gpu::RenderSettings frame;
+  frame.spp = o.frameSpp;
+  frame.seed = 1;
+  gpu::AccumulationPolicy policy;
+  policy.targetError = static_cast<float>(o.targetError);
+  policy.minSpp = o.spp;
+  policy.maxSpp = o.maxSpp;
+  const Bounds3 sceneBounds = scene.bounds();
+  const double step = 0.05 * glm::length(glm::dvec3(sceneBounds.hi - sceneBounds.lo));
+  std::cout << "frame: " << camera.shape.targets() << " targets; moving " << o.node << " by " << step
+            << " along x and back\n";
+  {  // warm-up: the pipelines, and the first move switches the scene to the two-level BVH
+    gpu::Accumulator warm(policy);
+    renderer.accumulate(camera.camera, frame, warm);
+    const std::uint32_t moved[] = {static_cast<std::uint32_t>(*node)};
+    renderer.moveNodes(scene, moved);
+  }
+  std::vector<double> ratio, resetFraction;
+  for (std::uint32_t run = 0; run < o.runs; ++run) {
+    gpu::Accumulator accumulator(policy);
+    const Convergence full = converge(renderer, camera.camera, frame, accumulator);
+    const Bounds3 before = nodeWorldBounds(scene, *node);
+    const double dx = run % 2 == 0 ? step : -step;
+    setNodeWorldMatrix(scene, o.node,
+                       glm::translate(glm::dmat4(1.0), glm::dvec3(dx, 0.0, 0.0)) * scene.nodes[*node].world);
+    const std::uint32_t moved[] = {static_cast<std::uint32_t>(*node)};
+    renderer.moveNodes(scene, moved, gpu::MovedBounds{before, nodeWorldBounds(scene, *node)});
+    const Convergence again = converge(renderer, camera.camera, frame, accumulator);
+    ratio.push_back(again.ms / full.ms);
+    resetFraction.push_back(double(again.first.resetTargets) / double(again.first.targets));
+    std::printf(
+        "run %u: converged in %u frames, %.0f ms; after the move %u frames, %.0f ms (%.3fx), %.2f %% of the "
+        "targets restarted%s\n",
+        run + 1, full.frames, full.ms, again.frames, again.ms, again.ms / full.ms, 100.0 * resetFraction.back(),
+        again.first.restarted ? " (the whole accumulation restarted)" : "");
+  }
+  std::printf("median re-convergence after moving %s: %.3fx the first convergence, %.2f %% of the targets restarted\n",
+              o.node.c_str(), median(ratio), 100.0 * median(resetFraction));
+}
+
 // Reads one frame's parts; false at the end of the stream.
 bool readHeader(grpc::ClientReaderInterface<v1::FramePart>& reader, v1::FrameHeader& header) {
   v1::FramePart part;
@@ -334,6 +406,10 @@ int run(const StreamOptions& o) {
   const std::string json = scaledDisplayJson(o.display, o.scale);
   const DisplayConfig display = parseDisplayConfig(json, o.display, std::filesystem::path(o.display).parent_path());
   const Scene scene = loadScene(o.scene);
+  if (o.benchCase == "node-move") {
+    nodeMove(o, display, scene);
+    return 0;
+  }
   timeToQuality(o, display, scene);
   workAfterConvergence(o, json);
   return 0;

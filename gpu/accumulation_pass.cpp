@@ -31,11 +31,21 @@ void appendBytes(std::string& key, const T& value) {
   key.append(reinterpret_cast<const char*>(&value), sizeof(T));
 }
 
+// Segment cells are recorded per chunk target: only a frame that is one chunk of the whole frame records them under
+// the frame-global index the sums use (wavefront_loop.cpp cuts large view arrays into chunks).
+bool recordsWholeFrame(const FrameShape& frame, const RenderSettings& settings) {
+  const RenderRegion& r = settings.region;
+  const bool whole = r.viewFirst == 0 && r.rowFirst == 0 && (r.viewCount == 0 || r.viewCount == frame.views) &&
+                     (r.rowCount == 0 || r.rowCount == frame.height);
+  const std::uint64_t viewPixels = std::uint64_t{frame.width} * frame.height;
+  return whole && kMaxChunkPixels / viewPixels >= frame.views;
+}
+
 }  // namespace
 
 Accumulator::Accumulator(const AccumulationPolicy& policy) : policy_(policy), state_(std::make_unique<State>()) {}
 Accumulator::~Accumulator() = default;
-std::uint64_t Accumulator::deviceBytes() const { return state_->targets.size(); }
+std::uint64_t Accumulator::deviceBytes() const { return state_->targets.size() + state_->masks.size(); }
 void Accumulator::restart() { state_->key.clear(); }
 
 std::vector<float> Accumulator::downloadSums() const {
@@ -50,11 +60,9 @@ std::vector<float> Accumulator::downloadSums() const {
   return sums;
 }
 
-std::string accumulationKey(const void* renderer, std::uint64_t sceneGeneration, const FrameCamera& camera,
-                            const RenderSettings& settings) {
+std::string accumulationKey(const void* renderer, const FrameCamera& camera, const RenderSettings& settings) {
   std::string key;
   appendBytes(key, renderer);
-  appendBytes(key, sceneGeneration);
   const auto* table = std::get_if<RayTableCamera>(&camera);
   appendBytes(key, static_cast<const void*>(table ? table->table.get() : nullptr));
   const gpu_shared::CameraBlock block = cameraBlock(camera);  // every byte set (frame_camera.h)
@@ -88,18 +96,30 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
   checkShape(frame, settings.spp);
   Accumulator::State& st = accumulator.state();
   AccumulationReport& report = accumulator.mutableReport();
-  const std::string key = accumulationKey(this, sceneGeneration, camera, settings);
-  const bool restart = st.key != key;
+  const std::string key = accumulationKey(this, camera, settings);
+  // Same view and settings, and only node moves since the sums' scene version: restart the targets near them.
+  const bool sameView = !st.key.empty() && st.key == key;
+  std::optional<Bounds3> moved;
+  if (sameView && st.generation != sceneGeneration && st.masksValid) moved = movedSince(st.generation);
+  const bool restart = !sameView || (st.generation != sceneGeneration && !moved);
+  st.pendingMove.reset();
+  if (moved && !moved->empty()) st.pendingMove = moved;
   if (restart) {
     st.key.clear();
-    const VkDeviceSize bytes = Accumulator::bytesFor(frame);
+    st.masksValid = false;
+    const VkDeviceSize bytes = static_cast<VkDeviceSize>(frame.targets()) * sizeof(gpu_shared::AccumTarget);
+    const VkDeviceSize maskBytes = static_cast<VkDeviceSize>(frame.targets()) * kMaskWords * sizeof(std::uint32_t);
     if (st.targets.size() != bytes) {
       st.targets = DeviceBuffer();  // the old sums go before the new ones are allocated
+      st.masks = DeviceBuffer();
       st.targets = DeviceBuffer(vk, bytes, MemoryPlace::Device);
+      st.masks = DeviceBuffer(vk, maskBytes, MemoryPlace::Device);
     }
     OneShotCommands zero(vk);
     vkCmdFillBuffer(zero.cmd(), st.targets.handle(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(zero.cmd(), st.masks.handle(), 0, VK_WHOLE_SIZE, 0);
     zero.submitAndWait();
+    st.masksValid = recordsWholeFrame(frame, settings);
     if (st.stats.size() == 0) st.stats = DeviceBuffer(vk, sizeof(gpu_shared::AccumStats), MemoryPlace::HostReadback);
     report = AccumulationReport{};
   }
@@ -107,16 +127,19 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
   stats = gpu_shared::AccumStats{0u, 0u, std::numeric_limits<std::uint32_t>::max(), 0u};
   report.restarted = restart;
   report.tracedTargets = 0;
+  report.resetTargets = 0;
   accumulating = &accumulator;
   RenderResult result;
   try {
     result = render(camera, settings);
   } catch (...) {
     accumulating = nullptr;  // the sums may hold part of a frame: the next frame starts over
+    st.key.clear();
     throw;
   }
   accumulating = nullptr;
   st.key = key;
+  st.generation = sceneGeneration;
   report.targets = std::uint64_t{result.width} * result.height * result.views * frame.targetsPerPixel;
   report.unconverged = stats.unconverged;
   report.maxError = glm::uintBitsToFloat(stats.maxErrorBits);
@@ -136,6 +159,18 @@ void Renderer::Impl::accumulateChunk(const FrameCamera& camera, const FrameShape
   const std::uint64_t targets =
       static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
   fillAccumulation(frameBlock(), accumulator);
+  Accumulator::State& st = accumulator.state();
+  if (st.pendingMove) {
+    accumulator.mutableReport().resetTargets = resetMovedTargets(accumulator, *st.pendingMove, targets, stageMs);
+    st.pendingMove.reset();
+  }
+  // Every pass of the accumulation ORs its segments' cells into the accumulation's masks (cleared at its restart).
+  const bool record = st.masksValid;
+  if (record) {
+    frameBlock().segmentMasks = st.masks.address();
+    frameBlock().grid = reuse.grid();
+  }
+  framePlan.recordSegments = record;
   const std::uint32_t spp = settings.spp;
   const auto progress = [&](double done) {
     if (settings.progress) settings.progress(done);
@@ -163,6 +198,39 @@ void Renderer::Impl::accumulateChunk(const FrameCamera& camera, const FrameShape
   }
   submitAndWait();
   rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+  framePlan.recordSegments = false;  // the renderer's own reuse state recorded nothing (frameDone)
+}
+
+std::uint64_t Renderer::Impl::resetMovedTargets(Accumulator& accumulator, const Bounds3& moved, std::uint64_t targets,
+                                                StageTimes& stageMs) {
+  Accumulator::State& st = accumulator.state();
+  const VkDeviceSize listBytes = (FrameReuseState::kListFirst + targets) * sizeof(std::uint32_t);
+  if (st.dirty.size() < listBytes) st.dirty = DeviceBuffer(vk, listBytes, MemoryPlace::HostReadback);
+  auto* list = static_cast<std::uint32_t*>(st.dirty.mapped());
+  const gpu_shared::uvec2 cells = gpu_shared::ht_grid_bounds_mask(moved.lo, moved.hi, reuse.grid());
+  std::memset(list, 0, FrameReuseState::kListFirst * sizeof(std::uint32_t));
+  list[0] = cells.x;
+  list[1] = cells.y;
+  FrameBlock& f = frameBlock();
+  f.segmentMasks = st.masks.address();
+  f.grid = reuse.grid();
+  f.primaryRays = 0;  // no cached primary segments: the masks hold them (words 0-1)
+  f.primaryHits = 0;
+  f.refine = st.dirty.address();
+  f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
+  beginCommands();
+  PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+  const ComputePipeline& mark = pipeline(ShaderId::MarkDirty, {1u});  // RESET_ACCUMULATION
+  for (std::uint64_t first = 0; first < targets; first += kMarkTargetsPerDispatch) {
+    const std::uint64_t n = std::min(kMarkTargetsPerDispatch, targets - first);
+    rec.dispatch(mark, passConstants(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(targets), 0, 0),
+                 groupsFor(n), Stage::Mark);
+  }
+  submitAndWait();
+  rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+  f.refine = 0;
+  f.refineInfo = glm::uvec4(0u);
+  return list[2];
 }
 
 }  // namespace ht::gpu

@@ -9,7 +9,9 @@
 // stop rule says still need samples (each target keeps its own n; its samples are still indices n.. of its
 // sequence), else every target again. When the renderer's scene changed (replaceScene / updateLights), or the
 // camera or any setting that shapes a sample did, the accumulation restarts from zero: samples of two scene
-// versions are never summed (docs/REUSE.md §5).
+// versions are never summed (docs/REUSE.md §5). After node moves whose bounds the renderer was given
+// (Renderer::moveNodes with MovedBounds), only the targets whose recorded segment cells meet those bounds restart;
+// the others keep their sums, whose samples the move cannot have changed (docs/REUSE.md §4).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -37,12 +39,15 @@ struct AccumulationReport {
   std::uint64_t tracedTargets = 0;               // targets this frame added samples to
   std::uint32_t frames = 0;                      // frames of this accumulation
   bool restarted = false;                        // this frame began a new accumulation
+  std::uint64_t resetTargets = 0;                // after node moves: targets this frame started over (the rest kept)
   bool converged = false;                        // the stop rule holds for every target
 };
 
 class Accumulator {
  public:
-  static constexpr std::uint64_t kBytesPerTarget = 32;  // rgb sum + n, half sum + its count (gpu_shared::AccumTarget)
+  // rgb sum + n, half sum + its count (gpu_shared::AccumTarget, 32 B) and the segment-cell mask (16 B) that lets a
+  // node move restart only the targets near it.
+  static constexpr std::uint64_t kBytesPerTarget = 48;
   // Device memory an accumulation of `shape` holds.
   static std::uint64_t bytesFor(const FrameShape& shape) { return shape.targets() * kBytesPerTarget; }
 

@@ -19,9 +19,6 @@ void appendBytes(std::vector<std::byte>& out, const T& value) {
   std::memcpy(out.data() + at, &value, sizeof(T));
 }
 
-// Targets per marking dispatch: within the 65,535 workgroups a dispatch dimension is guaranteed.
-constexpr std::uint64_t kMarkTargetsPerDispatch = 1ull << 21;
-
 }  // namespace
 
 ReuseKey Renderer::Impl::reuseKey(const RenderSettings& settings) const {

@@ -125,9 +125,30 @@ void Renderer::Impl::bindRayTable(const std::shared_ptr<const RayTable>& table) 
   boundRayTable = table;
 }
 
+void Renderer::Impl::sceneChanged(std::optional<Bounds3> moved) {
+  ++sceneGeneration;
+  sceneChanges.push_back({sceneGeneration, moved});
+  if (sceneChanges.size() > kSceneChangeLog) sceneChanges.pop_front();
+}
+
+std::optional<Bounds3> Renderer::Impl::movedSince(std::uint64_t generation) const {
+  if (generation >= sceneGeneration) return Bounds3{};
+  if (sceneChanges.empty() || sceneChanges.front().generation > generation + 1) return std::nullopt;  // log too short
+  Bounds3 all;
+  for (const SceneChange& c : sceneChanges) {
+    if (c.generation <= generation) continue;
+    if (!c.moved) return std::nullopt;
+    if (c.moved->empty()) continue;
+    all.extend(c.moved->lo);
+    all.extend(c.moved->hi);
+  }
+  return all;
+}
+
 void Renderer::Impl::replaceScene(const Scene& s, BvhLayoutPolicy policy) {
   const auto start = std::chrono::steady_clock::now();
   installScene(s, buildSceneBvh(s, buildOptions, policy));
+  sceneChanged(std::nullopt);
   bvhStats.lastUpdateMs = msSince(start);
 }
 
@@ -135,14 +156,14 @@ void Renderer::Impl::installScene(const Scene& s, SceneBvh bvh) {
   GpuScene next(vk, s, std::move(bvh));
   HT_VK(vkQueueWaitIdle(vk.queue));
   scene = std::move(next);
-  ++sceneGeneration;
   bindScene();
   descriptors.flush();
   bvhStats.layout = scene.layout();
   bvhStats.fullBuilds++;
 }
 
-void Renderer::Impl::moveNodes(const Scene& s, std::span<const std::uint32_t> movedNodes) {
+void Renderer::Impl::moveNodes(const Scene& s, std::span<const std::uint32_t> movedNodes,
+                               const std::optional<MovedBounds>& bounds) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::uint32_t> moved;  // instance indices (Scene::instances order = the TwoLevelBvh's)
   const std::vector<SceneInstance> instances = s.instances();
@@ -158,19 +179,29 @@ void Renderer::Impl::moveNodes(const Scene& s, std::span<const std::uint32_t> mo
     HT_VK(vkQueueWaitIdle(vk.queue));
     if (scene.moveInstances(s, moved)) bindScene();
     descriptors.flush();
-    ++sceneGeneration;  // another scene version: accumulations restart (installScene bumps it on the other path)
     bvhStats.instanceUpdates++;
     bvhStats.lastRefitMs = scene.twoLevel()->timings().refitMs;
     bvhStats.lastTopLevelMs = scene.twoLevel()->timings().topLevelMs;
     bvhStats.lastUploadMs = scene.lastUploadMs();
   }
+  // Another scene version on either path: accumulations restart, or only their targets near the moved bounds.
+  std::optional<Bounds3> changed;
+  if (bounds) {
+    changed = Bounds3{};
+    for (const Bounds3& b : {bounds->before, bounds->after}) {
+      if (b.empty()) continue;
+      changed->extend(b.lo);
+      changed->extend(b.hi);
+    }
+  }
+  sceneChanged(changed);
   bvhStats.lastUpdateMs = msSince(start);
 }
 
 void Renderer::Impl::updateLights(const Scene& s) {
   HT_VK(vkQueueWaitIdle(vk.queue));
   scene.updateLights(s);
-  ++sceneGeneration;
+  sceneChanged(std::nullopt);
   reuse.lightsEdited();
 }
 
@@ -297,7 +328,7 @@ void Renderer::replaceScene(const Scene& scene, BvhLayoutPolicy policy) {
 }
 void Renderer::updateLights(const Scene& scene) { impl_->updateLights(scene); }
 void Renderer::moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes, std::optional<MovedBounds> moved) {
-  impl_->moveNodes(scene, nodes);
+  impl_->moveNodes(scene, nodes, moved);
   if (moved) {
     impl_->reuse.geometryMoved(moved->before, moved->after);
   } else {
@@ -307,6 +338,13 @@ void Renderer::moveNodes(const Scene& scene, std::span<const std::uint32_t> node
 void Renderer::replaceSceneAfterMove(const Scene& scene, const Bounds3& oldBounds, const Bounds3& newBounds) {
   impl_->replaceScene(scene, BvhLayoutPolicy::Automatic);
   impl_->reuse.geometryMoved(oldBounds, newBounds);
+  Bounds3 moved;  // the change is a move: accumulations restart only near it
+  for (const Bounds3& b : {oldBounds, newBounds}) {
+    if (b.empty()) continue;
+    moved.extend(b.lo);
+    moved.extend(b.hi);
+  }
+  impl_->sceneChanges.back().moved = moved;
 }
 BvhStats Renderer::bvhStats() const { return impl_->bvhStats; }
 const SceneFeatures& Renderer::features() const { return impl_->scene.features(); }

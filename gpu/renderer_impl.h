@@ -4,8 +4,10 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -37,6 +39,9 @@ inline constexpr std::uint32_t kMaxDepth = 32;
 inline constexpr std::uint64_t kMaxChunkPixels = 8ull
                                                  << 20;  // pixels of all views rendered by one chunk (output buffers)
 
+// Targets per marking dispatch (mark_dirty.comp): within the 65,535 workgroups a dispatch dimension is guaranteed.
+inline constexpr std::uint64_t kMarkTargetsPerDispatch = 1ull << 21;
+
 using StageTimes = std::array<double, static_cast<size_t>(Stage::Count)>;
 
 // Workgroups of HT_WORKGROUP_SIZE invocations covering n.
@@ -67,17 +72,26 @@ struct RowBand {
 
 // What an accumulation's sums belong to, and its device buffers (gpu/accumulator.h).
 struct ht::gpu::Accumulator::State {
-  DeviceBuffer targets;  // AccumTarget per target of the whole frame
-  DeviceBuffer stats;    // AccumStats, host visible
-  std::string key;       // accumulationKey() of the frames summed; "" = nothing summed yet
+  DeviceBuffer targets;          // AccumTarget per target of the whole frame
+  DeviceBuffer stats;            // AccumStats, host visible
+  std::string key;               // accumulationKey() of the frames summed; "" = nothing summed yet
+  std::uint64_t generation = 0;  // the renderer's scene generation the sums belong to
+  // Partial restart after node moves (docs/REUSE.md §4 in streams): every frame of the accumulation ORs the grid
+  // cells of its samples' segments into `masks` (kMaskWords per target, segment_cells.h); after moves, only the
+  // targets whose cells meet the moved bounds start over. Kept only for accumulations of one chunk covering the whole
+  // frame (target index == frame-global index); `masksValid` false = the next scene change restarts everything.
+  DeviceBuffer masks;
+  DeviceBuffer dirty;  // the marking pass's list (header + entries, FrameReuseState::kListFirst), host visible
+  bool masksValid = false;
+  std::optional<Bounds3> pendingMove;  // set by accumulate(): the next frame resets the targets near these bounds
 };
 
 namespace ht::gpu {
 
 // The identity of an accumulation: the renderer and its scene version, the camera block and shape, and every
 // setting that shapes a sample (not spp: frames of different spp continue one accumulation).
-std::string accumulationKey(const void* renderer, std::uint64_t sceneGeneration, const FrameCamera& camera,
-                            const RenderSettings& settings);
+// The scene generation is kept apart (Accumulator::State::generation): after node moves only part of it restarts.
+std::string accumulationKey(const void* renderer, const FrameCamera& camera, const RenderSettings& settings);
 
 struct Renderer::Impl {
   VulkanContext::Impl& vk;
@@ -100,8 +114,16 @@ struct Renderer::Impl {
 
   bvh::BuildOptions buildOptions;
   BvhStats bvhStats;
-  std::uint64_t sceneGeneration =
-      0;  // bumped by every scene change: replaceScene, moveNodes, updateLights (accumulation keys)
+  // Bumped by every scene change (sceneChanged): replaceScene, moveNodes, updateLights (accumulation keys). The last
+  // changes are logged with the world bounds they moved (none: anything may have changed), so an accumulation can
+  // restart only the targets near moved nodes (accumulation_pass.cpp).
+  std::uint64_t sceneGeneration = 0;
+  struct SceneChange {
+    std::uint64_t generation = 0;  // after the change
+    std::optional<Bounds3> moved;  // node moves: the union of the moved nodes' bounds before and after
+  };
+  std::deque<SceneChange> sceneChanges;  // the last kSceneChangeLog changes
+  static constexpr std::size_t kSceneChangeLog = 64;
   Accumulator* accumulating = nullptr;  // during accumulate(): the accumulation the chunks add to
   FrameReuseState reuse;                // what the next frame of the same view may reuse (RenderSettings::reuse)
   ReusePlan framePlan;                  // the plan of the chunk being rendered
@@ -155,7 +177,12 @@ struct Renderer::Impl {
   // New light values (same count) into the bound light buffer: no BVH build, no descriptor change.
   void updateLights(const Scene& s);
   // Renderer::moveNodes.
-  void moveNodes(const Scene& s, std::span<const std::uint32_t> nodes);
+  void moveNodes(const Scene& s, std::span<const std::uint32_t> nodes, const std::optional<MovedBounds>& bounds);
+  // A new scene generation, logged with the bounds a node move changed (nullopt: a change of any kind).
+  void sceneChanged(std::optional<Bounds3> moved);
+  // The union of the moved bounds of every change after `generation`; nullopt when one of them was not a move or
+  // the log no longer reaches back that far.
+  std::optional<Bounds3> movedSince(std::uint64_t generation) const;
   // Replaces the device scene by one built from `bvh` (replaceScene, a layout switch).
   void installScene(const Scene& s, SceneBvh bvh);
 
@@ -236,6 +263,10 @@ struct Renderer::Impl {
                        StageTimes& stageMs, RenderResult& result);
   // The progressive members of the frame block (after fillFrame).
   void fillAccumulation(FrameBlock& f, Accumulator& accumulator) const;
+  // After node moves: lists the targets whose recorded cells meet the moved bounds and zeroes their sums and masks
+  // (mark_dirty.comp, RESET_ACCUMULATION); returns how many.
+  std::uint64_t resetMovedTargets(Accumulator& accumulator, const Bounds3& moved, std::uint64_t targets,
+                                  StageTimes& stageMs);
   // Ray batches without a frame (ray_batches.cpp).
   std::vector<gpu_shared::HtRay> generateRays(const FrameCamera& camera, const RenderSettings& settings,
                                               std::uint64_t firstTarget, std::uint32_t targetCount, TraceStats* stats);

@@ -83,7 +83,7 @@ RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSetti
     auto stage = static_cast<Stage>(s);
     if (stage == Stage::Shadow && !lights) continue;
     if (stage == Stage::Refine && settings.refineSpp == 0 && !accumulating) continue;
-    if ((stage == Stage::Record || stage == Stage::Mark) && !settings.reuse) continue;
+    if ((stage == Stage::Record || stage == Stage::Mark) && !settings.reuse && !accumulating) continue;
     result.stages.push_back({stageName(stage), stageMs[s]});
   }
   result.stages.push_back({"readback", readbackMs});
@@ -188,7 +188,8 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   const bool saveHits = which == TracedTargets::All && framePlan.recordHits;
   const bool loadSecondary = loadHits && framePlan.loadSecondary;
   const bool saveSecondary = which == TracedTargets::All && framePlan.recordSecondary;
-  const bool record = which != TracedTargets::Refined && framePlan.recordSegments;
+  // (An accumulation records every pass, its listed ones too, into its own masks: accumulation_pass.cpp.)
+  const bool record = (which != TracedTargets::Refined || accumulating) && framePlan.recordSegments;
 
   const bool progressive = accumulating != nullptr;
   const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape, listed, progressive));
@@ -209,7 +210,8 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
     beginCommands();
     if (clear) {  // live flags of the shadow slots start cleared; gather_direct clears them after use
       vkCmdFillBuffer(cmd, work.shadowContrib.handle(), 0, VK_WHOLE_SIZE, 0);
-      if (record && which == TracedTargets::All && !loadHits) {  // a full frame records every target's cells afresh
+      // A full frame records every target's cells afresh; an accumulation's masks are cleared when it restarts.
+      if (record && which == TracedTargets::All && !loadHits && !accumulating) {
         vkCmdFillBuffer(cmd, reuse.segmentMasks.handle(), 0, totalPaths / spp * kMaskWords * sizeof(std::uint32_t), 0);
       }
       VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,

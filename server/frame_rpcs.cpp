@@ -70,6 +70,7 @@ bool sendRendered(ServiceState& state, const FrameJob& job, const gpu::RenderRes
     header.set_accumulated_spp_max(a.maxSamples);
     header.set_error_estimate(a.maxError);
     header.set_unconverged_targets(a.unconverged);
+    header.set_reset_targets(a.resetTargets);
     header.set_state(streamState);
   }
   const CallWatchdog::Watch::Wait waiting(watch);

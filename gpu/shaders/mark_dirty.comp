@@ -12,6 +12,10 @@
 #extension GL_KHR_shader_subgroup_ballot : require
 #include "gpu/segment_cells.h"
 
+// In a progressive accumulation after node moves (accumulation_pass.cpp resetMovedTargets): a dirty target's sums
+// start over too (sum, n, half sum, half count = 0); the others keep theirs.
+layout(constant_id = 0) const bool RESET_ACCUMULATION = false;
+
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RayCacheRef { vec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer HitCacheRef { uvec4 h[]; };
 
@@ -53,5 +57,6 @@ void main() {
   if (dirty) {
     UintRef(FRAME.refine).v[FRAME.refineInfo.y + base + subgroupBallotExclusiveBitCount(ballot)] = target;
     for (uint w = 0u; w < 4u; ++w) UintRef(FRAME.segmentMasks).v[4u * target + w] = 0u;
+    if (RESET_ACCUMULATION) AccumRef(FRAME.accumTargets).t[frame_global_target(target)] = AccumTarget(vec3(0.0f), 0u, vec3(0.0f), 0u);
   }
 }

@@ -8,11 +8,14 @@
 #include <cstring>
 #include <memory>
 #include <optional>
+#include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "camera_models/display_model_registry.h"
 #include "gpu/accumulation_error.h"
+#include "gpu/display_camera.h"
 #include "gpu_test_util.h"
 #include "scene/scene.h"
 #include "scene/scene_edits.h"
@@ -174,6 +177,70 @@ TEST(Accumulation, NodeMovesOnBothBvhPathsRestartTheSums) {
     EXPECT_TRUE(sameBits(frame, fresh.accumulate(camera, settings, clean)));
   }
   EXPECT_EQ(renderer.bvhStats().instanceUpdates, 1u) << "the second move did not take the two-level fast path";
+}
+
+// Accumulates until the stop rule holds for every target (at most 60 frames); the last frame.
+gpu::RenderResult accumulateToConvergence(gpu::Renderer& renderer, const FrameCamera& camera,
+                                          gpu::Accumulator& accumulator, const gpu::RenderSettings& settings) {
+  gpu::RenderResult frame;
+  for (int k = 0; k < 60 && !(k > 0 && frame.accumulation.converged); ++k) {
+    frame = renderer.accumulate(camera, settings, accumulator);
+  }
+  EXPECT_TRUE(frame.accumulation.converged);
+  return frame;
+}
+
+// Property test of the partial restart (docs/REUSE.md §4 in streams): random node moves (the mirror, glass and
+// glowing spheres and a box of the showcase, which has a shadowing light) during a converged accumulation restart
+// only the targets whose recorded segment cells meet the moved bounds; the others keep their sums, and the
+// accumulation converges to the very frame a fresh accumulation of the edited scene converges to, bit for bit.
+TEST(Accumulation, NodeMovesRestartOnlyNearbyTargetsAndConvergeToTheFreshAccumulation) {
+  Scene scene = loadScene("builtin:showcase");
+  gpu::Renderer renderer(sharedContext(), scene);
+  gpu::AccumulationPolicy policy;
+  policy.targetError = 0.05f;
+  policy.minSpp = 4;
+  policy.maxSpp = 12;
+  gpu::RenderSettings settings;
+  settings.spp = 2;
+  settings.seed = 7;
+  const DisplayConfig projectors = smallProjectorArray();
+  const std::vector<std::pair<std::string, FrameCamera>> cameras = {
+      {"pinhole", lookAt(glm::vec3(0.0f, 0.4f, 2.6f), glm::vec3(0.0f, 0.1f, 0.0f), 45.0f, 32, 24)},
+      {"projector array", gpu::makeDisplayCamera(projectors, scene.bounds()).camera}};
+  std::vector<std::unique_ptr<gpu::Accumulator>> accumulators;
+  for (const auto& entry : cameras) {
+    accumulators.push_back(std::make_unique<gpu::Accumulator>(policy));
+    accumulateToConvergence(renderer, entry.second, *accumulators.back(), settings);
+  }
+  std::mt19937 rng(16);
+  std::uniform_real_distribution<double> offset(-0.12, 0.12);
+  const char* names[] = {"mirror-sphere", "glass-sphere", "glow-sphere", "red-box"};
+  std::uint64_t resetSum = 0, targetSum = 0;
+  for (int edit = 0; edit < 3; ++edit) {
+    const char* name = names[rng() % 4];
+    const std::size_t node = *findNode(scene, name);
+    const Bounds3 before = nodeWorldBounds(scene, node);
+    setNodeWorldMatrix(
+        scene, name, glm::translate(scene.nodes[node].world, glm::dvec3(offset(rng), 0.3 * offset(rng), offset(rng))));
+    const std::uint32_t moved[] = {static_cast<std::uint32_t>(node)};
+    renderer.moveNodes(scene, moved, gpu::MovedBounds{before, nodeWorldBounds(scene, node)});
+    gpu::Renderer fresh(sharedContext(), scene);
+    for (size_t c = 0; c < cameras.size(); ++c) {
+      SCOPED_TRACE("move " + std::to_string(edit) + " of " + name + ", " + cameras[c].first);
+      const gpu::RenderResult first = renderer.accumulate(cameras[c].second, settings, *accumulators[c]);
+      EXPECT_FALSE(first.accumulation.restarted);
+      EXPECT_LT(first.accumulation.resetTargets, first.accumulation.targets);
+      resetSum += first.accumulation.resetTargets;
+      targetSum += first.accumulation.targets;
+      const gpu::RenderResult kept = accumulateToConvergence(renderer, cameras[c].second, *accumulators[c], settings);
+      gpu::Accumulator clean(policy);
+      EXPECT_TRUE(sameBits(kept, accumulateToConvergence(fresh, cameras[c].second, clean, settings)))
+          << "the partially restarted accumulation converged to another frame than a fresh one";
+    }
+  }
+  EXPECT_GT(resetSum, 0u) << "no move touched a target: the test would be vacuous";
+  EXPECT_LT(resetSum * 2, targetSum) << "moves of small objects restarted most targets";
 }
 
 // The adaptive policy: after the first frame only targets above the target error get samples; the accumulation

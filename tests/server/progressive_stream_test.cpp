@@ -166,10 +166,74 @@ TEST_F(ProgressiveStreamTest, AnEditDuringAccumulationRestartsAndConvergesToTheE
   freshReader->Finish();
 }
 
+// A move of teal-box lifted by `height` (world matrix, column-major, translation in elements 12-14).
+v1::UpdateSceneRequest liftTealBox(const std::string& sceneId, double height) {
+  v1::UpdateSceneRequest edit;
+  edit.set_scene_id(sceneId);
+  v1::NodeTransform& move = *edit.add_nodes();
+  move.set_node("teal-box");
+  for (int i = 0; i < 16; ++i) move.add_world(i % 5 == 0 ? 1.0 : 0.0);
+  move.set_world(13, height);
+  return edit;
+}
+
+// The session's second node move (its renderer is its own since the first): the converged stream wakes up, only
+// the targets whose recorded paths met the box's old or new bounds start over (reset_targets), the others keep
+// their samples, and it converges to the bits of a fresh stream of a session that made only the final move.
+TEST_F(ProgressiveStreamTest, ALaterMoveRestartsOnlyNearbyTargetsAndConvergesToTheEditedScenesFrame) {
+  v1::SceneHandle scene;
+  ASSERT_TRUE(loadScene(*stub_, "builtin:plain", &scene).ok());
+  v1::UpdateSceneResponse response;
+  {
+    grpc::ClientContext editContext;
+    ASSERT_TRUE(stub_->UpdateScene(&editContext, liftTealBox(scene.scene_id(), 0.1), &response).ok());
+  }
+  grpc::ClientContext context;
+  auto reader = stub_->StreamFrames(&context, progressiveRequest(scene.scene_id()));
+  const std::vector<ReceivedFrame> before = readUntilConverged(*reader, 64);
+  ASSERT_FALSE(before.empty());
+  ASSERT_EQ(before.back().header.state(), v1::STREAM_STATE_CONVERGED);
+  {
+    grpc::ClientContext editContext;
+    ASSERT_TRUE(stub_->UpdateScene(&editContext, liftTealBox(scene.scene_id(), 0.25), &response).ok());
+  }
+  EXPECT_EQ(response.bvh_instance_updates(), 1u);  // the two-level fast path, no rebuild
+  const std::vector<ReceivedFrame> after = readUntilConverged(*reader, 64);
+  ASSERT_FALSE(after.empty());
+  const v1::FrameHeader& first = after.front().header;
+  const std::uint64_t targets = std::uint64_t{kTinyWidth} * kTinyHeight * 3;  // subpixels of the lenticular panel
+  EXPECT_GT(first.reset_targets(), 0u);
+  EXPECT_LT(first.reset_targets(), targets / 2) << "a small box's move restarted most of the panel";
+  EXPECT_EQ(first.accumulated_spp(), 2u);                                      // restarted targets
+  EXPECT_GT(first.accumulated_spp_max(), 2u) << "no target kept its samples";  // kept targets
+  ASSERT_EQ(after.back().header.state(), v1::STREAM_STATE_CONVERGED);
+  context.TryCancel();
+  ReceivedFrame frame;
+  while (readFrame(*reader, frame)) {}
+  reader->Finish();
+
+  v1::SceneHandle fresh;
+  ASSERT_TRUE(loadScene(*stub_, "builtin:plain", &fresh).ok());
+  {
+    grpc::ClientContext editContext;
+    ASSERT_TRUE(stub_->UpdateScene(&editContext, liftTealBox(fresh.scene_id(), 0.25), &response).ok());
+  }
+  grpc::ClientContext freshContext;
+  auto freshReader = stub_->StreamFrames(&freshContext, progressiveRequest(fresh.scene_id()));
+  const std::vector<ReceivedFrame> reference = readUntilConverged(*freshReader, 64);
+  ASSERT_FALSE(reference.empty());
+  ASSERT_EQ(reference.back().header.state(), v1::STREAM_STATE_CONVERGED);
+  EXPECT_EQ(reference.back().header.reset_targets(), 0u);
+  EXPECT_TRUE(reference.back().bytes == after.back().bytes) << "the partly restarted stream converged elsewhere";
+  freshContext.TryCancel();
+  while (readFrame(*freshReader, frame)) {}
+  freshReader->Finish();
+}
+
 TEST(ProgressiveStreamLimit, OverTheAccumulatorLimitIsResourceExhaustedNamingTheLimit) {
   DaemonFiles files;
   DaemonConfig config = files.config();
-  config.limits.maxAccumulatorBytes = 100'000;  // the tiny display needs 96 x 64 x 3 targets x 32 B = 589,824
+  config.limits.maxAccumulatorBytes = 100'000;  // the tiny display needs 96 x 64 x 3 targets x 48 B = 884,736
   Daemon daemon(config, std::cerr);
   daemon.start();
   auto stub = connect(files.socketAddress());
@@ -186,7 +250,7 @@ TEST(ProgressiveStreamLimit, OverTheAccumulatorLimitIsResourceExhaustedNamingThe
   EXPECT_EQ(refused.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_NE(refused.error_message().find("limits.max_accumulator_bytes = 100000"), std::string::npos)
       << refused.error_message();
-  EXPECT_NE(refused.error_message().find("589824"), std::string::npos) << refused.error_message();
+  EXPECT_NE(refused.error_message().find("884736"), std::string::npos) << refused.error_message();
   // Independent frames need no accumulator.
   request.set_mode(v1::STREAM_MODE_INDEPENDENT);
   grpc::ClientContext independent;
