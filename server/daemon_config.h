@@ -34,9 +34,10 @@ struct Limits {
   double uploadIdleSeconds = 30.0;                      // an upload waiting this long for its next chunk is cancelled
   double streamStallSeconds = 30.0;                     // a Write held back this long (client not reading): cancelled
   // Progressive StreamFrames (server/progressive_streams.h, docs/SERVICE.md §4.1).
-  std::uint64_t maxAccumulatorBytes = 1ull << 30;  // device sums + segment masks of all progressive streams (48 B per target)
-  double streamTargetError = 0.02;                 // default stop rule: per-target error estimate below this ...
-  std::uint32_t streamMaxSpp = 256;                // ... or this many accumulated samples per target
+  std::uint64_t maxAccumulatorBytes =
+      1ull << 30;                    // device sums + segment masks of all progressive streams (48 B per target)
+  double streamTargetError = 0.02;   // default stop rule: per-target error estimate below this ...
+  std::uint32_t streamMaxSpp = 256;  // ... or this many accumulated samples per target
 };
 
 // Looking Glass panels found on this host become displays "device:SERIAL" (config key "devices"; docs/DISPLAY.md
