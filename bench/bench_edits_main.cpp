@@ -2,10 +2,12 @@
 // (RenderSettings::reuse, docs/REUSE.md §3-4) against a full frame of the same view, measured in the same run.
 // Per display, --runs times: a full frame without reuse (Renderer A, the reference cost), a full frame that records
 // the reuse state (Renderer B), a light edit (updateLights + the frame re-shaded from the cached primary hits) and a
-// node move (replaceSceneAfterMove, i.e. the BVH rebuild, + the partial re-render); the moved node alternates between
-// two positions. Reports medians of the times and of the per-run ratios, the fraction of targets re-traced and the
-// fraction of output values that actually changed (their ratio: the over-invalidation of the grid masks). Ratios
-// are given against both full frames: A's (no reuse) and B's own (which also records the state).
+// node move (Renderer::moveNodes with the node's bounds: the two-level BVH's refit + top-level update, + the partial
+// re-render); the moved node alternates between two positions. Both renderers trace the two-level BVH, the layout
+// holotraced gives a scene whose nodes move (until 2026-12-03 the move was a flattened rebuild, replaceSceneAfterMove).
+// Reports medians of the times and of the per-run ratios, the fraction of targets re-traced and the fraction of output
+// values that actually changed (their ratio: the over-invalidation of the grid masks). Ratios are given against both
+// full frames: A's (no reuse) and B's own (which also records the state).
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -144,7 +146,9 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
   if (scene.lights.empty())
     throw UsageError(cli::usageMessage(kCommand, "--scene: " + o.scene + " has no light to edit"));
   const gpu::FrameCamera camera = gpu::makeDisplayCamera(scaledDisplay(spec, o.scale), scene.bounds()).camera;
-  gpu::Renderer reference(context, scene), reusing(context, scene);
+  gpu::Renderer reference(context, scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::TwoLevel));
+  gpu::Renderer reusing(context, scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::TwoLevel));
+  const std::uint32_t movedNodes[] = {static_cast<std::uint32_t>(node)};
   gpu::RenderSettings off, on;
   off.spp = on.spp = o.spp;
   on.reuse = true;
@@ -155,8 +159,8 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
   // Run 0 is the warm-up (pipeline compilation of every variant, the partial re-render's included), not recorded.
   for (std::uint32_t run = 0; run <= o.runs; ++run) {
     // The two full frames alternate in order between runs (the first of a pair ran measurably slower here).
-    gpu::RenderResult fullFrame, recorded;  // recorded: the state the edits start from
-    reusing.replaceScene(scene);            // drops the state: `recorded` is a full frame that records it
+    gpu::RenderResult fullFrame, recorded;                        // recorded: the state the edits start from
+    reusing.replaceScene(scene, gpu::BvhLayoutPolicy::TwoLevel);  // drops the state: `recorded` records it afresh
     if (run % 2) fullFrame = reference.render(camera, off);
     recorded = reusing.render(camera, on);
     if (run % 2 == 0) fullFrame = reference.render(camera, off);
@@ -177,7 +181,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     world[3] += glm::dvec4(run % 2 ? -step : step, 0.0);
     setNodeWorldMatrix(scene, o.node, world);
     t0 = std::chrono::steady_clock::now();
-    reusing.replaceSceneAfterMove(scene, before, nodeWorldBounds(scene, node));
+    reusing.moveNodes(scene, movedNodes, gpu::MovedBounds{before, nodeWorldBounds(scene, node)});
     const double rebuild = msSince(t0);
     const gpu::RenderResult moved = reusing.render(camera, on);
     const double move = msSince(t0);
@@ -210,7 +214,7 @@ void print(const DisplayEdits& e) {
   std::printf("  full frame, recording reuse:  %9.1f ms   ratio %.3f\n", e.recording.medianMs(), median(e.recordRatio));
   std::printf("  light edit (update + frame):  %9.1f ms   ratio %.3f (vs recording %.3f)\n", e.light.medianMs(),
               median(e.lightRatio), median(e.lightVsRecording));
-  std::printf("  node move (rebuild + frame):  %9.1f ms   ratio %.3f (vs recording %.3f)   (BVH rebuild %.1f ms)\n",
+  std::printf("  node move (update + frame):   %9.1f ms   ratio %.3f (vs recording %.3f)   (BVH update %.1f ms)\n",
               e.move.medianMs(), median(e.moveRatio), median(e.moveVsRecording), e.rebuild.medianMs());
   std::printf("  re-traced targets %.4f, changed output values %.4f\n", median(e.traced), median(e.changed));
   std::printf("  stages of the last run (GPU ms; readback: host):");
