@@ -220,16 +220,7 @@ std::uint64_t Renderer::Impl::resetMovedTargets(Accumulator& accumulator, const 
   f.primaryHits = 0;
   f.refine = st.dirty.address();
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
-  beginCommands();
-  PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
-  const ComputePipeline& mark = pipeline(ShaderId::MarkDirty, {1u});  // RESET_ACCUMULATION
-  for (std::uint64_t first = 0; first < targets; first += kMarkTargetsPerDispatch) {
-    const std::uint64_t n = std::min(kMarkTargetsPerDispatch, targets - first);
-    rec.dispatch(mark, passConstants(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(targets), 0, 0),
-                 groupsFor(n), Stage::Mark);
-  }
-  submitAndWait();
-  rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+  runMarkingPass(targets, true, stageMs);
   f.refine = 0;
   f.refineInfo = glm::uvec4(0u);
   return list[2];

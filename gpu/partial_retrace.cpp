@@ -19,6 +19,9 @@ void appendBytes(std::vector<std::byte>& out, const T& value) {
   std::memcpy(out.data() + at, &value, sizeof(T));
 }
 
+// Targets per marking dispatch: within the 65,535 workgroups a dispatch dimension is guaranteed.
+constexpr std::uint64_t kMarkTargetsPerDispatch = 1ull << 21;
+
 }  // namespace
 
 ReuseKey Renderer::Impl::reuseKey(const RenderSettings& settings) const {
@@ -41,16 +44,7 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   FrameBlock& f = frameBlock();
   f.refine = reuse.dirtyList.address();
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
-  beginCommands();
-  PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
-  const ComputePipeline& mark = pipeline(ShaderId::MarkDirty);
-  for (std::uint64_t first = 0; first < targets; first += kMarkTargetsPerDispatch) {
-    const std::uint64_t n = std::min(kMarkTargetsPerDispatch, targets - first);
-    rec.dispatch(mark, passConstants(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(targets), 0, 0),
-                 groupsFor(n), Stage::Mark);
-  }
-  submitAndWait();
-  rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+  runMarkingPass(targets, false, stageMs);
   const std::uint64_t dirty = list[2];
   if (dirty > 0) {
     const std::uint32_t spp = settings.spp;
@@ -60,6 +54,21 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   f.refine = 0;
   f.refineInfo = glm::uvec4(0u);
   return dirty;
+}
+
+void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulation, StageTimes& stageMs) {
+  beginCommands();
+  PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+  // RESET_ACCUMULATION only when set: a single frame's partial re-render keeps the pipeline it always had.
+  const ComputePipeline& mark =
+      pipeline(ShaderId::MarkDirty, resetAccumulation ? std::vector<std::uint32_t>{1u} : std::vector<std::uint32_t>{});
+  for (std::uint64_t first = 0; first < targets; first += kMarkTargetsPerDispatch) {
+    const std::uint64_t n = std::min(kMarkTargetsPerDispatch, targets - first);
+    rec.dispatch(mark, passConstants(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(targets), 0, 0),
+                 groupsFor(n), Stage::Mark);
+  }
+  submitAndWait();
+  rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
 }
 
 void Renderer::Impl::copySecondary(std::uint32_t depth, std::uint32_t batchFirst, std::uint32_t count, bool load) {

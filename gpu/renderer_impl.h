@@ -39,9 +39,6 @@ inline constexpr std::uint32_t kMaxDepth = 32;
 inline constexpr std::uint64_t kMaxChunkPixels = 8ull
                                                  << 20;  // pixels of all views rendered by one chunk (output buffers)
 
-// Targets per marking dispatch (mark_dirty.comp): within the 65,535 workgroups a dispatch dimension is guaranteed.
-inline constexpr std::uint64_t kMarkTargetsPerDispatch = 1ull << 21;
-
 using StageTimes = std::array<double, static_cast<size_t>(Stage::Count)>;
 
 // Workgroups of HT_WORKGROUP_SIZE invocations covering n.
@@ -263,6 +260,9 @@ struct Renderer::Impl {
                        StageTimes& stageMs, RenderResult& result);
   // The progressive members of the frame block (after fillFrame).
   void fillAccumulation(FrameBlock& f, Accumulator& accumulator) const;
+  // The marking pass (mark_dirty.comp) over `targets` targets, with the list header, masks and list set in the frame
+  // block; resetAccumulation: a dirty target's accumulated sums start over too (partial_retrace.cpp).
+  void runMarkingPass(std::uint64_t targets, bool resetAccumulation, StageTimes& stageMs);
   // After node moves: lists the targets whose recorded cells meet the moved bounds and zeroes their sums and masks
   // (mark_dirty.comp, RESET_ACCUMULATION); returns how many.
   std::uint64_t resetMovedTargets(Accumulator& accumulator, const Bounds3& moved, std::uint64_t targets,
