@@ -17,6 +17,7 @@
 #include <iterator>
 #include <thread>
 
+#include "tests/cluster/mpirun_launcher.h"
 #include "tests/server/server_fixture.h"
 
 namespace ht::server::test {
@@ -25,25 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using ::testing::HasSubstr;
-
-// Launcher flags as in tests/cluster/mpirun_test.cpp: oversubscribed, unbound, shared memory + loopback only.
-const std::vector<std::string> kLauncherFlags = {"--oversubscribe",
-                                                 "--bind-to",
-                                                 "none",
-                                                 "--mca",
-                                                 "btl",
-                                                 "self,vader",
-                                                 "--mca",
-                                                 "btl_tcp_if_include",
-                                                 "lo",
-                                                 "--mca",
-                                                 "oob_tcp_if_include",
-                                                 "lo",
-                                                 "--mca",
-                                                 "btl_vader_single_copy_mechanism",
-                                                 "none",
-                                                 "--timeout",
-                                                 "120"};
 
 // A child process (exec'ed with `argv`), its output in `log`; killed at destruction if still running.
 class Child {
@@ -117,16 +99,14 @@ std::string fileBytes(const fs::path& path) {
 
 class ClusterDaemon : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);  // tests run as root in CI
-    setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
-#ifdef HT_SANITIZED_BUILD
-    // As tests/cluster/mpirun_test.cpp: Open MPI's plugins leave allocations LeakSanitizer cannot attribute.
-    const char* asan = std::getenv("ASAN_OPTIONS");
-    const std::string options = std::string(asan ? asan : "") + (asan && *asan ? ":" : "") + "detect_leaks=0";
-    setenv("ASAN_OPTIONS", options.c_str(), 1);
-#endif
+  // The launch environment every cluster test uses (tests/cluster/mpirun_launcher.h): as root, no leak check in the
+  // ranks under ASan, one Mesa shader cache for the daemons of this program.
+  static void SetUpTestSuite() { shaderCache_ = ht::test::prepareMpirunEnvironment(); }
+  static void TearDownTestSuite() {
+    std::error_code ignored;
+    fs::remove_all(shaderCache_, ignored);
   }
+  static inline fs::path shaderCache_;
 
   // A daemon config over the fixture's displays and scenes, its own socket and output root.
   fs::path writeConfig(const std::string& name, const std::string& extra = "") const {
@@ -146,7 +126,7 @@ class ClusterDaemon : public ::testing::Test {
   // mpirun under a watchdog, as tests/cluster/mpirun_test.cpp (mpirun was once seen to outlive its ranks).
   std::unique_ptr<Child> startMpirun(const std::string& name, std::vector<std::string> programs) {
     std::vector<std::string> argv = {"/usr/bin/timeout", "-s", "KILL", "150", MPIEXEC_EXE};
-    argv.insert(argv.end(), kLauncherFlags.begin(), kLauncherFlags.end());
+    argv.insert(argv.end(), ht::test::kLauncherFlags.begin(), ht::test::kLauncherFlags.end());
     argv.insert(argv.end(), programs.begin(), programs.end());
     return std::make_unique<Child>(argv, files_.dir.path / (name + ".log"));
   }
