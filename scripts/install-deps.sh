@@ -8,6 +8,8 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 PKGS=(
   build-essential cmake ninja-build pkg-config git
+  # the linker of both builds (CMakeLists.txt HOLOTRACE_USE_LLD): links about 3x faster than GNU ld
+  lld
   # Vulkan loader, lavapipe (CPU Vulkan for CI), validation layers, SPIR-V compiler
   mesa-vulkan-drivers libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools spirv-tools
   # math, images, glTF, JSON

@@ -53,9 +53,9 @@ run_suite "$ASAN_BUILD_DIR" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang+
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DHOLOTRACE_SANITIZE=ON -DHOLOTRACE_BUILD_BENCH=OFF
 
 # libFuzzer smoke run (issue 4): clang + ASan/UBSan build of the parsers only (build-fuzz/), each target fuzzed for
-# HOLOTRACE_FUZZ_SECONDS (default 30 s) from its seed corpus; a crash, leak or timeout fails the suite.
+# HOLOTRACE_FUZZ_SECONDS (default 20 s) from its seed corpus; a crash, leak or timeout fails the suite.
 fuzz_start=$(date +%s)
-if ! bash scripts/fuzz.sh "${HOLOTRACE_FUZZ_SECONDS:-30}"; then
+if ! bash scripts/fuzz.sh "${HOLOTRACE_FUZZ_SECONDS:-20}"; then
   echo "=== test.sh: FUZZ FINDINGS (scripts/fuzz.sh)" >&2
   status=1
 fi
