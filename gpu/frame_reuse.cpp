@@ -2,6 +2,7 @@
 #include "gpu/frame_reuse.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace ht::gpu {
 
@@ -28,7 +29,7 @@ void FrameReuseState::geometryMoved(const Bounds3& oldBounds, const Bounds3& new
 }
 
 void FrameReuseState::invalidate() {
-  hitsValid_ = masksValid_ = secondaryValid_ = false;
+  hitsValid_ = masksValid_ = secondaryValid_ = secondaryMarkable_ = false;
   lightsEdited_ = moved_ = false;
   movedBounds_ = Bounds3{};
 }
@@ -38,12 +39,12 @@ void FrameReuseState::ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPl
 }
 
 ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable, std::uint64_t paths,
-                                std::uint64_t targets, std::uint32_t secondaryDepths) {
+                                std::uint64_t targets, std::uint32_t secondaryDepths, std::uint64_t perBatch) {
   ReusePlan p;
   if (!wanted || !reusable) {
     invalidate();
     if (!wanted) {  // free the memory
-      for (DeviceBuffer* b : {&primaryRays, &primaryHits, &segmentMasks, &dirtyList, &secondaryCache}) {
+      for (DeviceBuffer* b : {&primaryRays, &primaryHits, &segmentMasks, &dirtyList, &secondaryCache, &secondaryCounts}) {
         *b = DeviceBuffer();
       }
     }
@@ -74,7 +75,16 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
   p.recordSecondary =
       secondaryFits && (p.mode == FrameReuse::None || (p.mode == FrameReuse::CachedPrimaryHits && !secondaryValid_));
   p.loadSecondary = p.mode == FrameReuse::CachedPrimaryHits && secondaryFits && secondaryValid_;
-  if (p.recordSecondary) ensure(secondaryCache, secondaryBytes, MemoryPlace::Device);
+  p.secondaryExact = p.mode == FrameReuse::PartialRetrace && secondaryMarkable_ && cachedPaths_ == paths;
+  if (p.recordSecondary) {
+    ensure(secondaryCache, secondaryBytes, MemoryPlace::Device);
+    countsPerBatch_ = perBatch;
+    countsDepths_ = secondaryDepths + 1;
+    const std::uint64_t batches = (paths + perBatch - 1) / perBatch;
+    const std::uint64_t countBytes = batches * countsDepths_ * sizeof(std::uint32_t);
+    ensure(secondaryCounts, countBytes, MemoryPlace::HostReadback);
+    std::memset(secondaryCounts.mapped(), 0, countBytes);  // depths a batch never reached hold no entries
+  }
   cachedPaths_ = paths;
   p.recordSegments = true;
   if (p.primaryCached) {
@@ -93,6 +103,25 @@ void FrameReuseState::frameDone(const ReuseKey& key, const ReusePlan& plan) {
   masksValid_ = plan.recordSegments;
   hitsValid_ = plan.primaryCached;
   secondaryValid_ = plan.recordSecondary || plan.loadSecondary;  // a partial re-render leaves them stale
+  // ... for its re-traced targets only: those get coarse cells in mask words 0-1, the others' entries stay current.
+  secondaryMarkable_ = plan.recordSecondary || plan.loadSecondary || plan.secondaryExact;
+}
+
+VkDeviceSize FrameReuseState::secondaryCountOffset(std::uint64_t batchFirst, std::uint32_t depth) const {
+  return ((batchFirst / countsPerBatch_) * countsDepths_ + depth) * sizeof(std::uint32_t);
+}
+
+std::vector<FrameReuseState::SecondaryQueue> FrameReuseState::secondaryQueues() const {
+  std::vector<SecondaryQueue> queues;
+  const auto* counts = static_cast<const std::uint32_t*>(secondaryCounts.mapped());
+  if (counts == nullptr || countsPerBatch_ == 0) return queues;
+  for (std::uint64_t first = 0; first < cachedPaths_; first += countsPerBatch_) {
+    for (std::uint32_t depth = 1; depth < countsDepths_; ++depth) {
+      const std::uint32_t count = counts[secondaryCountOffset(first, depth) / sizeof(std::uint32_t)];
+      if (count > 0) queues.push_back({static_cast<std::uint32_t>(first), depth, count});
+    }
+  }
+  return queues;
 }
 
 FrameReuseState::SecondaryRegion FrameReuseState::secondaryRegion(std::uint32_t depth) const {
@@ -101,19 +130,47 @@ FrameReuseState::SecondaryRegion FrameReuseState::secondaryRegion(std::uint32_t 
   return {base, base + rays, base + rays + cachedPaths_ * sizeof(std::uint32_t)};
 }
 
+namespace {
+
+// Does a cached primary segment, or a shadow ray from its hit to one of `lights`, meet the padded moved bounds?
+bool cachedSegmentsMeetMoved(const gpu_shared::HtRay& r, const gpu_shared::HtHit& h, const ReusePlan& plan,
+                             std::span<const gpu_shared::GpuLight> lights) {
+  const float tEnd = h.triId != gpu_shared::HT_MISS ? h.t : r.tmax;
+  if (gpu_shared::ht_segment_meets_box(r.origin, r.dir, r.tmin, tEnd, plan.movedLo, plan.movedHi)) return true;
+  if (h.triId == gpu_shared::HT_MISS) return false;
+  const glm::vec3 p = gpu_shared::ht_cached_hit_point(r.origin, r.dir, tEnd);
+  const float pErr = gpu_shared::ht_cached_hit_error(r.origin, r.dir, tEnd);
+  for (const gpu_shared::GpuLight& light : lights) {
+    if (gpu_shared::ht_shadow_meets_box(p, pErr, light.position, glm::vec3(light.direction), plan.movedLo,
+                                        plan.movedHi)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks, const ReusePlan& plan,
                                             std::span<const gpu_shared::HtRay> primaryRays,
-                                            std::span<const gpu_shared::HtHit> primaryHits, std::uint32_t spp) {
+                                            std::span<const gpu_shared::HtHit> primaryHits, std::uint32_t spp,
+                                            std::span<const gpu_shared::GpuLight> lights,
+                                            std::span<const SecondarySegment> secondary) {
+  const std::size_t targets = masks.size() / kMaskWords;
+  std::vector<bool> secondaryMeets(targets, false);
+  for (const SecondarySegment& s : secondary) {
+    if (s.target < targets && !secondaryMeets[s.target]) {
+      secondaryMeets[s.target] = cachedSegmentsMeetMoved(s.ray, s.hit, plan, lights);
+    }
+  }
   std::vector<std::uint32_t> dirty;
-  for (std::size_t t = 0; t < masks.size() / kMaskWords; ++t) {
+  for (std::size_t t = 0; t < targets; ++t) {
     const std::uint32_t* m = masks.data() + t * kMaskWords;
-    bool hit = ((m[0] & plan.gridCells[0]) | (m[1] & plan.gridCells[1])) != 0;
+    const bool coarse = (m[0] | m[1]) != 0;
+    bool hit = coarse ? ((m[0] & plan.gridCells[0]) | (m[1] & plan.gridCells[1])) != 0 : secondaryMeets[t];
     const bool primaryNear = ((m[2] & plan.gridCells[0]) | (m[3] & plan.gridCells[1])) != 0;
     for (std::uint32_t s = 0; !hit && primaryNear && !primaryHits.empty() && s < spp; ++s) {
-      const gpu_shared::HtRay& r = primaryRays[t * spp + s];
-      const gpu_shared::HtHit& h = primaryHits[t * spp + s];
-      const float tEnd = h.triId != gpu_shared::HT_MISS ? h.t : r.tmax;
-      hit = gpu_shared::ht_segment_meets_box(r.origin, r.dir, r.tmin, tEnd, plan.movedLo, plan.movedHi);
+      hit = cachedSegmentsMeetMoved(primaryRays[t * spp + s], primaryHits[t * spp + s], plan, lights);
     }
     if (hit) dirty.push_back(static_cast<std::uint32_t>(t));
   }

@@ -12,6 +12,7 @@
 #include "gpu/device_buffer.h"
 #include "gpu/renderer.h"
 #include "gpu/segment_cells.h"
+#include "gpu/wavefront_types.h"
 
 namespace ht::gpu {
 
@@ -43,6 +44,10 @@ struct ReusePlan {
   bool recordSegments = false;   // record the per-target segment cells (every pass of the frame)
   bool primaryCached = false;    // the cache holds every path's primary ray and hit once the frame ran: primary
                                  // segments stay out of the masks and the marking pass tests them exactly
+  // PartialRetrace: the secondary cache holds the segments of depths >= 1 of every target whose mask words 0-1 are
+  // zero (recorded by a full frame of this view and still current for every target not re-traced since); the
+  // marking pass tests those entries and their shadow rays exactly (mark_dirty.comp SECONDARY_ENTRIES).
+  bool secondaryExact = false;
   // PartialRetrace: the cells of the moved bounds (lo, hi words) and those bounds padded by HT_GRID_PAD cells.
   std::uint32_t gridCells[2] = {0, 0};
   glm::vec3 movedLo{0.0f}, movedHi{0.0f};
@@ -69,8 +74,9 @@ class FrameReuseState {
   // `reusable` = the frame is one chunk without adaptive refinement (the only frames whose state is kept). Until
   // frameDone, nothing is valid (a frame that throws leaves no half-written state behind).
   // `secondaryDepths`: the depths after the primary one the frame traces (0 without mirrors and glass).
+  // `perBatch`: paths per batch of the frame (the secondary cache's queue sizes are kept per batch and depth).
   ReusePlan plan(const ReuseKey& key, bool wanted, bool reusable, std::uint64_t paths, std::uint64_t targets,
-                 std::uint32_t secondaryDepths);
+                 std::uint32_t secondaryDepths, std::uint64_t perBatch);
   // After the frame planned last finished: what it recorded is now the state edits are measured against.
   void frameDone(const ReuseKey& key, const ReusePlan& plan);
 
@@ -79,12 +85,25 @@ class FrameReuseState {
   // lo in 4-6 and hi in 8-10 as float bits; entries from kListFirst).
   // The secondary cache holds, for depth d >= 1, rays at region (d - 1) * paths * 52 B, then the queue entries' path
   // indices and hits (secondaryRegion); entries of a batch start at its first path.
-  DeviceBuffer primaryRays, primaryHits, segmentMasks, dirtyList, secondaryCache;
+  // secondaryCounts: the entries of each batch's queue of each depth (batch * (secondaryDepths + 1) + depth), copied
+  // from the queue counters by the frame that fills the secondary cache; host visible.
+  DeviceBuffer primaryRays, primaryHits, segmentMasks, dirtyList, secondaryCache, secondaryCounts;
   struct SecondaryRegion {
     VkDeviceSize rays, paths, hits;  // byte offsets of entry 0 of the depth's rays, path indices, hits
   };
   SecondaryRegion secondaryRegion(std::uint32_t depth) const;
-  static constexpr std::uint32_t kListFirst = 12;
+  VkDeviceSize secondaryCountOffset(std::uint64_t batchFirst, std::uint32_t depth) const;
+  // The cached queues of depths >= 1 (what the frame that filled the cache traced), for the marking pass of a frame
+  // whose plan says secondaryExact; between frames, while secondaryMarkable().
+  struct SecondaryQueue {
+    std::uint32_t batchFirst, depth, count;
+  };
+  std::vector<SecondaryQueue> secondaryQueues() const;
+  std::uint64_t cachedPaths() const { return cachedPaths_; }
+  bool secondaryMarkable() const { return secondaryMarkable_; }
+  // List header: moved cells (words 0-1), count (2), padded moved bounds lo (4-6) and hi (8-10) as float bits, and
+  // with ReusePlan::secondaryExact the secondary cache's address (12-13), its paths (14) and the frame's targets (15).
+  static constexpr std::uint32_t kListFirst = 16;
 
  private:
   void ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPlace place);
@@ -93,21 +112,29 @@ class FrameReuseState {
   ReuseKey key_;
   bool hitsValid_ = false, masksValid_ = false, secondaryValid_ = false;
   std::uint64_t cachedPaths_ = 0;
+  bool secondaryMarkable_ = false;  // the invariant of ReusePlan::secondaryExact holds
+  std::uint64_t countsPerBatch_ = 0;
+  std::uint32_t countsDepths_ = 0;
   std::uint64_t maskedTargets_ = 0;
   bool lightsEdited_ = false, moved_ = false;
   Bounds3 movedBounds_;
 };
 
-// Words of a target's segment mask: the cells of its segments but the cached primary ones (0-1), the cells of its
-// cached primary segments (2-3; zero without the cache), record_segments.comp.
+// Words of a target's segment mask: the cells of its segments but the cached primary ones and their shadow rays
+// (0-1), the cells of its cached primary segments and their shadow rays (2-3; zero without the cache),
+// record_segments.comp.
 inline constexpr std::uint32_t kMaskWords = 4;
 
 // CPU reference of mark_dirty.comp: the targets (ascending) whose masks (kMaskWords per target) share a cell with
-// `plan.gridCells` in words 0-1, or, with cached primary rays and hits (`spp` per target; empty: none), in words
-// 2-3 and one of whose primary segments meets the box [plan.movedLo, plan.movedHi].
+// `plan.gridCells` in words 0-1; or whose words 0-1 are zero and one of whose `secondary` segments (empty unless
+// plan.secondaryExact), or a shadow ray from its hit, meets the box [plan.movedLo, plan.movedHi]; or, with cached
+// primary rays and hits (`spp` per target; empty: none), whose words 2-3 share a cell with it and one of whose primary
+// segments, or a shadow ray from its hit to one of the scene's `lights` (ht_shadow_meets_box), meets that box.
 std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks, const ReusePlan& plan,
                                             std::span<const gpu_shared::HtRay> primaryRays,
-                                            std::span<const gpu_shared::HtHit> primaryHits, std::uint32_t spp);
+                                            std::span<const gpu_shared::HtHit> primaryHits, std::uint32_t spp,
+                                            std::span<const gpu_shared::GpuLight> lights,
+                                            std::span<const SecondarySegment> secondary);
 
 // Records a buffer-to-buffer copy between compute passes: waits for the passes before it and makes the copy
 // visible (and its source free to overwrite) to the passes after it.

@@ -36,6 +36,18 @@ std::vector<gpu_shared::GpuMaterial> packMaterials(const Scene& scene) {
   return out;
 }
 
+// The shading record of triangle t: its corners and material (checked).
+glm::uvec4 triangleRecord(const Scene& scene, size_t t) {
+  std::uint32_t material = t < scene.triangleMaterial.size() ? scene.triangleMaterial[t] : 0u;
+  if (material >= std::max<size_t>(scene.materials.size(), 1)) {
+    throw SceneError(scene.name, "triangle " + std::to_string(t) + " uses material " + std::to_string(material) +
+                                     " but the scene has " + std::to_string(scene.materials.size()));
+  }
+  return glm::uvec4(scene.triangles[t], material);
+}
+
+}  // namespace
+
 std::vector<gpu_shared::GpuLight> packLights(const Scene& scene) {
   std::vector<gpu_shared::GpuLight> out;
   for (const Light& l : scene.lights) {
@@ -53,18 +65,6 @@ std::vector<gpu_shared::GpuLight> packLights(const Scene& scene) {
   }
   return out;
 }
-
-// The shading record of triangle t: its corners and material (checked).
-glm::uvec4 triangleRecord(const Scene& scene, size_t t) {
-  std::uint32_t material = t < scene.triangleMaterial.size() ? scene.triangleMaterial[t] : 0u;
-  if (material >= std::max<size_t>(scene.materials.size(), 1)) {
-    throw SceneError(scene.name, "triangle " + std::to_string(t) + " uses material " + std::to_string(material) +
-                                     " but the scene has " + std::to_string(scene.materials.size()));
-  }
-  return glm::uvec4(scene.triangles[t], material);
-}
-
-}  // namespace
 
 GpuScene::GpuScene(VulkanContext::Impl& vk, const Scene& scene, const bvh::BuildOptions& options)
     : GpuScene(vk, scene, buildSceneBvh(scene, options, BvhLayoutPolicy::Automatic)) {}

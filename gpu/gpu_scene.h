@@ -6,14 +6,19 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "bvh/bvh_builder.h"
 #include "bvh/gpu_layout.h"
 #include "gpu/device_buffer.h"
 #include "gpu/scene_bvh.h"
+#include "gpu/wavefront_types.h"
 #include "scene/scene.h"
 
 namespace ht::gpu {
+
+// The device records of `scene`'s punctual lights, in scene order (SceneError over HT_MAX_LIGHTS).
+std::vector<gpu_shared::GpuLight> packLights(const Scene& scene);
 
 class GpuScene {
  public:

@@ -41,10 +41,19 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   list[2] = 0;  // count
   std::memcpy(list + 4, &framePlan.movedLo, sizeof(glm::vec3));
   std::memcpy(list + 8, &framePlan.movedHi, sizeof(glm::vec3));
+  std::vector<FrameReuseState::SecondaryQueue> secondary;
+  if (framePlan.secondaryExact) {
+    secondary = reuse.secondaryQueues();
+    const std::uint64_t address = reuse.secondaryCache.address();
+    list[12] = static_cast<std::uint32_t>(address);
+    list[13] = static_cast<std::uint32_t>(address >> 32);
+    list[14] = static_cast<std::uint32_t>(reuse.cachedPaths());
+    list[15] = static_cast<std::uint32_t>(targets);
+  }
   FrameBlock& f = frameBlock();
   f.refine = reuse.dirtyList.address();
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
-  runMarkingPass(targets, false, stageMs);
+  runMarkingPass(targets, false, stageMs, secondary);
   const std::uint64_t dirty = list[2];
   if (dirty > 0) {
     const std::uint32_t spp = settings.spp;
@@ -56,9 +65,16 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   return dirty;
 }
 
-void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulation, StageTimes& stageMs) {
+void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulation, StageTimes& stageMs,
+                                    std::span<const FrameReuseState::SecondaryQueue> secondary) {
   beginCommands();
   PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+  if (!secondary.empty()) {  // first the cached queues of depths >= 1: they mark their targets' words 0-1
+    const ComputePipeline& entries = pipeline(ShaderId::MarkDirty, {0u, 1u});
+    for (const FrameReuseState::SecondaryQueue& q : secondary) {
+      rec.dispatch(entries, passConstants(q.batchFirst, q.count, q.depth, 0), groupsFor(q.count), Stage::Mark);
+    }
+  }
   // RESET_ACCUMULATION only when set: a single frame's partial re-render keeps the pipeline it always had.
   const ComputePipeline& mark =
       pipeline(ShaderId::MarkDirty, resetAccumulation ? std::vector<std::uint32_t>{1u} : std::vector<std::uint32_t>{});
@@ -109,6 +125,26 @@ Renderer::ReuseSnapshot Renderer::reuseSnapshot() const {
     snap.primaryRays.resize(reuse.primaryRays.size() / sizeof(gpu_shared::HtRay));
     reuse.primaryRays.download(snap.primaryRays.data(), reuse.primaryRays.size());
   }
+  const std::vector<FrameReuseState::SecondaryQueue> queues =
+      reuse.secondaryMarkable() ? reuse.secondaryQueues() : std::vector<FrameReuseState::SecondaryQueue>{};
+  if (!queues.empty()) {
+    std::vector<std::byte> cache(reuse.secondaryCache.size());
+    reuse.secondaryCache.download(cache.data(), cache.size());
+    const std::uint64_t spp = reuse.cachedPaths() / std::max<std::uint64_t>(reuse.maskedTargets(), 1);
+    for (const FrameReuseState::SecondaryQueue& q : queues) {
+      const FrameReuseState::SecondaryRegion r = reuse.secondaryRegion(q.depth);
+      for (std::uint64_t e = q.batchFirst; e < std::uint64_t{q.batchFirst} + q.count; ++e) {
+        SecondarySegment s{};
+        std::uint32_t path = 0;
+        std::memcpy(&s.ray, cache.data() + r.rays + e * sizeof(gpu_shared::HtRay), sizeof(s.ray));
+        std::memcpy(&path, cache.data() + r.paths + e * sizeof(std::uint32_t), sizeof(path));
+        std::memcpy(&s.hit, cache.data() + r.hits + e * sizeof(gpu_shared::HtHit), sizeof(s.hit));
+        s.target = static_cast<std::uint32_t>((q.batchFirst + path) / spp);
+        snap.secondarySegments.push_back(s);
+      }
+    }
+  }
+  snap.secondaryExact = plan.secondaryExact;
   const auto* list = static_cast<const std::uint32_t*>(reuse.dirtyList.mapped());
   if (list && impl_->framePlan.mode == FrameReuse::PartialRetrace) {
     snap.dirtyTargets.assign(list + FrameReuseState::kListFirst, list + FrameReuseState::kListFirst + list[2]);

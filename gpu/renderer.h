@@ -114,6 +114,13 @@ struct TraceStats {
   std::uint32_t maxSteps = 0;
 };
 
+// One closest-hit segment of depth >= 1 as the frame-reuse cache keeps it, with the target of its path (tests).
+struct SecondarySegment {
+  gpu_shared::HtRay ray;
+  gpu_shared::HtHit hit;
+  std::uint32_t target;
+};
+
 class Renderer {
  public:
   Renderer(VulkanContext& context, const Scene& scene, const bvh::BuildOptions& buildOptions = {});
@@ -180,6 +187,10 @@ class Renderer {
     std::vector<std::uint32_t> segmentMasks, dirtyTargets;
     std::vector<gpu_shared::HtRay> primaryRays;
     std::vector<gpu_shared::HtHit> primaryHits;
+    // The secondary cache's entries (depths >= 1) while the marking pass may test them (ReusePlan::secondaryExact),
+    // and whether the last partial re-render did.
+    std::vector<SecondarySegment> secondarySegments;
+    bool secondaryExact = false;
     gpu_shared::SegmentGrid grid{};
     // The last partial re-render's moved cells and padded moved bounds (what its marking pass tested).
     std::uint32_t movedCells[2] = {0, 0};

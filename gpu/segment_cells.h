@@ -9,7 +9,9 @@
 // with those bounds (padded by HT_GRID_PAD cells against float rounding) keeps its value bit for bit. Where the
 // primary rays and hits are cached (gpu/frame_reuse.h), primary segments stay out of the mask and the marking pass
 // tests them exactly against the padded bounds (ht_segment_meets_box): they are most of a display's segments and
-// the ones the coarse grid over-invalidates most.
+// the ones the coarse grid over-invalidates most. The shadow rays of those primary hits go with them: their cells join
+// the primary cells, and the marking pass tests the segments from each cached hit to each light exactly
+// (ht_shadow_meets_box), so a shadow that only passes near the moved node's cells no longer re-traces a target.
 #ifndef HT_SEGMENT_CELLS_H
 #define HT_SEGMENT_CELLS_H
 #include "common/glsl_cpp.h"
@@ -115,6 +117,37 @@ HT_INLINE bool ht_segment_meets_box(vec3 o, vec3 d, float t0, float t1, vec3 lo,
     b = min(b, max(ta, tb));
   }
   return a <= b;
+}
+
+// The surface point of a cached primary hit, o + t d, and a bound per axis on its distance from the point
+// shade.comp interpolates from the triangle's corners (surface_point). Both lie within a few float ULPs of the exact
+// intersection: the watertight t is exact to a few ULPs (Woop et al., JCGT 2013) and the interpolation rounds each
+// product and sum once, so 2e-5 of the coordinates' magnitude is a bound with margins of 100x.
+HT_INLINE vec3 ht_cached_hit_point(vec3 o, vec3 d, float t) {
+  HT_PRECISE vec3 p = o + t * d;
+  return p;
+}
+HT_INLINE float ht_cached_hit_error(vec3 o, vec3 d, float t) {
+  HT_PRECISE float reach = max(max(abs(o.x), abs(o.y)), abs(o.z)) + abs(t) * max(max(abs(d.x), abs(d.y)), abs(d.z));
+  return reach * 2e-5f;
+}
+
+// Does a shadow ray that shade.comp's emit_shadow_rays may trace from the surface point p (known to `pErr` per axis)
+// towards the punctual light (position.xyz, type HT_LIGHT_* in position.w; `direction` the way a directional light
+// travels) meet the box [lo, hi]? Conservative for every emitted ray, whatever the surface's normal:
+// - its origin is ht_offset_ray(s.p, n) (bvh/offset_ray.h): each axis moves 256 ULPs of the coordinate (at most
+//   |s.p| * 2^-15) or 1/65536 near zero;
+// - a point or spot light's ray runs to that origin + dist * normalize(L - s.p), within a few ULPs of |L - s.p| of the
+//   segment s.p -> L at every parameter; a directional light's ray is parallel to -direction, to infinity.
+// So the segment p -> L (or the ray p - t direction) meets the box grown by pErr + that offset + 1e-5 |L - p|.
+HT_INLINE bool ht_shadow_meets_box(vec3 p, float pErr, vec4 lightPosition, vec3 direction, vec3 lo, vec3 hi) {
+  bool directional = uint(lightPosition.w) == 2u;  // HT_LIGHT_DIRECTIONAL (gpu/wavefront_types.h)
+  vec3 d = directional ? -direction : vec3(lightPosition.x, lightPosition.y, lightPosition.z) - p;
+  float reach = directional ? 0.0f : max(max(abs(d.x), abs(d.y)), abs(d.z));
+  HT_PRECISE float offset = (max(max(abs(p.x), abs(p.y)), abs(p.z)) + pErr) * 3.1e-5f + 1.6e-5f;
+  HT_PRECISE float pad = pErr + offset + reach * 1e-5f;
+  vec3 grow = vec3(pad, pad, pad);
+  return ht_segment_meets_box(p, d, 0.0f, directional ? HT_GRID_T_INFINITY : 1.0f, lo - grow, hi + grow);
 }
 
 HT_SHARED_END

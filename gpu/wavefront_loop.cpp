@@ -110,7 +110,7 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   const ReuseKey key = reuseKey(settings);
   // Frame reuse is for single frames: an accumulation step keeps no reuse state (and drops what was kept).
   framePlan = reuse.plan(key, settings.reuse && !accumulating, reusable && !accumulating, targets * settings.spp,
-                         targets, depthPasses(settings) - 1);
+                         targets, depthPasses(settings) - 1, perBatch);
   if (framePlan.recordSegments) {
     frameBlock().segmentMasks = reuse.segmentMasks.address();
     frameBlock().grid = reuse.grid();
@@ -188,6 +188,8 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   const bool saveHits = which == TracedTargets::All && framePlan.recordHits;
   const bool loadSecondary = loadHits && framePlan.loadSecondary;
   const bool saveSecondary = which == TracedTargets::All && framePlan.recordSecondary;
+  // Segments of depths >= 1 that stay in (or go to) the secondary cache are tested there, not recorded as cells.
+  const bool secondaryCached = saveSecondary || loadSecondary;
   // (An accumulation records every pass, its listed ones too, into its own masks: accumulation_pass.cpp.)
   const bool record = (which != TracedTargets::Refined || accumulating) && framePlan.recordSegments;
 
@@ -244,14 +246,21 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
           rec.dispatchIndirect(pass, pc, args, queueArgs, stage);
       };
       auto recordSegments = [&] {
-        if (record) overQueue(pipeline(ShaderId::RecordSegments, depthSpec({listed, loadHits}, depth)), Stage::Record);
+        if (record) {
+          overQueue(pipeline(ShaderId::RecordSegments, depthSpec({listed, loadHits, secondaryCached}, depth)),
+                    Stage::Record);
+        }
       };
       if (depth == 0 ? !loadHits : !loadSecondary) overQueue(traceClosest, Stage::Trace);
       if (depth == 0 && saveHits) {
         recordComputeCopy(cmd, work.rays[0], 0, reuse.primaryRays, batchFirst * sizeof(gpu_shared::HtRay), rayBytes);
         recordComputeCopy(cmd, work.hits, 0, reuse.primaryHits, batchFirst * sizeof(gpu_shared::HtHit), hitBytes);
       }
-      if (depth > 0 && (saveSecondary || loadSecondary)) copySecondary(depth, batchFirst, count, loadSecondary);
+      if (depth > 0 && secondaryCached) copySecondary(depth, batchFirst, count, loadSecondary);
+      if (depth > 0 && saveSecondary) {  // the queue's size, for the marking pass's secondary entries
+        recordComputeCopy(cmd, counters, offsetof(GpuCounters, queueCount) + q * sizeof(std::uint32_t),
+                          reuse.secondaryCounts, reuse.secondaryCountOffset(batchFirst, depth), sizeof(std::uint32_t));
+      }
       overQueue(shade, Stage::Shade);
       rec.dispatch(afterShade, pc, 1, Stage::Queues);
       if (lights) {

@@ -4,9 +4,9 @@
 // target of the frame: a target whose segment cells meet the moved bounds' cells (FRAME.refine words 0-1) is
 // appended to the dirty list (count in word 2, entries from word FRAME.refineInfo.y) and its mask cleared for the
 // re-trace to record again. With the primary rays and hits cached (FRAME.primaryHits != 0), a target is also dirty
-// when its primary segments' cells (mask words 2-3) meet those cells and a primary segment of one of its samples
-// meets the padded moved bounds (FRAME.refine words 4-6 and 8-10, float
-// bits). List order varies with scheduling; a target's samples do not depend on it.
+// when its primary segments' and their shadow rays' cells (mask words 2-3) meet those cells and one of those segments
+// of one of its samples meets the padded moved bounds (FRAME.refine words 4-6 and 8-10, float bits): the primary
+// segment from the cache, the shadow rays from the cached hit to every light (ht_shadow_meets_box). List order varies with scheduling; a target's samples do not depend on it.
 // CPU reference: gpu::markDirtyTargets (gpu/frame_reuse.h).
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_ballot : require
@@ -15,30 +15,78 @@
 // In a progressive accumulation after node moves (accumulation_pass.cpp resetMovedTargets): a dirty target's sums
 // start over too (sum, n, half sum, half count = 0); the others keep theirs.
 layout(constant_id = 0) const bool RESET_ACCUMULATION = false;
+// The secondary entries mode (ReusePlan::secondaryExact), dispatched before the per-target pass: one invocation per
+// entry of one cached queue of depth pc.depth >= 1 (pc.batchCount entries of the batch starting at path
+// pc.batchFirst). An entry whose segment, or a shadow ray from its hit, meets the padded moved bounds sets mask words
+// 0-1 of its target to all ones, so the per-target pass lists it; targets whose words 0-1 already hold cells (their
+// paths were re-traced after the cache was filled) are left to those cells.
+layout(constant_id = 1) const bool SECONDARY_ENTRIES = false;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RayCacheRef { vec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer HitCacheRef { uvec4 h[]; };
+// The secondary cache's regions start at multiples of 4 B only (FrameReuseState::secondaryRegion).
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer WordsRef { uint w[]; };
 
+uint header_word(uint k) { return UintRef(FRAME.refine).v[k]; }
 vec3 header_vec3(uint first) {
-  return uintBitsToFloat(uvec3(UintRef(FRAME.refine).v[first], UintRef(FRAME.refine).v[first + 1u],
-                               UintRef(FRAME.refine).v[first + 2u]));
+  return uintBitsToFloat(uvec3(header_word(first), header_word(first + 1u), header_word(first + 2u)));
 }
 
-// Does a primary segment of one of the target's samples meet the moved bounds?
-bool primary_meets_moved(uint target) {
+// Does the cached segment o + t d, t in [tmin, its hit or tmax], or a shadow ray from its hit to a light, meet the
+// padded moved bounds?
+bool cached_segment_meets_moved(vec3 o, float tmin, vec3 d, float tmax, uvec4 hit) {
   vec3 lo = header_vec3(4u), hi = header_vec3(8u);
-  uint spp = FRAME.dims.z;
-  for (uint s = 0u; s < spp; ++s) {
-    uint path = target * spp + s;
-    vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * path], b = RayCacheRef(FRAME.primaryRays).v[2u * path + 1u];
-    uvec4 hit = HitCacheRef(FRAME.primaryHits).h[path];
-    float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : b.w;
-    if (ht_segment_meets_box(a.xyz, b.xyz, a.w, tEnd, lo, hi)) return true;
+  float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : tmax;
+  if (ht_segment_meets_box(o, d, tmin, tEnd, lo, hi)) return true;
+  if (hit.y == HT_MISS) return false;
+  vec3 p = ht_cached_hit_point(o, d, tEnd);
+  float pErr = ht_cached_hit_error(o, d, tEnd);
+  uint lightCount = FRAME.scene.x;
+  for (uint l = 0u; l < lightCount; ++l) {
+    GpuLight light = scene_light(l);
+    if (ht_shadow_meets_box(p, pErr, light.position, light.direction.xyz, lo, hi)) return true;
   }
   return false;
 }
 
+// Does a primary segment of one of the target's samples, or a shadow ray from its primary hit to a light, meet the
+// moved bounds?
+bool primary_meets_moved(uint target) {
+  uint spp = FRAME.dims.z;
+  for (uint s = 0u; s < spp; ++s) {
+    uint path = target * spp + s;
+    vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * path], b = RayCacheRef(FRAME.primaryRays).v[2u * path + 1u];
+    if (cached_segment_meets_moved(a.xyz, a.w, b.xyz, b.w, HitCacheRef(FRAME.primaryHits).h[path])) return true;
+  }
+  return false;
+}
+
+void mark_secondary_entry() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.batchCount) return;
+  uint paths = header_word(14u), targets = header_word(15u);
+  uint64_t rays = packUint2x32(uvec2(header_word(12u), header_word(13u))) + uint64_t(pc.depth - 1u) * uint64_t(paths) * 52ul;
+  uint64_t pathIds = rays + uint64_t(paths) * 32ul, hits = pathIds + uint64_t(paths) * 4ul;
+  uint e = pc.batchFirst + i;
+  uint target = (pc.batchFirst + WordsRef(pathIds).w[e]) / FRAME.dims.z;
+  if (target >= targets) return;
+  if ((UintRef(FRAME.segmentMasks).v[4u * target] | UintRef(FRAME.segmentMasks).v[4u * target + 1u]) != 0u) return;
+  uint r[8];
+  for (uint k = 0u; k < 8u; ++k) r[k] = WordsRef(rays).w[8u * e + k];
+  uvec4 hit = uvec4(WordsRef(hits).w[4u * e], WordsRef(hits).w[4u * e + 1u], WordsRef(hits).w[4u * e + 2u],
+                    WordsRef(hits).w[4u * e + 3u]);
+  vec3 o = uintBitsToFloat(uvec3(r[0], r[1], r[2])), d = uintBitsToFloat(uvec3(r[4], r[5], r[6]));
+  if (cached_segment_meets_moved(o, uintBitsToFloat(r[3]), d, uintBitsToFloat(r[7]), hit)) {
+    atomicOr(UintRef(FRAME.segmentMasks).v[4u * target], 0xffffffffu);
+    atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 1u], 0xffffffffu);
+  }
+}
+
 void main() {
+  if (SECONDARY_ENTRIES) {
+    mark_secondary_entry();
+    return;
+  }
   uint target = pc.batchFirst + gl_GlobalInvocationID.x;  // dispatched in slices of targets; batchCount: all
   bool dirty = false;
   if (target < pc.batchCount) {

@@ -4,10 +4,10 @@
 // of the current ray queue, after this depth's closest-hit trace and shadow trace and before gather_direct clears
 // the shadow slots: ORs the world-grid cells of the entry's segment (to its hit; a miss to infinity) and of every
 // shadow ray its path emitted at this depth (to the light) into the mask of the path's target (gpu/segment_cells.h).
-// Masks are 4 words per target: words 0-1 the cells of every segment but the cached primary ones; with the primary
-// hits cached (FRAME.primaryHits != 0) the primary segments' cells go to words 2-3 (mark_dirty.comp then tests the
-// cached segments exactly where those cells meet the moved bounds), and a partial re-render writes the new primary
-// hits of its listed targets into the cache.
+// Masks are 4 words per target: words 0-1 the cells of every segment but the cached primary ones and their shadow
+// rays; with the primary hits cached (FRAME.primaryHits != 0) the cells of the primary segments and of the shadow rays
+// from their hits go to words 2-3 (mark_dirty.comp then tests those segments exactly where those cells meet the moved
+// bounds), and a partial re-render writes the new primary hits of its listed targets into the cache.
 #include "gpu/shaders/common.glsl"
 #include "gpu/segment_cells.h"
 
@@ -15,12 +15,17 @@ layout(constant_id = 0) const bool LISTED = false;  // paths of listed targets (
 // A frame re-shaded from cached hits (a light edit): its closest-hit segments are those already in the masks, so only
 // the shadow segments are added, to masks not cleared: the old shadow cells stay, a superset, still conservative.
 layout(constant_id = 1) const bool SHADOWS_ONLY = false;
+// The frame saves (or re-shades) this view's queues of depths >= 1 in the secondary cache: the marking pass tests
+// those entries and their shadow rays exactly (mark_dirty.comp SECONDARY_ENTRIES), so their cells stay out of the
+// masks and words 0-1 remain zero for every path traced here (nonzero words 0-1 mark a target re-traced since).
+layout(constant_id = 2) const bool SECONDARY_CACHED = false;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer HitCacheRef { uvec4 h[]; };
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= COUNTERS.queueCount[pc.queue]) return;
+  if (SECONDARY_CACHED && pc.depth > 0u) return;
   uint path = queue_path(i);
   uint spp = FRAME.dims.z;
   uint entry = (pc.batchFirst + path) / spp;
@@ -42,12 +47,19 @@ void main() {
     }
   }
   uint lightCount = FRAME.scene.x;
+  uvec2 shadowCells = uvec2(0u);
   for (uint l = 0u; l < lightCount; ++l) {
     uint slot = path * lightCount + l;
     if (imageLoad(shadowContribBuffer, int(slot)).w != 0.0f) {  // live: emitted at this depth (occluded or not)
       HtRay shadow = load_shadow_ray(slot);
-      cells |= ht_segment_cells(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, FRAME.grid);
+      shadowCells |= ht_segment_cells(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, FRAME.grid);
     }
+  }
+  if (cachedPrimary) {  // the primary hit's shadow rays: the marking pass tests them exactly from the cached hit
+    if (shadowCells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], shadowCells.x);
+    if (shadowCells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], shadowCells.y);
+  } else {
+    cells |= shadowCells;
   }
   if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target], cells.x);
   if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 1u], cells.y);

@@ -13,7 +13,9 @@
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_params.h"
 #include "gpu/display_camera.h"
+#include "bvh/offset_ray.h"
 #include "gpu/frame_reuse.h"
+#include "gpu/gpu_scene.h"
 #include "gpu/segment_cells.h"
 #include "gpu_test_util.h"
 #include "scene/load_scene.h"
@@ -215,6 +217,9 @@ TEST(FrameReuse, MarkingPassMatchesItsCpuReference) {
   plan.gridCells[1] = after.movedCells[1];
   plan.movedLo = after.movedLo;
   plan.movedHi = after.movedHi;
+  plan.secondaryExact = after.secondaryExact;
+  EXPECT_TRUE(after.secondaryExact) << "the mirror's and the glass's queues are cached: tested entry by entry";
+  EXPECT_FALSE(before.secondarySegments.empty());
   Bounds3 both = old;
   both.extend(moved.lo);
   both.extend(moved.hi);
@@ -224,7 +229,8 @@ TEST(FrameReuse, MarkingPassMatchesItsCpuReference) {
   EXPECT_TRUE(glm::all(glm::lessThan(plan.movedLo, glm::min(old.lo, moved.lo))));
   EXPECT_TRUE(glm::all(glm::greaterThan(plan.movedHi, glm::max(old.hi, moved.hi))));
   const std::vector<std::uint32_t> expected =
-      gpu::markDirtyTargets(before.segmentMasks, plan, before.primaryRays, before.primaryHits, reuseSettings().spp);
+      gpu::markDirtyTargets(before.segmentMasks, plan, before.primaryRays, before.primaryHits, reuseSettings().spp,
+                            gpu::packLights(scene), before.secondarySegments);
   std::vector<std::uint32_t> listed = after.dirtyTargets;
   std::sort(listed.begin(), listed.end());
   EXPECT_EQ(listed, expected);
@@ -277,6 +283,63 @@ TEST(SegmentCells, EverySegmentThatMeetsABoxSharesOneOfItsCells) {
   const gpu_shared::uvec2 nan =
       gpu_shared::ht_segment_cells(glm::vec3(std::nanf("")), glm::vec3(1.0f), 0.0f, 1.0f, grid);
   EXPECT_EQ(nan.x & nan.y, 0xffffffffu);
+}
+
+
+// The shadow test of the marking pass is conservative for the rays shade.comp traces: a shadow ray from the offset
+// origin ht_offset_ray(s.p, n) of a surface point s.p that rounds differently from the marking pass's o + t d, with
+// the direction and distance computed as emit_shadow_rays does, meets a box only where ht_shadow_meets_box says so
+// (point and directional lights, boxes far and boxes of 1e-4 placed at the ray); and the test is not simply "yes".
+TEST(SegmentCells, ShadowTestMeetsEveryBoxTheTracedShadowRayMeets) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> coord(-4.0f, 4.0f), size(0.0f, 1.0f), unit(-1.0f, 1.0f), dist(0.05f, 6.0f);
+  std::uniform_int_distribution<int> ulps(-4, 4);
+  int tinyMeeting = 0, largeMeeting = 0, largeSaid = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const glm::vec3 o(coord(rng), coord(rng), coord(rng));
+    const glm::vec3 d = glm::normalize(glm::vec3(unit(rng), unit(rng), unit(rng))) * (i % 4 == 0 ? 3.0f : 1.0f);
+    const float t = dist(rng);
+    // shade.comp's surface point: the exact hit rounded, a few ULPs off per axis.
+    const glm::dvec3 exact = glm::dvec3(o) + double(t) * glm::dvec3(d);
+    glm::vec3 sp(exact);
+    for (int k = 0; k < 3; ++k) {
+      for (int n = ulps(rng); n != 0; n += n > 0 ? -1 : 1) sp[k] = std::nextafter(sp[k], n > 0 ? 1e30f : -1e30f);
+    }
+    const glm::vec3 normal = glm::normalize(glm::vec3(unit(rng), unit(rng), unit(rng)));
+    const bool directional = i % 3 == 0;
+    const glm::vec3 lightPos(coord(rng), coord(rng), coord(rng));
+    const glm::vec3 travel = glm::normalize(glm::vec3(unit(rng), unit(rng), unit(rng)));
+    // emit_shadow_rays / light_incidence
+    const glm::vec3 origin = gpu_shared::ht_offset_ray(sp, normal);
+    glm::vec3 wi = -travel;
+    float reach = 3.0e38f;
+    if (!directional) {
+      const glm::vec3 toLight = lightPos - sp;
+      reach = std::sqrt(glm::dot(toLight, toLight));
+      wi = toLight / reach;
+    }
+    glm::vec3 lo = 0.5f * glm::vec3(coord(rng), coord(rng), coord(rng));
+    glm::vec3 hi = lo + 2.0f * glm::vec3(size(rng), size(rng), size(rng));
+    if (i % 2 == 0) {  // a tiny box at a random point of the traced ray, nudged by up to 2e-4
+      const float s = directional ? dist(rng) : reach * (0.5f + 0.5f * unit(rng));
+      const glm::vec3 at = origin + s * wi + 2e-4f * glm::vec3(unit(rng), unit(rng), unit(rng));
+      lo = at - glm::vec3(5e-5f);
+      hi = at + glm::vec3(5e-5f);
+    }
+    const glm::vec3 p = gpu_shared::ht_cached_hit_point(o, d, t);
+    const float pErr = gpu_shared::ht_cached_hit_error(o, d, t);
+    const bool says = gpu_shared::ht_shadow_meets_box(
+        p, pErr, glm::vec4(lightPos, directional ? float(gpu_shared::HT_LIGHT_DIRECTIONAL) : 0.0f), travel, lo, hi);
+    const bool large = i % 2 != 0;
+    largeSaid += large && says;
+    if (segmentMeetsBox(origin, wi, 0.0, reach, lo, hi)) {
+      (large ? largeMeeting : tinyMeeting) += 1;
+      ASSERT_TRUE(says) << "shadow ray " << i << (directional ? " (directional)" : " (point)") << " meets its box";
+    }
+  }
+  EXPECT_GT(tinyMeeting, 5000) << "few tiny boxes on the ray: the padding is not exercised";
+  EXPECT_GT(largeMeeting, 1000);
+  EXPECT_LT(largeSaid, largeMeeting + largeMeeting / 20) << "the padded test says yes for boxes the ray does not meet";
 }
 
 }  // namespace
