@@ -9,6 +9,7 @@
 // values that actually changed (their ratio: the over-invalidation of the grid masks). Ratios are given against both
 // full frames: A's (no reuse) and B's own (which also records the state).
 #include <array>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -135,8 +136,25 @@ struct DisplayEdits {
   TimingSeries full, recording, light, move, rebuild;
   std::vector<double> lightRatio, moveRatio, recordRatio, traced, changed;
   std::vector<double> lightVsRecording, moveVsRecording;  // the same edits against the reusing Renderer's full frame
-  std::vector<gpu::StageTiming> fullStages, lightStages, moveStages;  // of the last run
+  std::vector<gpu::StageTiming> fullStages, lightStages, moveStages;  // medians over the runs (appendStages)
 };
+
+// Per stage name, its times over the runs.
+using StageRuns = std::vector<std::pair<std::string, std::vector<double>>>;
+
+void appendStages(StageRuns& runs, const std::vector<gpu::StageTiming>& stages) {
+  for (const gpu::StageTiming& s : stages) {
+    auto it = std::find_if(runs.begin(), runs.end(), [&](const auto& r) { return r.first == s.name; });
+    if (it == runs.end()) it = runs.insert(runs.end(), {s.name, {}});
+    it->second.push_back(s.ms);
+  }
+}
+
+std::vector<gpu::StageTiming> medianStages(const StageRuns& runs) {
+  std::vector<gpu::StageTiming> out;
+  for (const auto& [name, ms] : runs) out.push_back({name, median(ms)});
+  return out;
+}
 
 DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const EditOptions& o) {
   Scene scene = loadScene(o.scene);
@@ -156,6 +174,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
   std::cout << kCommand << ": " << spec << " x " << o.scale << ", " << e.targets << " targets" << std::endl;
   const glm::dvec3 step(o.move * glm::length(scene.bounds().extent()), 0.0, 0.0);
   const float intensity = scene.lights[0].intensity;
+  StageRuns stageRuns[3];  // full, light, move
   // Run 0 is the warm-up (pipeline compilation of every variant, the partial re-render's included), not recorded.
   for (std::uint32_t run = 0; run <= o.runs; ++run) {
     // The two full frames alternate in order between runs (the first of a pair ran measurably slower here).
@@ -200,10 +219,13 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     e.moveVsRecording.push_back(move / recorded.totalMs);
     e.traced.push_back(double(moved.tracedTargets) / double(e.targets));
     e.changed.push_back(changedFraction(lit, moved));
-    e.fullStages = fullFrame.stages;
-    e.lightStages = lit.stages;
-    e.moveStages = moved.stages;
+    appendStages(stageRuns[0], fullFrame.stages);
+    appendStages(stageRuns[1], lit.stages);
+    appendStages(stageRuns[2], moved.stages);
   }
+  e.fullStages = medianStages(stageRuns[0]);
+  e.lightStages = medianStages(stageRuns[1]);
+  e.moveStages = medianStages(stageRuns[2]);
   return e;
 }
 
@@ -217,7 +239,7 @@ void print(const DisplayEdits& e) {
   std::printf("  node move (update + frame):   %9.1f ms   ratio %.3f (vs recording %.3f)   (BVH update %.1f ms)\n",
               e.move.medianMs(), median(e.moveRatio), median(e.moveVsRecording), e.rebuild.medianMs());
   std::printf("  re-traced targets %.4f, changed output values %.4f\n", median(e.traced), median(e.changed));
-  std::printf("  stages of the last run (GPU ms; readback: host):");
+  std::printf("  stages, medians of the runs (GPU ms; readback: host):");
   for (const auto* stages : {&e.fullStages, &e.lightStages, &e.moveStages}) {
     std::printf("\n   %s", stages == &e.fullStages ? "full " : stages == &e.lightStages ? "light" : "move ");
     for (const gpu::StageTiming& s : *stages) std::printf(" %s %.1f", s.name.c_str(), s.ms);

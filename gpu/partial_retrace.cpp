@@ -41,6 +41,9 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   list[2] = 0;  // count
   std::memcpy(list + 4, &framePlan.movedLo, sizeof(glm::vec3));
   std::memcpy(list + 8, &framePlan.movedHi, sizeof(glm::vec3));
+  const std::uint64_t lights = scene.lights.address();
+  list[16] = static_cast<std::uint32_t>(lights);
+  list[17] = static_cast<std::uint32_t>(lights >> 32);
   std::vector<FrameReuseState::SecondaryQueue> secondary;
   if (framePlan.secondaryExact) {
     secondary = reuse.secondaryQueues();
