@@ -220,7 +220,7 @@ std::uint64_t Renderer::Impl::resetMovedTargets(Accumulator& accumulator, const 
   f.primaryHits = 0;
   f.refine = st.dirty.address();
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
-  runMarkingPass(targets, true, stageMs);
+  runMarkingPass(targets, true, list, stageMs);
   f.refine = 0;
   f.refineInfo = glm::uvec4(0u);
   return list[2];

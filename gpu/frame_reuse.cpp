@@ -92,7 +92,9 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
     ensure(primaryHits, paths * sizeof(gpu_shared::HtHit), MemoryPlace::Device);
   }
   ensure(segmentMasks, targets * kMaskWords * sizeof(std::uint32_t), MemoryPlace::Device);
-  ensure(dirtyList, (kListFirst + targets) * sizeof(std::uint32_t), MemoryPlace::HostReadback);
+  // The dirty list, then (with the primary cache) the marking pass's candidates for its exact tests.
+  ensure(dirtyList, (kListFirst + (p.primaryCached ? 2 : 1) * targets) * sizeof(std::uint32_t),
+         MemoryPlace::HostReadback);
   maskedTargets_ = targets;
   invalidate();  // valid again once the frame finished (frameDone)
   return p;

@@ -46,7 +46,7 @@ struct ReusePlan {
                                  // segments stay out of the masks and the marking pass tests them exactly
   // PartialRetrace: the secondary cache holds the segments of depths >= 1 of every target whose mask words 0-1 are
   // zero (recorded by a full frame of this view and still current for every target not re-traced since); the
-  // marking pass tests those entries and their shadow rays exactly (mark_dirty.comp SECONDARY_ENTRIES).
+  // marking pass tests those entries and their shadow rays exactly (mark_dirty.comp MARK_SECONDARY_ENTRIES).
   bool secondaryExact = false;
   // PartialRetrace: the cells of the moved bounds (lo, hi words) and those bounds padded by HT_GRID_PAD cells.
   std::uint32_t gridCells[2] = {0, 0};
@@ -101,7 +101,8 @@ class FrameReuseState {
   std::vector<SecondaryQueue> secondaryQueues() const;
   std::uint64_t cachedPaths() const { return cachedPaths_; }
   bool secondaryMarkable() const { return secondaryMarkable_; }
-  // List header: moved cells (words 0-1), count (2), padded moved bounds lo (4-6) and hi (8-10) as float bits, with
+  // List header: moved cells (words 0-1), count (2), candidates for the exact tests (3; their entries from word 11's
+  // value, 0: none), padded moved bounds lo (4-6) and hi (8-10) as float bits, with
   // ReusePlan::secondaryExact the secondary cache's address (12-13), its paths (14) and the frame's targets (15), and
   // the address of the scene's GpuLight records (16-17).
   static constexpr std::uint32_t kListFirst = 20;

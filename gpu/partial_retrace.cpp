@@ -21,6 +21,8 @@ void appendBytes(std::vector<std::byte>& out, const T& value) {
 
 // Targets per marking dispatch: within the 65,535 workgroups a dispatch dimension is guaranteed.
 constexpr std::uint64_t kMarkTargetsPerDispatch = 1ull << 21;
+// mark_dirty.comp's MODE.
+constexpr std::uint32_t kMarkTargets = 0, kMarkSecondaryEntries = 1, kMarkCandidates = 2;
 
 }  // namespace
 
@@ -41,6 +43,8 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   list[2] = 0;  // count
   std::memcpy(list + 4, &framePlan.movedLo, sizeof(glm::vec3));
   std::memcpy(list + 8, &framePlan.movedHi, sizeof(glm::vec3));
+  list[3] = 0;  // candidates for the exact tests, from word 11's value on (none without the primary cache)
+  list[11] = framePlan.primaryCached ? static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets) : 0u;
   const std::uint64_t lights = scene.lights.address();
   list[16] = static_cast<std::uint32_t>(lights);
   list[17] = static_cast<std::uint32_t>(lights >> 32);
@@ -56,7 +60,7 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   FrameBlock& f = frameBlock();
   f.refine = reuse.dirtyList.address();
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
-  runMarkingPass(targets, false, stageMs, secondary);
+  runMarkingPass(targets, false, list, stageMs, secondary);
   const std::uint64_t dirty = list[2];
   if (dirty > 0) {
     const std::uint32_t spp = settings.spp;
@@ -68,26 +72,38 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   return dirty;
 }
 
-void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulation, StageTimes& stageMs,
-                                    std::span<const FrameReuseState::SecondaryQueue> secondary) {
+void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulation, const std::uint32_t* list,
+                                    StageTimes& stageMs, std::span<const FrameReuseState::SecondaryQueue> secondary) {
+  // Specialisation: RESET_ACCUMULATION, then MODE (mark_dirty.comp); RESET_ACCUMULATION only when set, so that a
+  // single frame's partial re-render keeps the pipeline it always had.
+  auto markPipeline = [&](std::uint32_t mode) -> const ComputePipeline& {
+    if (mode == 0 && !resetAccumulation) return pipeline(ShaderId::MarkDirty);
+    return pipeline(ShaderId::MarkDirty, {resetAccumulation ? 1u : 0u, mode});
+  };
   beginCommands();
   PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
-  if (!secondary.empty()) {  // first the cached queues of depths >= 1: they mark their targets' words 0-1
-    const ComputePipeline& entries = pipeline(ShaderId::MarkDirty, {0u, 1u});
-    for (const FrameReuseState::SecondaryQueue& q : secondary) {
-      rec.dispatch(entries, passConstants(q.batchFirst, q.count, q.depth, 0), groupsFor(q.count), Stage::Mark);
-    }
+  for (const FrameReuseState::SecondaryQueue& q : secondary) {  // first: they mark their targets' words 0-1
+    rec.dispatch(markPipeline(kMarkSecondaryEntries), passConstants(q.batchFirst, q.count, q.depth, 0),
+                 groupsFor(q.count), Stage::Mark);
   }
-  // RESET_ACCUMULATION only when set: a single frame's partial re-render keeps the pipeline it always had.
-  const ComputePipeline& mark =
-      pipeline(ShaderId::MarkDirty, resetAccumulation ? std::vector<std::uint32_t>{1u} : std::vector<std::uint32_t>{});
   for (std::uint64_t first = 0; first < targets; first += kMarkTargetsPerDispatch) {
     const std::uint64_t n = std::min(kMarkTargetsPerDispatch, targets - first);
-    rec.dispatch(mark, passConstants(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(targets), 0, 0),
+    rec.dispatch(markPipeline(kMarkTargets),
+                 passConstants(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(targets), 0, 0),
                  groupsFor(n), Stage::Mark);
   }
   submitAndWait();
   rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+  const std::uint32_t candidates = list[3];
+  if (candidates == 0) return;
+  beginCommands();
+  PassRecorder exact(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+  for (std::uint32_t first = 0; first < candidates; first += kMarkTargetsPerDispatch) {
+    exact.dispatch(markPipeline(kMarkCandidates), passConstants(first, candidates, 0, 0),
+                   groupsFor(std::min<std::uint64_t>(kMarkTargetsPerDispatch, candidates - first)), Stage::Mark);
+  }
+  submitAndWait();
+  exact.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
 }
 
 void Renderer::Impl::copySecondary(std::uint32_t depth, std::uint32_t batchFirst, std::uint32_t count, bool load) {

@@ -262,8 +262,9 @@ struct Renderer::Impl {
   void fillAccumulation(FrameBlock& f, Accumulator& accumulator) const;
   // The marking pass (mark_dirty.comp) over `targets` targets, with the list header, masks and list set in the frame
   // block; resetAccumulation: a dirty target's accumulated sums start over too (partial_retrace.cpp).
+  // `list`: the mapped dirty list whose address FrameBlock.refine holds (header: FrameReuseState::kListFirst);
   // `secondary`: the cached queues of depths >= 1 to test entry by entry first (ReusePlan::secondaryExact).
-  void runMarkingPass(std::uint64_t targets, bool resetAccumulation, StageTimes& stageMs,
+  void runMarkingPass(std::uint64_t targets, bool resetAccumulation, const std::uint32_t* list, StageTimes& stageMs,
                       std::span<const FrameReuseState::SecondaryQueue> secondary = {});
   // After node moves: lists the targets whose recorded cells meet the moved bounds and zeroes their sums and masks
   // (mark_dirty.comp, RESET_ACCUMULATION); returns how many.

@@ -196,6 +196,11 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   const bool progressive = accumulating != nullptr;
   const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape, listed, progressive));
   const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest, traceSpec({}));
+  // A partial re-render's primary rays take their cached hits where the move cannot have changed them.
+  const bool reusePrimary =
+      which == TracedTargets::Dirty && framePlan.mode == FrameReuse::PartialRetrace && framePlan.primaryCached;
+  const ComputePipeline& traceReusingPrimary =
+      reusePrimary ? pipeline(ShaderId::TraceClosest, traceSpec({1u})) : traceClosest;
   const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
   const std::vector<std::uint32_t> shadeFeatures = {lights, mirror, glass, textures};
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
@@ -251,7 +256,11 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
                     Stage::Record);
         }
       };
-      if (depth == 0 ? !loadHits : !loadSecondary) overQueue(traceClosest, Stage::Trace);
+      if (depth == 0 && reusePrimary) {
+        overQueue(traceReusingPrimary, Stage::Trace);
+      } else if (depth == 0 ? !loadHits : !loadSecondary) {
+        overQueue(traceClosest, Stage::Trace);
+      }
       if (depth == 0 && saveHits) {
         recordComputeCopy(cmd, work.rays[0], 0, reuse.primaryRays, batchFirst * sizeof(gpu_shared::HtRay), rayBytes);
         recordComputeCopy(cmd, work.hits, 0, reuse.primaryHits, batchFirst * sizeof(gpu_shared::HtHit), hitBytes);

@@ -1,12 +1,21 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// mark_dirty: the marking pass of a partial re-render (gpu/frame_reuse.h, docs/REUSE.md §4), one invocation per
-// target of the frame: a target whose segment cells meet the moved bounds' cells (FRAME.refine words 0-1) is
-// appended to the dirty list (count in word 2, entries from word FRAME.refineInfo.y) and its mask cleared for the
-// re-trace to record again. With the primary rays and hits cached (FRAME.primaryHits != 0), a target is also dirty
-// when its primary segments' and their shadow rays' cells (mask words 2-3) meet those cells and one of those segments
-// of one of its samples meets the padded moved bounds (FRAME.refine words 4-6 and 8-10, float bits): the primary
-// segment from the cache, the shadow rays from the cached hit to every light (ht_shadow_meets_box). List order varies with scheduling; a target's samples do not depend on it.
+// mark_dirty: the marking pass of a partial re-render (gpu/frame_reuse.h, docs/REUSE.md §4). Three modes, dispatched
+// in this order by Renderer::Impl::runMarkingPass:
+// - MARK_SECONDARY_ENTRIES (ReusePlan::secondaryExact): one invocation per entry of one cached queue of depth
+//   pc.depth >= 1 (pc.batchCount entries of the batch starting at path pc.batchFirst). An entry whose segment, or a
+//   shadow ray from its hit, meets the padded moved bounds sets mask words 0-1 of its target to all ones; targets
+//   whose words 0-1 already hold cells (re-traced after the cache was filled) are left to those cells.
+// - MARK_TARGETS: one invocation per target of the frame. A target whose mask words 0-1 meet the moved bounds' cells
+//   (FRAME.refine words 0-1) is appended to the dirty list (count in word 2, entries from word FRAME.refineInfo.y)
+//   and its mask cleared for the re-trace to record again. With the primary rays and hits cached
+//   (FRAME.primaryHits != 0), a target whose words 2-3 (the cells of its primary segments and their shadow rays) meet
+//   those cells is a candidate: appended to the candidate list (count in word 3, entries from word 11's value).
+// - MARK_CANDIDATES: one invocation per candidate: dirty when the cached primary segment of one of its samples, or a
+//   shadow ray from that hit to a light (ht_shadow_meets_box), meets the padded moved bounds (words 4-6 and 8-10,
+//   float bits). A separate pass because lavapipe runs a branch's code for every subgroup whether or not a lane
+//   takes it: inside MARK_TARGETS these tests cost 60-120 ms per 2.4 M targets, for the 3 % that needed them.
+// List order varies with scheduling; a target's samples do not depend on it.
 // CPU reference: gpu::markDirtyTargets (gpu/frame_reuse.h).
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_ballot : require
@@ -15,12 +24,8 @@
 // In a progressive accumulation after node moves (accumulation_pass.cpp resetMovedTargets): a dirty target's sums
 // start over too (sum, n, half sum, half count = 0); the others keep theirs.
 layout(constant_id = 0) const bool RESET_ACCUMULATION = false;
-// The secondary entries mode (ReusePlan::secondaryExact), dispatched before the per-target pass: one invocation per
-// entry of one cached queue of depth pc.depth >= 1 (pc.batchCount entries of the batch starting at path
-// pc.batchFirst). An entry whose segment, or a shadow ray from its hit, meets the padded moved bounds sets mask words
-// 0-1 of its target to all ones, so the per-target pass lists it; targets whose words 0-1 already hold cells (their
-// paths were re-traced after the cache was filled) are left to those cells.
-layout(constant_id = 1) const bool SECONDARY_ENTRIES = false;
+const uint MARK_TARGETS = 0u, MARK_SECONDARY_ENTRIES = 1u, MARK_CANDIDATES = 2u;
+layout(constant_id = 1) const uint MODE = MARK_TARGETS;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RayCacheRef { vec4 v[]; };  // also lights
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer HitCacheRef { uvec4 h[]; };
@@ -85,29 +90,57 @@ void mark_secondary_entry() {
   }
 }
 
-void main() {
-  if (SECONDARY_ENTRIES) {
-    mark_secondary_entry();
-    return;
+// Appends `value` where `want`, to the list whose count is header word `countWord` and whose entries start at word
+// `first` (one atomic per subgroup); returns whether it did. Called by every invocation (subgroup operations).
+void append_where(bool want, uint countWord, uint first, uint value) {
+  uvec4 ballot = subgroupBallot(want);
+  uint total = subgroupBallotBitCount(ballot);
+  uint base = 0u;
+  if (subgroupElect() && total > 0u) base = atomicAdd(UintRef(FRAME.refine).v[countWord], total);
+  base = subgroupBroadcastFirst(base);
+  if (want) UintRef(FRAME.refine).v[first + base + subgroupBallotExclusiveBitCount(ballot)] = value;
+}
+
+// A dirty target: listed, its mask cleared for the re-trace to record again, its sums zeroed in an accumulation.
+void mark_dirty(bool dirty, uint target) {
+  append_where(dirty, 2u, FRAME.refineInfo.y, target);
+  if (dirty) {
+    for (uint w = 0u; w < 4u; ++w) UintRef(FRAME.segmentMasks).v[4u * target + w] = 0u;
+    if (RESET_ACCUMULATION) AccumRef(FRAME.accumTargets).t[frame_global_target(target)] = AccumTarget(vec3(0.0f), 0u, vec3(0.0f), 0u);
   }
+}
+
+void mark_target() {
   uint target = pc.batchFirst + gl_GlobalInvocationID.x;  // dispatched in slices of targets; batchCount: all
-  bool dirty = false;
+  bool dirty = false, candidate = false;
   if (target < pc.batchCount) {
     uvec4 mask = uvec4(UintRef(FRAME.segmentMasks).v[4u * target], UintRef(FRAME.segmentMasks).v[4u * target + 1u],
                        UintRef(FRAME.segmentMasks).v[4u * target + 2u], UintRef(FRAME.segmentMasks).v[4u * target + 3u]);
-    uvec2 moved = uvec2(UintRef(FRAME.refine).v[0], UintRef(FRAME.refine).v[1]);
+    uvec2 moved = uvec2(header_word(0u), header_word(1u));
     dirty = ((mask.x & moved.x) | (mask.y & moved.y)) != 0u;
-    bool primaryNear = ((mask.z & moved.x) | (mask.w & moved.y)) != 0u;
-    if (!dirty && primaryNear) dirty = primary_meets_moved(target);
+    candidate = !dirty && ((mask.z & moved.x) | (mask.w & moved.y)) != 0u && header_word(11u) != 0u;
   }
-  uvec4 ballot = subgroupBallot(dirty);
-  uint total = subgroupBallotBitCount(ballot);
-  uint base = 0u;
-  if (subgroupElect() && total > 0u) base = atomicAdd(UintRef(FRAME.refine).v[2], total);
-  base = subgroupBroadcastFirst(base);
-  if (dirty) {
-    UintRef(FRAME.refine).v[FRAME.refineInfo.y + base + subgroupBallotExclusiveBitCount(ballot)] = target;
-    for (uint w = 0u; w < 4u; ++w) UintRef(FRAME.segmentMasks).v[4u * target + w] = 0u;
-    if (RESET_ACCUMULATION) AccumRef(FRAME.accumTargets).t[frame_global_target(target)] = AccumTarget(vec3(0.0f), 0u, vec3(0.0f), 0u);
+  mark_dirty(dirty, target);
+  append_where(candidate, 3u, header_word(11u), target);
+}
+
+void mark_candidate() {
+  uint i = pc.batchFirst + gl_GlobalInvocationID.x;  // dispatched in slices of candidates; batchCount: all
+  bool dirty = false;
+  uint target = 0u;
+  if (i < pc.batchCount) {
+    target = header_word(header_word(11u) + i);
+    dirty = primary_meets_moved(target);
+  }
+  mark_dirty(dirty, target);
+}
+
+void main() {
+  if (MODE == MARK_SECONDARY_ENTRIES) {
+    mark_secondary_entry();
+  } else if (MODE == MARK_CANDIDATES) {
+    mark_candidate();
+  } else {
+    mark_target();
   }
 }

@@ -16,7 +16,7 @@ layout(constant_id = 0) const bool LISTED = false;  // paths of listed targets (
 // the shadow segments are added, to masks not cleared: the old shadow cells stay, a superset, still conservative.
 layout(constant_id = 1) const bool SHADOWS_ONLY = false;
 // The frame saves (or re-shades) this view's queues of depths >= 1 in the secondary cache: the marking pass tests
-// those entries and their shadow rays exactly (mark_dirty.comp SECONDARY_ENTRIES), so their cells stay out of the
+// those entries and their shadow rays exactly (mark_dirty.comp MARK_SECONDARY_ENTRIES), so their cells stay out of the
 // masks and words 0-1 remain zero for every path traced here (nonzero words 0-1 mark a target re-traced since).
 layout(constant_id = 2) const bool SECONDARY_CACHED = false;
 
