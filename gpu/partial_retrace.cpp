@@ -30,6 +30,7 @@ ReuseKey Renderer::Impl::reuseKey(const RenderSettings& settings) const {
   ReuseKey key;
   appendBytes(key.bytes, *static_cast<const FrameBlock*>(frame.mapped()));
   appendBytes(key.bytes, settings.forceAllFeatures);
+  appendBytes(key.bytes, settings.maxPathsPerBatch);  // the caches are laid out by batch
   appendBytes(key.bytes, boundRayTable.get());
   return key;
 }

@@ -62,6 +62,9 @@ struct RenderSettings {
   // moved bounds; both equal a full render of the edited scene bit for bit. Only frames of one chunk of views
   // without adaptive refinement keep state; others render in full.
   bool reuse = false;
+  // Paths per batch at most (0: the renderer's own limit, about a million paths): smaller values split a frame into
+  // more batches without changing its bits (tests of batching).
+  std::uint32_t maxPathsPerBatch = 0;
   std::function<void(double fractionDone)> progress;  // called after each batch of paths (optional)
 };
 

@@ -100,6 +100,7 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   const std::uint32_t maxSpp = std::max(settings.spp, settings.refineSpp);
   std::uint64_t perBatch =
       std::min<std::uint64_t>(kMaxPathsPerBatch, kWorkMemoryBudget / PathBuffers::bytesPerPath(scene.lightCount()));
+  if (settings.maxPathsPerBatch > 0) perBatch = std::min<std::uint64_t>(perBatch, settings.maxPathsPerBatch);
   perBatch = std::max<std::uint64_t>(maxSpp, perBatch / maxSpp * maxSpp);
   perBatch = std::min(perBatch, targets * maxSpp);
   work.ensure(vk, static_cast<std::uint32_t>(perBatch), scene.lightCount());

@@ -193,12 +193,50 @@ TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesEqualsAFullRender) {
   EXPECT_LT(traced, total) << "every target was re-traced: the masks select nothing";
 }
 
+// The same over many batches: the secondary cache's queues are kept per batch, and the marking pass tests each
+// batch's entries against its targets; partial re-renders and a light edit after them equal a full render.
+TEST(FrameReuse, PartialRerenderOverManyBatchesEqualsAFullRender) {
+  Scene scene = loadScene("builtin:showcase");
+  const gpu::FrameCamera camera = cameras(scene)[0].second;
+  gpu::RenderSettings batched = reuseSettings();
+  batched.maxPathsPerBatch = 1024;
+  ASSERT_GT(frameShape(camera).targets() * batched.spp, 8u * batched.maxPathsPerBatch);
+  gpu::Renderer renderer(sharedContext(), scene);
+  Scene edited = scene;
+  ASSERT_EQ(renderer.render(camera, batched).reuse, FrameReuse::None);
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> offset(-0.25, 0.25);
+  for (const char* node : {"glass-sphere", "mirror-sphere", "green-sphere"}) {
+    SCOPED_TRACE(node);
+    const std::size_t index = *findNode(edited, node);
+    const Bounds3 before = nodeWorldBounds(edited, index);
+    glm::dmat4 world = edited.nodes[index].world;
+    world[3] += glm::dvec4(offset(rng), offset(rng), offset(rng), 0.0);
+    setNodeWorldMatrix(edited, node, world);
+    renderer.replaceSceneAfterMove(edited, before, nodeWorldBounds(edited, index));
+    const gpu::RenderResult partial = renderer.render(camera, batched);
+    EXPECT_EQ(partial.reuse, FrameReuse::PartialRetrace);
+    EXPECT_LT(partial.tracedTargets, frameShape(camera).targets());
+    EXPECT_TRUE(sameBits(partial, fullRender(edited, camera)));
+  }
+  LightEdit dim;
+  dim.intensity = edited.lights[0].intensity * 0.5;
+  editLight(edited, 0, dim);
+  renderer.updateLights(edited);
+  const gpu::RenderResult lit = renderer.render(camera, batched);
+  EXPECT_EQ(lit.reuse, FrameReuse::CachedPrimaryHits);
+  EXPECT_TRUE(sameBits(lit, fullRender(edited, camera)));
+}
+
 // The GPU marking pass lists exactly the targets the C++ reference picks from the masks the previous frame recorded.
-TEST(FrameReuse, MarkingPassMatchesItsCpuReference) {
+// Once in one batch and once in many (the secondary cache's queues are kept per batch).
+void checkMarkingPassAgainstItsCpuReference(std::uint32_t maxPathsPerBatch) {
+  gpu::RenderSettings settings = reuseSettings();
+  settings.maxPathsPerBatch = maxPathsPerBatch;
   Scene scene = loadScene("builtin:showcase");
   const gpu::FrameCamera camera = cameras(scene)[0].second;
   gpu::Renderer renderer(sharedContext(), scene);
-  renderer.render(camera, reuseSettings());
+  renderer.render(camera, settings);
   const gpu::Renderer::ReuseSnapshot before = renderer.reuseSnapshot();
   ASSERT_EQ(before.segmentMasks.size(), frameShape(camera).targets() * gpu::kMaskWords);
   const std::size_t index = *findNode(scene, "glow-sphere");
@@ -208,7 +246,7 @@ TEST(FrameReuse, MarkingPassMatchesItsCpuReference) {
   setNodeWorldMatrix(scene, "glow-sphere", world);
   const Bounds3 moved = nodeWorldBounds(scene, index);
   renderer.replaceSceneAfterMove(scene, old, moved);
-  const gpu::RenderResult partial = renderer.render(camera, reuseSettings());
+  const gpu::RenderResult partial = renderer.render(camera, settings);
   ASSERT_EQ(partial.reuse, FrameReuse::PartialRetrace);
   const gpu::Renderer::ReuseSnapshot after = renderer.reuseSnapshot();
   ASSERT_FALSE(before.primaryHits.empty()) << "a small frame caches its primary hits";
@@ -229,14 +267,16 @@ TEST(FrameReuse, MarkingPassMatchesItsCpuReference) {
   EXPECT_TRUE(glm::all(glm::lessThan(plan.movedLo, glm::min(old.lo, moved.lo))));
   EXPECT_TRUE(glm::all(glm::greaterThan(plan.movedHi, glm::max(old.hi, moved.hi))));
   const std::vector<std::uint32_t> expected =
-      gpu::markDirtyTargets(before.segmentMasks, plan, before.primaryRays, before.primaryHits, reuseSettings().spp,
+      gpu::markDirtyTargets(before.segmentMasks, plan, before.primaryRays, before.primaryHits, settings.spp,
                             gpu::packLights(scene), before.secondarySegments);
   std::vector<std::uint32_t> listed = after.dirtyTargets;
   std::sort(listed.begin(), listed.end());
   EXPECT_EQ(listed, expected);
   EXPECT_EQ(partial.tracedTargets, expected.size());
-  EXPECT_GT(expected.size(), 0u);
-}
+  EXPECT_GT(expected.size(), 0u);}
+
+TEST(FrameReuse, MarkingPassMatchesItsCpuReference) { checkMarkingPassAgainstItsCpuReference(0); }
+TEST(FrameReuse, MarkingPassMatchesItsCpuReferenceOverManyBatches) { checkMarkingPassAgainstItsCpuReference(1024); }
 
 // Does the segment o + t d, t in [t0, t1], meet the box [lo, hi]? (Slab test in double precision.)
 bool segmentMeetsBox(glm::dvec3 o, glm::dvec3 d, double t0, double t1, glm::dvec3 lo, glm::dvec3 hi) {
