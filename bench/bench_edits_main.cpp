@@ -8,8 +8,8 @@
 // Reports medians of the times and of the per-run ratios, the fraction of targets re-traced and the fraction of output
 // values that actually changed (their ratio: the over-invalidation of the grid masks). Ratios are given against both
 // full frames: A's (no reuse) and B's own (which also records the state).
-#include <array>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <iostream>

@@ -75,7 +75,8 @@ void mark_secondary_entry() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.batchCount) return;
   uint paths = header_word(14u), targets = header_word(15u);
-  uint64_t rays = packUint2x32(uvec2(header_word(12u), header_word(13u))) + uint64_t(pc.depth - 1u) * uint64_t(paths) * 52ul;
+  uint64_t cache = packUint2x32(uvec2(header_word(12u), header_word(13u)));
+  uint64_t rays = cache + uint64_t(pc.depth - 1u) * uint64_t(paths) * 52ul;  // FrameReuseState::secondaryRegion
   uint64_t pathIds = rays + uint64_t(paths) * 32ul, hits = pathIds + uint64_t(paths) * 4ul;
   uint e = pc.batchFirst + i;
   uint target = (pc.batchFirst + WordsRef(pathIds).w[e]) / FRAME.dims.z;
@@ -108,7 +109,9 @@ void mark_dirty(bool dirty, uint target) {
   append_where(dirty, 2u, FRAME.refineInfo.y, target);
   if (dirty) {
     for (uint w = 0u; w < 4u; ++w) UintRef(FRAME.segmentMasks).v[4u * target + w] = 0u;
-    if (RESET_ACCUMULATION) AccumRef(FRAME.accumTargets).t[frame_global_target(target)] = AccumTarget(vec3(0.0f), 0u, vec3(0.0f), 0u);
+    if (RESET_ACCUMULATION) {
+      AccumRef(FRAME.accumTargets).t[frame_global_target(target)] = AccumTarget(vec3(0.0f), 0u, vec3(0.0f), 0u);
+    }
   }
 }
 

@@ -10,10 +10,10 @@
 #include <cstring>
 #include <random>
 
+#include "bvh/offset_ray.h"
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_params.h"
 #include "gpu/display_camera.h"
-#include "bvh/offset_ray.h"
 #include "gpu/frame_reuse.h"
 #include "gpu/gpu_scene.h"
 #include "gpu/segment_cells.h"
@@ -273,7 +273,8 @@ void checkMarkingPassAgainstItsCpuReference(std::uint32_t maxPathsPerBatch) {
   std::sort(listed.begin(), listed.end());
   EXPECT_EQ(listed, expected);
   EXPECT_EQ(partial.tracedTargets, expected.size());
-  EXPECT_GT(expected.size(), 0u);}
+  EXPECT_GT(expected.size(), 0u);
+}
 
 TEST(FrameReuse, MarkingPassMatchesItsCpuReference) { checkMarkingPassAgainstItsCpuReference(0); }
 TEST(FrameReuse, MarkingPassMatchesItsCpuReferenceOverManyBatches) { checkMarkingPassAgainstItsCpuReference(1024); }
@@ -324,7 +325,6 @@ TEST(SegmentCells, EverySegmentThatMeetsABoxSharesOneOfItsCells) {
       gpu_shared::ht_segment_cells(glm::vec3(std::nanf("")), glm::vec3(1.0f), 0.0f, 1.0f, grid);
   EXPECT_EQ(nan.x & nan.y, 0xffffffffu);
 }
-
 
 // The shadow test of the marking pass is conservative for the rays shade.comp traces: a shadow ray from the offset
 // origin ht_offset_ray(s.p, n) of a surface point s.p that rounds differently from the marking pass's o + t d, with
