@@ -189,7 +189,9 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   const bool saveHits = which == TracedTargets::All && framePlan.recordHits;
   const bool loadSecondary = loadHits && framePlan.loadSecondary;
   const bool saveSecondary = which == TracedTargets::All && framePlan.recordSecondary;
-  // Segments of depths >= 1 that stay in (or go to) the secondary cache are tested there, not recorded as cells.
+  // The frame's queues of depths >= 1 stay in (or go to) the secondary cache: the marking pass tests those entries
+  // and their shadow rays exactly (mark_dirty.comp MARK_SECONDARY_ENTRIES), so they record no cells, and words 0-1
+  // of the masks stay zero for every path traced here (nonzero words 0-1 mark a target re-traced since).
   const bool secondaryCached = saveSecondary || loadSecondary;
   // (An accumulation records every pass, its listed ones too, into its own masks: accumulation_pass.cpp.)
   const bool record = (which != TracedTargets::Refined || accumulating) && framePlan.recordSegments;
@@ -252,9 +254,9 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
           rec.dispatchIndirect(pass, pc, args, queueArgs, stage);
       };
       auto recordSegments = [&] {
-        if (record) {
-          overQueue(pipeline(ShaderId::RecordSegments, depthSpec({listed, loadHits, secondaryCached}, depth)),
-                    Stage::Record);
+        // Segments of depths >= 1 that stay in (or go to) the secondary cache are tested there, not recorded.
+        if (record && !(secondaryCached && depth > 0)) {
+          overQueue(pipeline(ShaderId::RecordSegments, depthSpec({listed, loadHits}, depth)), Stage::Record);
         }
       };
       if (depth == 0 && reusePrimary) {

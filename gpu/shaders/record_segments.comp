@@ -7,7 +7,8 @@
 // Masks are 4 words per target: words 0-1 the cells of every segment but the cached primary ones and their shadow
 // rays; with the primary hits cached (FRAME.primaryHits != 0) the cells of the primary segments and of the shadow rays
 // from their hits go to words 2-3 (mark_dirty.comp then tests those segments exactly where those cells meet the moved
-// bounds), and a partial re-render writes the new primary hits of its listed targets into the cache.
+// bounds), and a partial re-render writes the new primary hits of its listed targets into the cache. Depths >= 1 of a
+// frame whose queues go to the secondary cache are not recorded at all (wavefront_loop.cpp).
 #include "gpu/shaders/common.glsl"
 #include "gpu/segment_cells.h"
 
@@ -15,17 +16,12 @@ layout(constant_id = 0) const bool LISTED = false;  // paths of listed targets (
 // A frame re-shaded from cached hits (a light edit): its closest-hit segments are those already in the masks, so only
 // the shadow segments are added, to masks not cleared: the old shadow cells stay, a superset, still conservative.
 layout(constant_id = 1) const bool SHADOWS_ONLY = false;
-// The frame saves (or re-shades) this view's queues of depths >= 1 in the secondary cache: the marking pass tests
-// those entries and their shadow rays exactly (mark_dirty.comp MARK_SECONDARY_ENTRIES), so their cells stay out of the
-// masks and words 0-1 remain zero for every path traced here (nonzero words 0-1 mark a target re-traced since).
-layout(constant_id = 2) const bool SECONDARY_CACHED = false;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer HitCacheRef { uvec4 h[]; };
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= COUNTERS.queueCount[pc.queue]) return;
-  if (SECONDARY_CACHED && pc.depth > 0u) return;
   uint path = queue_path(i);
   uint spp = FRAME.dims.z;
   uint entry = (pc.batchFirst + path) / spp;
