@@ -95,6 +95,8 @@ void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulatio
   }
   submitAndWait();
   rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+  // The candidates' count sizes the exact pass: read here rather than through an indirect dispatch, which could not
+  // be cut into slices of at most 65,535 workgroups (up to one candidate per target: 147,000 groups on a Portrait).
   const std::uint32_t candidates = list[3];
   if (candidates == 0) return;
   beginCommands();

@@ -68,6 +68,16 @@ gpu::RenderResult fullRender(const Scene& scene, const gpu::FrameCamera& camera)
   return fresh.render(camera, s);
 }
 
+// Moves `node` of `scene` by `by` and tells `renderer`, with the node's bounds before and after.
+void moveNode(Scene& scene, const std::string& node, glm::dvec3 by, gpu::Renderer& renderer) {
+  const std::size_t index = *findNode(scene, node);
+  const Bounds3 before = nodeWorldBounds(scene, index);
+  glm::dmat4 world = scene.nodes[index].world;
+  world[3] += glm::dvec4(by, 0.0);
+  setNodeWorldMatrix(scene, node, world);
+  renderer.replaceSceneAfterMove(scene, before, nodeWorldBounds(scene, index));
+}
+
 // Light values edited: no raygen and no closest-hit trace (primary and mirror/glass bounces come from the caches).
 TEST(FrameReuse, LightEditsReshadeTheCachedPrimaryHitsBitForBit) {
   Scene scene = loadScene("builtin:showcase");
@@ -161,12 +171,7 @@ TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesEqualsAFullRender) {
     for (int move = 0; move < 3; ++move) {
       const std::string node = movable[rng() % movable.size()];
       SCOPED_TRACE(node + " move " + std::to_string(move));
-      const std::size_t index = *findNode(edited, node);
-      const Bounds3 before = nodeWorldBounds(edited, index);
-      glm::dmat4 world = edited.nodes[index].world;
-      world[3] += glm::dvec4(offset(rng), offset(rng), offset(rng), 0.0);
-      setNodeWorldMatrix(edited, node, world);
-      renderer.replaceSceneAfterMove(edited, before, nodeWorldBounds(edited, index));
+      moveNode(edited, node, glm::dvec3(offset(rng), offset(rng), offset(rng)), renderer);
       const gpu::RenderResult partial = renderer.render(camera, reuseSettings());
       EXPECT_EQ(partial.reuse, FrameReuse::PartialRetrace);
       EXPECT_TRUE(sameBits(partial, fullRender(edited, camera)));
@@ -208,12 +213,7 @@ TEST(FrameReuse, PartialRerenderOverManyBatchesEqualsAFullRender) {
   std::uniform_real_distribution<double> offset(-0.25, 0.25);
   for (const char* node : {"glass-sphere", "mirror-sphere", "green-sphere"}) {
     SCOPED_TRACE(node);
-    const std::size_t index = *findNode(edited, node);
-    const Bounds3 before = nodeWorldBounds(edited, index);
-    glm::dmat4 world = edited.nodes[index].world;
-    world[3] += glm::dvec4(offset(rng), offset(rng), offset(rng), 0.0);
-    setNodeWorldMatrix(edited, node, world);
-    renderer.replaceSceneAfterMove(edited, before, nodeWorldBounds(edited, index));
+    moveNode(edited, node, glm::dvec3(offset(rng), offset(rng), offset(rng)), renderer);
     const gpu::RenderResult partial = renderer.render(camera, batched);
     EXPECT_EQ(partial.reuse, FrameReuse::PartialRetrace);
     EXPECT_LT(partial.tracedTargets, frameShape(camera).targets());
