@@ -264,8 +264,12 @@ void streamProgressive(ServiceState& state, grpc::ServerContext& context, const 
 grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v1::RenderRequest* request,
                                            grpc::ServerWriter<v1::FramePart>* writer) {
   return guarded([&] {
-    const FrameJob job = checkRenderRequest(state_, *request);
+    FrameJob job = checkRenderRequest(state_, *request);
     StreamSlot slot(state_);
+    if (job.reuse) {  // the session's own Renderer keeps the state, so that its first edit reuses it too
+      state_.scenes.ownRenderer(clientKey(*context), request->scene_id());
+      job.session = state_.scenes.find(request->scene_id());
+    }
     CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.streamStallSeconds, "RenderFrame");
     if (!renderAndSend(state_, clientKey(*context), job, request->format(), 0, *writer, watch)) {
       throw ClientGone("client closed the stream");

@@ -346,15 +346,22 @@ gpu::MovedBounds movedBounds(const Scene& before, const Scene& after, const std:
 
 }  // namespace
 
+void SceneLibrary::ownRenderer(const std::string& client, const std::string& id) {
+  const std::shared_ptr<const SceneSession> session = find(id);
+  if (session->content->quilt || session->content->editedBy == id) return;
+  editScene(client, id, false, {});  // re-checked under the edit lock
+}
+
 SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, const std::string& id, bool movesGeometry,
                                                  const std::function<void(Scene&)>& edit) {
   std::lock_guard editing(editMutex_);  // one edit BVH build at a time, and edits of one session in order
   const std::shared_ptr<const SceneSession> session = find(id);
   if (session->content->quilt) throw BadRequest("scene_id", "'" + id + "' is a quilt image: it has no nodes or lights");
   auto content = std::make_shared<SceneContent>(*session->content);  // copies the scene, shares the Renderer
-  edit(content->scene);
+  if (edit) edit(content->scene);
   const std::vector<std::uint32_t> moved = movedNodes(session->content->scene, content->scene);
   const bool newRenderer = content->editedBy != id;
+  if (!edit && !newRenderer) return {};  // ownRenderer: the session has its own already
   const auto start = std::chrono::steady_clock::now();
   // A first edit's BVH is built here, off the render worker (as a load's); a scene whose nodes move is traced with
   // the two-level BVH, so that later moves are a refit + top-level update, not a rebuild (docs/REUSE.md §3).

@@ -320,6 +320,33 @@ TEST_F(ServerTest, FramesReuseTheirPredecessorAfterEdits) {
   EXPECT_EQ(moved.bytes, movedFull.bytes) << "the partial re-render differs from a full render";
 }
 
+// A session's first edit reuses too: a frame that keeps reuse state gives the session its own renderer first. Another
+// session of the same scene keeps the loaded content.
+TEST_F(ServerTest, TheFirstEditOfASessionReusesItsFrame) {
+  v1::SceneHandle showcase, other;
+  ASSERT_TRUE(loadScene(*stub_, "builtin:showcase", &showcase).ok());
+  ASSERT_TRUE(loadScene(*stub_, "builtin:showcase", &other).ok());
+  v1::RenderRequest reusing = tinyRequest(showcase.scene_id());
+  reusing.set_reuse_after_edits(true);
+  ReceivedFrame recorded, relit, relitFull, otherFrame, otherBefore;
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(other.scene_id()), &otherBefore).ok());
+  ASSERT_TRUE(renderOne(*stub_, reusing, &recorded).ok());
+  EXPECT_EQ(recorded.header.reuse(), v1::FRAME_REUSE_NONE);
+  v1::UpdateSceneRequest lightEdit;
+  lightEdit.set_scene_id(showcase.scene_id());
+  v1::LightUpdate* light = lightEdit.add_lights();
+  light->set_index(0);
+  light->set_intensity(3.0);
+  ASSERT_TRUE(updateScene(*stub_, lightEdit).ok());
+  ASSERT_TRUE(renderOne(*stub_, reusing, &relit).ok());
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(showcase.scene_id()), &relitFull).ok());
+  EXPECT_EQ(relit.header.reuse(), v1::FRAME_REUSE_CACHED_PRIMARY_HITS);
+  EXPECT_NE(relit.bytes, recorded.bytes) << "the light edit changed nothing";
+  EXPECT_EQ(relit.bytes, relitFull.bytes) << "the re-shaded frame differs from a full render";
+  ASSERT_TRUE(renderOne(*stub_, tinyRequest(other.scene_id()), &otherFrame).ok());
+  EXPECT_EQ(otherFrame.bytes, otherBefore.bytes) << "the other session saw the edit";
+}
+
 // Lights: a dimmed, recoloured light changes the frame; an index past the scene's lights is refused.
 TEST_F(ServerTest, UpdateSceneChangesALight) {
   v1::SceneHandle showcase;
