@@ -45,7 +45,7 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
     invalidate();
     if (!wanted) {  // free the memory
       for (DeviceBuffer* b :
-           {&primaryRays, &primaryHits, &segmentMasks, &dirtyList, &secondaryCache, &secondaryCounts}) {
+           {&primaryRays, &primaryHits, &segmentMasks, &dirtyList, &secondaryCache, &secondaryCounts, &shadowOcclusion}) {
         *b = DeviceBuffer();
       }
     }
@@ -91,6 +91,7 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
   if (p.primaryCached) {
     ensure(primaryRays, paths * sizeof(gpu_shared::HtRay), MemoryPlace::Device);
     ensure(primaryHits, paths * sizeof(gpu_shared::HtHit), MemoryPlace::Device);
+    ensure(shadowOcclusion, paths * sizeof(std::uint32_t), MemoryPlace::Device);
   }
   ensure(segmentMasks, targets * kMaskWords * sizeof(std::uint32_t), MemoryPlace::Device);
   // The dirty list, then (with the primary cache) the marking pass's candidates for its exact tests.

@@ -87,7 +87,8 @@ class FrameReuseState {
   // indices and hits (secondaryRegion); entries of a batch start at its first path.
   // secondaryCounts: the entries of each batch's queue of each depth (batch * (secondaryDepths + 1) + depth), copied
   // from the queue counters by the frame that fills the secondary cache; host visible.
-  DeviceBuffer primaryRays, primaryHits, segmentMasks, dirtyList, secondaryCache, secondaryCounts;
+  // shadowOcclusion: with the primary hits, a word per path: bit l = its depth-0 shadow ray to light l was occluded.
+  DeviceBuffer primaryRays, primaryHits, segmentMasks, dirtyList, secondaryCache, secondaryCounts, shadowOcclusion;
   struct SecondaryRegion {
     VkDeviceSize rays, paths, hits;  // byte offsets of entry 0 of the depth's rays, path indices, hits
   };

@@ -119,6 +119,7 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   if (framePlan.primaryCached) {
     frameBlock().primaryRays = reuse.primaryRays.address();
     frameBlock().primaryHits = reuse.primaryHits.address();
+    frameBlock().shadowOcclusion = reuse.shadowOcclusion.address();
   }
   result.reuse = framePlan.mode;
 
@@ -205,6 +206,13 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   const ComputePipeline& traceReusingPrimary =
       reusePrimary ? pipeline(ShaderId::TraceClosest, traceSpec({1u})) : traceClosest;
   const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
+  // Depth 0's shadow rays: their occlusion is recorded with the primary hits, and a partial re-render takes it where
+  // the move cannot have changed it (trace_any.comp SHADOW_CACHE).
+  const bool recordOcclusion = which == TracedTargets::All && framePlan.primaryCached && !accumulating;
+  const ComputePipeline& traceAnyPrimary =
+      reusePrimary       ? pipeline(ShaderId::TraceAny, traceSpec({1u, 2u}))
+      : recordOcclusion  ? pipeline(ShaderId::TraceAny, traceSpec({1u, 1u}))
+                         : traceAny;
   const std::vector<std::uint32_t> shadeFeatures = {lights, mirror, glass, textures};
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
@@ -276,8 +284,8 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
       overQueue(shade, Stage::Shade);
       rec.dispatch(afterShade, pc, 1, Stage::Queues);
       if (lights) {
-        rec.dispatchIndirect(traceAny, pc, args, offsetof(GpuCounters, dispatch) + 2 * sizeof(glm::uvec4),
-                             Stage::Shadow);
+        rec.dispatchIndirect(depth == 0 ? traceAnyPrimary : traceAny, pc, args,
+                             offsetof(GpuCounters, dispatch) + 2 * sizeof(glm::uvec4), Stage::Shadow);
         recordSegments();  // before gather_direct clears the shadow slots
         overQueue(gather, Stage::Shadow);
       } else {

@@ -93,7 +93,9 @@ struct FrameBlock {
   uint64_t segmentMasks;
   uint64_t primaryRays;
   uint64_t primaryHits;
-  uint64_t reuseUnused;
+  // ... and the occlusion of every path's depth-0 shadow rays, bit l of the path's word for light l (device address;
+  // 0 = none; trace_any.comp SHADOW_CACHE).
+  uint64_t shadowOcclusion;
   SegmentGrid grid;
 };
 

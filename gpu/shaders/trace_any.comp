@@ -8,8 +8,43 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "gpu/shaders/bvh_access.glsl"
 #include "bvh/ordered_traversal.h"
+#include "gpu/segment_cells.h"
 
 layout(constant_id = 0) const uint SHADOW_QUEUE = 1u;
+// Frame reuse (docs/REUSE.md §4), depth-0 shadow rays only: 1 records each ray's occlusion in FRAME.shadowOcclusion
+// (a frame that caches its primary hits); 2, in a partial re-render, takes the recorded occlusion of a ray whose path
+// kept its cached primary hit (the same surface point and lights, so the same ray as recorded) and whose segment
+// avoids the padded moved bounds (FRAME.refine words 4-6, 8-10: no moved triangle can meet it), and records the
+// others.
+const uint SHADOW_CACHE_OFF = 0u, SHADOW_CACHE_RECORD = 1u, SHADOW_CACHE_REUSE = 2u;
+layout(constant_id = 1) const uint SHADOW_CACHE = SHADOW_CACHE_OFF;
+
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RayCacheRef { vec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer HitCacheRef { uvec4 h[]; };
+
+vec3 moved_bound(uint first) {
+  return uintBitsToFloat(uvec3(UintRef(FRAME.refine).v[first], UintRef(FRAME.refine).v[first + 1u],
+                               UintRef(FRAME.refine).v[first + 2u]));
+}
+
+// The frame-wide path of shadow slot `slot` (slot = batch path * lights + light).
+uint slot_frame_path(uint slot) {
+  uint path = slot / FRAME.scene.x;
+  if (SHADOW_CACHE != SHADOW_CACHE_REUSE) return pc.batchFirst + path;
+  uint spp = FRAME.dims.z;
+  uint target = UintRef(FRAME.refine).v[FRAME.refineInfo.y + (pc.batchFirst + path) / spp];
+  return target * spp + (pc.batchFirst + path) % spp;
+}
+
+// Is the recorded occlusion of this depth-0 shadow ray of frame path `path` still its occlusion?
+bool recorded_occlusion_holds(uint path, HtRay shadow) {
+  vec3 lo = moved_bound(4u), hi = moved_bound(8u);
+  vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * path], b = RayCacheRef(FRAME.primaryRays).v[2u * path + 1u];
+  uvec4 hit = HitCacheRef(FRAME.primaryHits).h[path];
+  float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : b.w;
+  return !ht_segment_meets_box(a.xyz, b.xyz, a.w, tEnd, lo, hi) &&
+         !ht_segment_meets_box(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, lo, hi);
+}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -26,18 +61,40 @@ void main() {
     } else {
       ray = load_ray(0u, i);
     }
-    HtTraceResult r;
-    if (TWO_LEVEL) {
-      r = ht_trace_two_level_any(ray, FRAME.scene.z);
-    } else {
-      r = ht_trace_any(ray, FRAME.scene.z);
+    uint cachePath = 0u, cacheBit = 0u;
+    bool recorded = false;
+    if (SHADOW_CACHE != SHADOW_CACHE_OFF) {
+      cachePath = slot_frame_path(slot);
+      cacheBit = 1u << (slot % FRAME.scene.x);
+      recorded = SHADOW_CACHE == SHADOW_CACHE_REUSE && recorded_occlusion_holds(cachePath, ray);
     }
-    steps = r.steps;
-    overflow = r.overflow;
-    if (SHADOW_QUEUE == 1u) {
-      if (r.hit.triId != HT_MISS || r.overflow) imageStore(shadowContribBuffer, int(slot), vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    if (recorded) {
+      inQueue = false;  // not traced
+      if ((UintRef(FRAME.shadowOcclusion).v[cachePath] & cacheBit) != 0u) {
+        imageStore(shadowContribBuffer, int(slot), vec4(0.0f, 0.0f, 0.0f, 1.0f));
+      }
     } else {
-      store_hit(i, r.hit);
+      HtTraceResult r;
+      if (TWO_LEVEL) {
+        r = ht_trace_two_level_any(ray, FRAME.scene.z);
+      } else {
+        r = ht_trace_any(ray, FRAME.scene.z);
+      }
+      steps = r.steps;
+      overflow = r.overflow;
+      bool occluded = r.hit.triId != HT_MISS || r.overflow;
+      if (SHADOW_QUEUE == 1u) {
+        if (occluded) imageStore(shadowContribBuffer, int(slot), vec4(0.0f, 0.0f, 0.0f, 1.0f));
+      } else {
+        store_hit(i, r.hit);
+      }
+      if (SHADOW_CACHE != SHADOW_CACHE_OFF) {
+        if (occluded) {
+          atomicOr(UintRef(FRAME.shadowOcclusion).v[cachePath], cacheBit);
+        } else {
+          atomicAnd(UintRef(FRAME.shadowOcclusion).v[cachePath], ~cacheBit);
+        }
+      }
     }
   }
   uint maxSteps = subgroupMax(steps);
