@@ -44,8 +44,8 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
   if (!wanted || !reusable) {
     invalidate();
     if (!wanted) {  // free the memory
-      for (DeviceBuffer* b :
-           {&primaryRays, &primaryHits, &segmentMasks, &dirtyList, &secondaryCache, &secondaryCounts, &shadowOcclusion}) {
+      for (DeviceBuffer* b : {&primaryRays, &primaryHits, &segmentMasks, &dirtyList, &secondaryCache, &secondaryCounts,
+                              &shadowOcclusion}) {
         *b = DeviceBuffer();
       }
     }

@@ -209,10 +209,9 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   // Depth 0's shadow rays: their occlusion is recorded with the primary hits, and a partial re-render takes it where
   // the move cannot have changed it (trace_any.comp SHADOW_CACHE).
   const bool recordOcclusion = which == TracedTargets::All && framePlan.primaryCached && !accumulating;
-  const ComputePipeline& traceAnyPrimary =
-      reusePrimary       ? pipeline(ShaderId::TraceAny, traceSpec({1u, 2u}))
-      : recordOcclusion  ? pipeline(ShaderId::TraceAny, traceSpec({1u, 1u}))
-                         : traceAny;
+  const ComputePipeline& traceAnyPrimary = reusePrimary      ? pipeline(ShaderId::TraceAny, traceSpec({1u, 2u}))
+                                           : recordOcclusion ? pipeline(ShaderId::TraceAny, traceSpec({1u, 1u}))
+                                                             : traceAny;
   const std::vector<std::uint32_t> shadeFeatures = {lights, mirror, glass, textures};
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
