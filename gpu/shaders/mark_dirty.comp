@@ -21,6 +21,7 @@
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_ballot : require
 #include "gpu/segment_cells.h"
+#include "gpu/shaders/reuse_cache.glsl"
 
 // In a progressive accumulation after node moves (accumulation_pass.cpp resetMovedTargets): a dirty target's sums
 // start over too (sum, n, half sum, half count = 0); the others keep theirs.
@@ -28,21 +29,15 @@ layout(constant_id = 0) const bool RESET_ACCUMULATION = false;
 const uint MARK_TARGETS = 0u, MARK_SECONDARY_ENTRIES = 1u, MARK_CANDIDATES = 2u;
 layout(constant_id = 1) const uint MODE = MARK_TARGETS;
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RayCacheRef { vec4 v[]; };  // also lights
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer HitCacheRef { uvec4 h[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MaskRef { uvec4 m[]; };
 // The secondary cache's regions start at multiples of 4 B only (FrameReuseState::secondaryRegion).
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer WordsRef { uint w[]; };
 
-uint header_word(uint k) { return UintRef(FRAME.refine).v[k]; }
-vec3 header_vec3(uint first) {
-  return uintBitsToFloat(uvec3(header_word(first), header_word(first + 1u), header_word(first + 2u)));
-}
 
 // Does the cached segment o + t d, t in [tmin, its hit or tmax], or a shadow ray from its hit to a light, meet the
 // padded moved bounds?
 bool cached_segment_meets_moved(vec3 o, float tmin, vec3 d, float tmax, uvec4 hit) {
-  vec3 lo = header_vec3(4u), hi = header_vec3(8u);
+  vec3 lo = moved_lo(), hi = moved_hi();
   float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : tmax;
   if (ht_segment_meets_box(o, d, tmin, tEnd, lo, hi)) return true;
   if (hit.y == HT_MISS) return false;
@@ -51,9 +46,9 @@ bool cached_segment_meets_moved(vec3 o, float tmin, vec3 d, float tmax, uvec4 hi
   uint lightCount = FRAME.scene.x;
   // The light records by address (header words 16-17): plain loads, where scene_light's texel fetches cost about a
   // third of this pass on lavapipe.
-  uint64_t lights = packUint2x32(uvec2(header_word(16u), header_word(17u)));
+  uint64_t lights = packUint2x32(uvec2(reuse_header_word(16u), reuse_header_word(17u)));
   for (uint l = 0u; l < lightCount; ++l) {
-    vec4 position = RayCacheRef(lights).v[4u * l], direction = RayCacheRef(lights).v[4u * l + 1u];
+    vec4 position = RayCacheRef(lights).v[4u * l], direction = RayCacheRef(lights).v[4u * l + 1u];  // GpuLight
     if (ht_shadow_meets_box(p, pErr, position, direction.xyz, lo, hi)) return true;
   }
   return false;
@@ -66,7 +61,7 @@ bool primary_meets_moved(uint target) {
   for (uint s = 0u; s < spp; ++s) {
     uint path = target * spp + s;
     vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * path], b = RayCacheRef(FRAME.primaryRays).v[2u * path + 1u];
-    if (cached_segment_meets_moved(a.xyz, a.w, b.xyz, b.w, HitCacheRef(FRAME.primaryHits).h[path])) return true;
+    if (cached_segment_meets_moved(a.xyz, a.w, b.xyz, b.w, cached_primary_hit(path))) return true;
   }
   return false;
 }
@@ -74,8 +69,8 @@ bool primary_meets_moved(uint target) {
 void mark_secondary_entry() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.batchCount) return;
-  uint paths = header_word(14u), targets = header_word(15u);
-  uint64_t cache = packUint2x32(uvec2(header_word(12u), header_word(13u)));
+  uint paths = reuse_header_word(14u), targets = reuse_header_word(15u);
+  uint64_t cache = packUint2x32(uvec2(reuse_header_word(12u), reuse_header_word(13u)));
   uint64_t rays = cache + uint64_t(pc.depth - 1u) * uint64_t(paths) * 52ul;  // FrameReuseState::secondaryRegion
   uint64_t pathIds = rays + uint64_t(paths) * 32ul, hits = pathIds + uint64_t(paths) * 4ul;
   uint e = pc.batchFirst + i;
@@ -120,12 +115,12 @@ void mark_target() {
   bool dirty = false, candidate = false;
   if (target < pc.batchCount) {
     uvec4 mask = MaskRef(FRAME.segmentMasks).m[target];
-    uvec2 moved = uvec2(header_word(0u), header_word(1u));
+    uvec2 moved = uvec2(reuse_header_word(0u), reuse_header_word(1u));
     dirty = ((mask.x & moved.x) | (mask.y & moved.y)) != 0u;
-    candidate = !dirty && ((mask.z & moved.x) | (mask.w & moved.y)) != 0u && header_word(11u) != 0u;
+    candidate = !dirty && ((mask.z & moved.x) | (mask.w & moved.y)) != 0u && reuse_header_word(11u) != 0u;
   }
   mark_dirty(dirty, target);
-  append_where(candidate, 3u, header_word(11u), target);
+  append_where(candidate, 3u, reuse_header_word(11u), target);
 }
 
 void mark_candidate() {
@@ -133,7 +128,7 @@ void mark_candidate() {
   bool dirty = false;
   uint target = 0u;
   if (i < pc.batchCount) {
-    target = header_word(header_word(11u) + i);
+    target = reuse_header_word(reuse_header_word(11u) + i);
     dirty = primary_meets_moved(target);
   }
   mark_dirty(dirty, target);

@@ -19,31 +19,18 @@ layout(constant_id = 0) const uint SHADOW_QUEUE = 1u;
 const uint SHADOW_CACHE_OFF = 0u, SHADOW_CACHE_RECORD = 1u, SHADOW_CACHE_REUSE = 2u;
 layout(constant_id = 1) const uint SHADOW_CACHE = SHADOW_CACHE_OFF;
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RayCacheRef { vec4 v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer HitCacheRef { uvec4 h[]; };
-
-vec3 moved_bound(uint first) {
-  return uintBitsToFloat(uvec3(UintRef(FRAME.refine).v[first], UintRef(FRAME.refine).v[first + 1u],
-                               UintRef(FRAME.refine).v[first + 2u]));
-}
+#include "gpu/shaders/reuse_cache.glsl"
 
 // The frame-wide path of shadow slot `slot` (slot = batch path * lights + light).
 uint slot_frame_path(uint slot) {
   uint path = slot / FRAME.scene.x;
-  if (SHADOW_CACHE != SHADOW_CACHE_REUSE) return pc.batchFirst + path;
-  uint spp = FRAME.dims.z;
-  uint target = UintRef(FRAME.refine).v[FRAME.refineInfo.y + (pc.batchFirst + path) / spp];
-  return target * spp + (pc.batchFirst + path) % spp;
+  return SHADOW_CACHE == SHADOW_CACHE_REUSE ? listed_frame_path(path) : pc.batchFirst + path;
 }
 
 // Is the recorded occlusion of this depth-0 shadow ray of frame path `path` still its occlusion?
 bool recorded_occlusion_holds(uint path, HtRay shadow) {
-  vec3 lo = moved_bound(4u), hi = moved_bound(8u);
-  vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * path], b = RayCacheRef(FRAME.primaryRays).v[2u * path + 1u];
-  uvec4 hit = HitCacheRef(FRAME.primaryHits).h[path];
-  float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : b.w;
-  return !ht_segment_meets_box(a.xyz, b.xyz, a.w, tEnd, lo, hi) &&
-         !ht_segment_meets_box(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, lo, hi);
+  return !cached_primary_meets_moved(path) &&
+         !ht_segment_meets_box(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, moved_lo(), moved_hi());
 }
 
 void main() {

@@ -1,0 +1,32 @@
+// reuse_cache.glsl - what a partial re-render reads of the frame-reuse state on the GPU (gpu/frame_reuse.h,
+// docs/REUSE.md §4): the cached primary rays and hits of every path of the frame, and the dirty list's header with
+// the padded moved bounds (FrameReuseState::kListFirst). Included after common.glsl and gpu/segment_cells.h.
+
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RayCacheRef { vec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer HitCacheRef { uvec4 h[]; };
+
+uint reuse_header_word(uint k) { return UintRef(FRAME.refine).v[k]; }
+vec3 reuse_header_vec3(uint first) {
+  return uintBitsToFloat(uvec3(reuse_header_word(first), reuse_header_word(first + 1u), reuse_header_word(first + 2u)));
+}
+vec3 moved_lo() { return reuse_header_vec3(4u); }
+vec3 moved_hi() { return reuse_header_vec3(8u); }
+
+// The frame path of path `batchPath` of a batch of listed targets (entry (batchFirst + batchPath) / spp of the list).
+uint listed_frame_path(uint batchPath) {
+  uint spp = FRAME.dims.z;
+  uint target = UintRef(FRAME.refine).v[FRAME.refineInfo.y + (pc.batchFirst + batchPath) / spp];
+  return target * spp + (pc.batchFirst + batchPath) % spp;
+}
+
+uvec4 cached_primary_hit(uint path) { return HitCacheRef(FRAME.primaryHits).h[path]; }
+
+// Does the cached primary segment of frame path `path`, to its cached hit (a miss: to tmax), meet the padded moved
+// bounds? If not, that hit is still the path's primary hit: every triangle of the moved node lies inside those
+// bounds, every other triangle is unchanged, and the closest hit is the order-free one.
+bool cached_primary_meets_moved(uint path) {
+  vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * path], b = RayCacheRef(FRAME.primaryRays).v[2u * path + 1u];
+  uvec4 hit = cached_primary_hit(path);
+  float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : b.w;
+  return ht_segment_meets_box(a.xyz, b.xyz, a.w, tEnd, moved_lo(), moved_hi());
+}
