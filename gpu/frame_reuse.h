@@ -103,10 +103,9 @@ class FrameReuseState {
   std::uint64_t cachedPaths() const { return cachedPaths_; }
   bool secondaryMarkable() const { return secondaryMarkable_; }
   // List header: moved cells (words 0-1), count (2), candidates for the exact tests (3; their entries from word 11's
-  // value, 0: none), padded moved bounds lo (4-6) and hi (8-10) as float bits, with
-  // ReusePlan::secondaryExact the secondary cache's address (12-13), its paths (14) and the frame's targets (15), and
-  // the address of the scene's GpuLight records (16-17).
-  static constexpr std::uint32_t kListFirst = 20;
+  // value, 0: none), padded moved bounds lo (4-6) and hi (8-10) as float bits, and with ReusePlan::secondaryExact
+  // the secondary cache's address (12-13).
+  static constexpr std::uint32_t kListFirst = 16;
 
  private:
   void ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPlace place);

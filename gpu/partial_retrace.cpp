@@ -46,17 +46,12 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   std::memcpy(list + 8, &framePlan.movedHi, sizeof(glm::vec3));
   list[3] = 0;  // candidates for the exact tests, from word 11's value on (none without the primary cache)
   list[11] = framePlan.primaryCached ? static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets) : 0u;
-  const std::uint64_t lights = scene.lights.address();
-  list[16] = static_cast<std::uint32_t>(lights);
-  list[17] = static_cast<std::uint32_t>(lights >> 32);
   std::vector<FrameReuseState::SecondaryQueue> secondary;
   if (framePlan.secondaryExact) {
     secondary = reuse.secondaryQueues();
     const std::uint64_t address = reuse.secondaryCache.address();
     list[12] = static_cast<std::uint32_t>(address);
     list[13] = static_cast<std::uint32_t>(address >> 32);
-    list[14] = static_cast<std::uint32_t>(reuse.cachedPaths());
-    list[15] = static_cast<std::uint32_t>(targets);
   }
   FrameBlock& f = frameBlock();
   f.refine = reuse.dirtyList.address();

@@ -203,8 +203,7 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   // A partial re-render's primary rays take their cached hits where the move cannot have changed them.
   const bool reusePrimary =
       which == TracedTargets::Dirty && framePlan.mode == FrameReuse::PartialRetrace && framePlan.primaryCached;
-  const ComputePipeline& traceReusingPrimary =
-      reusePrimary ? pipeline(ShaderId::TraceClosest, traceSpec({1u})) : traceClosest;
+  const ComputePipeline& tracePrimary = reusePrimary ? pipeline(ShaderId::TraceClosest, traceSpec({1u})) : traceClosest;
   const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
   // Depth 0's shadow rays: their occlusion is recorded with the primary hits, and a partial re-render takes it where
   // the move cannot have changed it (trace_any.comp SHADOW_CACHE).
@@ -266,11 +265,7 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
           overQueue(pipeline(ShaderId::RecordSegments, depthSpec({listed, loadHits}, depth)), Stage::Record);
         }
       };
-      if (depth == 0 && reusePrimary) {
-        overQueue(traceReusingPrimary, Stage::Trace);
-      } else if (depth == 0 ? !loadHits : !loadSecondary) {
-        overQueue(traceClosest, Stage::Trace);
-      }
+      if (depth == 0 ? !loadHits : !loadSecondary) overQueue(depth == 0 ? tracePrimary : traceClosest, Stage::Trace);
       if (depth == 0 && saveHits) {
         recordComputeCopy(cmd, work.rays[0], 0, reuse.primaryRays, batchFirst * sizeof(gpu_shared::HtRay), rayBytes);
         recordComputeCopy(cmd, work.hits, 0, reuse.primaryHits, batchFirst * sizeof(gpu_shared::HtHit), hitBytes);

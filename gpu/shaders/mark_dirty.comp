@@ -44,12 +44,9 @@ bool cached_segment_meets_moved(vec3 o, float tmin, vec3 d, float tmax, uvec4 hi
   vec3 p = ht_cached_hit_point(o, d, tEnd);
   float pErr = ht_cached_hit_error(o, d, tEnd);
   uint lightCount = FRAME.scene.x;
-  // The light records by address (header words 16-17): plain loads, where scene_light's texel fetches cost about a
-  // third of this pass on lavapipe.
-  uint64_t lights = packUint2x32(uvec2(reuse_header_word(16u), reuse_header_word(17u)));
   for (uint l = 0u; l < lightCount; ++l) {
-    vec4 position = RayCacheRef(lights).v[4u * l], direction = RayCacheRef(lights).v[4u * l + 1u];  // GpuLight
-    if (ht_shadow_meets_box(p, pErr, position, direction.xyz, lo, hi)) return true;
+    GpuLight light = scene_light(l);
+    if (ht_shadow_meets_box(p, pErr, light.position, light.direction.xyz, lo, hi)) return true;
   }
   return false;
 }
@@ -69,7 +66,7 @@ bool primary_meets_moved(uint target) {
 void mark_secondary_entry() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.batchCount) return;
-  uint paths = reuse_header_word(14u), targets = reuse_header_word(15u);
+  uint targets = FRAME.dims.w, paths = targets * FRAME.dims.z;  // a reusable frame is one chunk: all of its targets
   uint64_t cache = packUint2x32(uvec2(reuse_header_word(12u), reuse_header_word(13u)));
   uint64_t rays = cache + uint64_t(pc.depth - 1u) * uint64_t(paths) * 52ul;  // FrameReuseState::secondaryRegion
   uint64_t pathIds = rays + uint64_t(paths) * 32ul, hits = pathIds + uint64_t(paths) * 4ul;
