@@ -18,8 +18,11 @@ BUILD_DIR="${HOLOTRACE_BUILD_DIR:-build}"            # overridable so parallel c
 ASAN_BUILD_DIR="${HOLOTRACE_ASAN_BUILD_DIR:-build-asan}"
 
 # Sanitizer settings for build-asan. LeakSanitizer stays on for our code; the suppressions cover allocations
-# made and kept inside the Vulkan loader, lavapipe/Mesa and LLVM (tests/lsan.supp).
-export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=0}"
+# made and kept inside the Vulkan loader, lavapipe/Mesa and LLVM (tests/lsan.supp). The quarantine of freed memory
+# is 32 MiB, not ASan's 256 MiB: lavapipe's LLVM JIT churns the heap, and with 256 MiB every allocation lands on a
+# cold page, so page faults and TLB shootdowns dominate (a Portrait frame test: 73 s against 17 s, docs/TOOLCHAIN.md
+# §8). A use after free is still caught while the freed block is among the last 32 MiB freed.
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=0:quarantine_size_mb=32}"
 export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$ROOT/tests/lsan.supp:print_suppressions=0}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 

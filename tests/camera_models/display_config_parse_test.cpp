@@ -219,7 +219,7 @@ TEST(DisplayConfigBuiltin, NamesAndNominalValues) {
 
 TEST(DisplayConfigBuiltin, EmbeddedCopiesMatchShippedFiles) {
   for (const std::string& name : builtinDisplayNames()) {
-    DisplayConfig fromDisk = loadDisplayConfig(std::string(HT_SOURCE_DIR) + "/configs/" + name + ".json");
+    DisplayConfig fromDisk = loadDisplayConfig(std::string(HT_SOURCE_DIR "/configs/") + name + ".json");
     DisplayConfig embedded = builtinDisplay(name);
     ASSERT_EQ(fromDisk.calibration.has_value(), embedded.calibration.has_value()) << name;
     if (fromDisk.calibration) { EXPECT_EQ(fromDisk.calibration->rawJson, embedded.calibration->rawJson) << name; }
