@@ -300,6 +300,10 @@ grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const 
     const SceneLibrary::Pin pin(state_.scenes, request->render().scene_id());  // not idled out between slow frames
     CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.streamStallSeconds, "StreamFrames");
     const std::string client = clientKey(*context);
+    if (progressive && job.reuse) {  // from the first frame on the renderer the session's node moves will update
+      state_.scenes.ownRenderer(client, request->render().scene_id(), true);
+      job.session = state_.scenes.find(request->render().scene_id());
+    }
     if (progressive) {
       streamProgressive(state_, *context, *request, job, client, *writer, watch, panel.get());
     } else {

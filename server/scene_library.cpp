@@ -346,10 +346,10 @@ gpu::MovedBounds movedBounds(const Scene& before, const Scene& after, const std:
 
 }  // namespace
 
-void SceneLibrary::ownRenderer(const std::string& client, const std::string& id) {
+void SceneLibrary::ownRenderer(const std::string& client, const std::string& id, bool forNodeMoves) {
   const std::shared_ptr<const SceneSession> session = find(id);
   if (session->content->quilt || session->content->editedBy == id) return;
-  editScene(client, id, false, {});  // re-checked under the edit lock
+  editScene(client, id, forNodeMoves, {});  // re-checked under the edit lock; forNodeMoves: the two-level BVH
 }
 
 SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, const std::string& id, bool movesGeometry,

@@ -118,7 +118,9 @@ class SceneLibrary {
   // Gives session `id` its own Renderer now, as its first edit would (nothing for a quilt or a session that has one):
   // a session whose frames keep reuse state (RenderRequest.reuse_after_edits) needs it before the frame that records
   // the state, or its first edit would start a new Renderer without it. The copy counts against the scene budget.
-  void ownRenderer(const std::string& client, const std::string& id);
+  // forNodeMoves: the new Renderer traces the two-level BVH, whose progressive accumulations record the segment
+  // cells a node move's partial restart needs (a progressive stream with reuse_after_edits; docs/REUSE.md §5).
+  void ownRenderer(const std::string& client, const std::string& id, bool forNodeMoves = false);
 
   // Ends sessions idle for longer than the TTL and evicts contents over the budget (the daemon calls it
   // periodically; every open() does too). True if any session or content was released since the last sweep.

@@ -197,6 +197,26 @@ class DaemonTest(unittest.TestCase):
         self.assertLess(moved.traced_targets, full.traced_targets)
         np.testing.assert_array_equal(moved.pixels, full.pixels)
 
+    def test_a_reusing_progressive_stream_restarts_only_near_the_first_move(self):
+        scene = self.fresh_scene()
+
+        def until_converged(frames):
+            for frame in frames:
+                if frame.state == "converged":
+                    return frame
+            self.fail("the stream ended before it converged")
+
+        with self.client.stream(scene, "tiny", fps=100, spp=2, format="rgba16f", reuse_after_edits=True) as frames:
+            self.assertEqual(until_converged(frames).reset_targets, 0)
+            self.client.update_scene(scene, nodes={"model": translation(0.05, 0.0, 0.0)})
+            first = next(iter(frames))
+            while first.state == "converged":  # the converged frame may still be on its way
+                first = next(iter(frames))
+            targets = first.width * first.height * 3
+            self.assertGreater(first.reset_targets, 0)
+            self.assertLess(first.reset_targets, targets)  # some targets kept their samples
+            self.assertGreater(first.accumulated_spp_max, first.accumulated_spp)
+
     # ---- quilt images and panels (docs/SERVICE.md §11-12) -----------------------------------------------------
 
     def test_upload_quilt_renders_as_the_loaded_file(self):

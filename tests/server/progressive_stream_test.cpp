@@ -177,25 +177,19 @@ v1::UpdateSceneRequest liftTealBox(const std::string& sceneId, double height) {
   return edit;
 }
 
-// The session's second node move (its renderer is its own since the first): the converged stream wakes up, only
-// the targets whose recorded paths met the box's old or new bounds start over (reset_targets), the others keep
-// their samples, and it converges to the bits of a fresh stream of a session that made only the final move.
-TEST_F(ProgressiveStreamTest, ALaterMoveRestartsOnlyNearbyTargetsAndConvergesToTheEditedScenesFrame) {
-  v1::SceneHandle scene;
-  ASSERT_TRUE(loadScene(*stub_, "builtin:plain", &scene).ok());
-  v1::UpdateSceneResponse response;
-  {
-    grpc::ClientContext editContext;
-    ASSERT_TRUE(stub_->UpdateScene(&editContext, liftTealBox(scene.scene_id(), 0.1), &response).ok());
-  }
+// Streams `request` until converged, moves teal-box to `height`, and checks the stream's answer: the converged stream
+// wakes up, only the targets whose recorded paths met the box's old or new bounds start over (reset_targets), the
+// others keep their samples, and it converges to the bits of a fresh stream of a session that made only that move.
+void expectAMoveRestartsOnlyNearbyTargets(v1::Holotrace::Stub& stub, const v1::StreamRequest& request, double height) {
   grpc::ClientContext context;
-  auto reader = stub_->StreamFrames(&context, progressiveRequest(scene.scene_id()));
+  auto reader = stub.StreamFrames(&context, request);
   const std::vector<ReceivedFrame> before = readUntilConverged(*reader, 64);
   ASSERT_FALSE(before.empty());
   ASSERT_EQ(before.back().header.state(), v1::STREAM_STATE_CONVERGED);
+  v1::UpdateSceneResponse response;
   {
     grpc::ClientContext editContext;
-    ASSERT_TRUE(stub_->UpdateScene(&editContext, liftTealBox(scene.scene_id(), 0.25), &response).ok());
+    ASSERT_TRUE(stub.UpdateScene(&editContext, liftTealBox(request.render().scene_id(), height), &response).ok());
   }
   EXPECT_EQ(response.bvh_instance_updates(), 1u);  // the two-level fast path, no rebuild
   const std::vector<ReceivedFrame> after = readUntilConverged(*reader, 64);
@@ -213,13 +207,15 @@ TEST_F(ProgressiveStreamTest, ALaterMoveRestartsOnlyNearbyTargetsAndConvergesToT
   reader->Finish();
 
   v1::SceneHandle fresh;
-  ASSERT_TRUE(loadScene(*stub_, "builtin:plain", &fresh).ok());
+  ASSERT_TRUE(loadScene(stub, "builtin:plain", &fresh).ok());
   {
     grpc::ClientContext editContext;
-    ASSERT_TRUE(stub_->UpdateScene(&editContext, liftTealBox(fresh.scene_id(), 0.25), &response).ok());
+    ASSERT_TRUE(stub.UpdateScene(&editContext, liftTealBox(fresh.scene_id(), height), &response).ok());
   }
+  v1::StreamRequest freshRequest = request;
+  freshRequest.mutable_render()->set_scene_id(fresh.scene_id());
   grpc::ClientContext freshContext;
-  auto freshReader = stub_->StreamFrames(&freshContext, progressiveRequest(fresh.scene_id()));
+  auto freshReader = stub.StreamFrames(&freshContext, freshRequest);
   const std::vector<ReceivedFrame> reference = readUntilConverged(*freshReader, 64);
   ASSERT_FALSE(reference.empty());
   ASSERT_EQ(reference.back().header.state(), v1::STREAM_STATE_CONVERGED);
@@ -228,6 +224,29 @@ TEST_F(ProgressiveStreamTest, ALaterMoveRestartsOnlyNearbyTargetsAndConvergesToT
   freshContext.TryCancel();
   while (readFrame(*freshReader, frame)) {}
   freshReader->Finish();
+}
+
+// The session's second node move: its renderer is its own, on the two-level BVH, since the first.
+TEST_F(ProgressiveStreamTest, ALaterMoveRestartsOnlyNearbyTargetsAndConvergesToTheEditedScenesFrame) {
+  v1::SceneHandle scene;
+  ASSERT_TRUE(loadScene(*stub_, "builtin:plain", &scene).ok());
+  v1::UpdateSceneResponse response;
+  {
+    grpc::ClientContext editContext;
+    ASSERT_TRUE(stub_->UpdateScene(&editContext, liftTealBox(scene.scene_id(), 0.1), &response).ok());
+  }
+  expectAMoveRestartsOnlyNearbyTargets(*stub_, progressiveRequest(scene.scene_id()), 0.25);
+}
+
+// A stream with reuse_after_edits records segment cells from its first frame (docs/REUSE.md §5), so that even the
+// session's first node move restarts only the targets near the node. Without the flag that move gives the session
+// its own renderer and the accumulation starts over (AnEditDuringAccumulationRestarts... above).
+TEST_F(ProgressiveStreamTest, WithReuseAfterEditsTheFirstMoveRestartsOnlyNearbyTargets) {
+  v1::SceneHandle scene;
+  ASSERT_TRUE(loadScene(*stub_, "builtin:plain", &scene).ok());
+  v1::StreamRequest request = progressiveRequest(scene.scene_id());
+  request.mutable_render()->set_reuse_after_edits(true);
+  expectAMoveRestartsOnlyNearbyTargets(*stub_, request, 0.25);
 }
 
 TEST(ProgressiveStreamLimit, OverTheAccumulatorLimitIsResourceExhaustedNamingTheLimit) {

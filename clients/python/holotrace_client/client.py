@@ -370,12 +370,14 @@ class Client:
                                  timeout).data
 
     def stream(self, scene, display, fps=10.0, spp=0, seed=0, quilt=False, format="rgba8", refine_spp=0,
-               refine_contrast=0.0, frames=None, mode="progressive", present_on=""):
+               refine_contrast=0.0, frames=None, mode="progressive", present_on="", reuse_after_edits=False):
         """StreamFrames as a FrameStream: iterate it for Frames, the newest one each time (stream.py); it ends after
         `frames` frames (None = until closed). Use it in a `with` block, or close() it. mode "progressive" (frames add
         samples until converged; a converged stream then sends nothing until the scene changes) or "independent"
         (a new frame every tick), docs/SERVICE.md §4.1. present_on: a display id with a panel sink (daemon config
-        "present") that also shows every new frame on its panel (docs/SERVICE.md §11)."""
+        "present") that also shows every new frame on its panel (docs/SERVICE.md §11). reuse_after_edits: a
+        progressive stream records from its first frame what a node move needs to restart only the targets near
+        the node, even at the session's first move (docs/SERVICE.md §4.2)."""
         self._check_open()
         if not fps > 0:
             raise ValueError(f"fps must be > 0, got {fps!r}")
@@ -383,7 +385,8 @@ class Client:
         if mode not in modes:
             raise ValueError(f"mode must be 'progressive' or 'independent', got {mode!r}")
         request = pb.StreamRequest(
-            render=self._render_request(scene, display, spp, seed, quilt, format, refine_spp, refine_contrast),
+            render=self._render_request(scene, display, spp, seed, quilt, format, refine_spp, refine_contrast,
+                                        reuse_after_edits),
             frames_per_second=float(fps), mode=modes[mode], present_on=str(present_on))
         return FrameStream(self._stub.StreamFrames(request), frames)
 

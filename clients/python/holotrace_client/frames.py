@@ -20,6 +20,8 @@ _NAMES = {value: name for name, value in PIXEL_FORMATS.items()}
 _NAMES[pb.PIXEL_FORMAT_UNSPECIFIED] = "rgba8"
 _REUSE = {pb.FRAME_REUSE_NONE: "none", pb.FRAME_REUSE_CACHED_PRIMARY_HITS: "cached-primary-hits",
           pb.FRAME_REUSE_PARTIAL_RETRACE: "partial-retrace"}
+_STATES = {pb.STREAM_STATE_UNSPECIFIED: "independent", pb.STREAM_STATE_ACCUMULATING: "accumulating",
+           pb.STREAM_STATE_CONVERGED: "converged"}
 _DTYPES = {"rgba8": np.dtype(np.uint8), "rgba16f": np.dtype("<f2")}
 
 
@@ -54,6 +56,12 @@ class Frame:
     stages: dict = field(default_factory=dict)
     reuse: str = "none"       # RenderRequest.reuse_after_edits: "none", "cached-primary-hits" or "partial-retrace"
     traced_targets: int = 0   # targets the frame traced (a partial re-render: the dirty ones)
+    # A progressive stream's frame (docs/SERVICE.md §4.1): "accumulating" or "converged" ("independent" otherwise),
+    # the fewest and most samples of a target, and the targets a node move restarted (their sums start over).
+    state: str = "independent"
+    accumulated_spp: int = 0
+    accumulated_spp_max: int = 0
+    reset_targets: int = 0
 
 
 class FrameAssembler:
@@ -109,7 +117,10 @@ class FrameAssembler:
         frame = Frame(frame_id=header.frame_id, width=header.width, height=header.height, views=views, format=name,
                       data=data, render_ms=header.render_ms, queue_ms=header.queue_ms,
                       dropped_frames=header.dropped_frames, stages={s.name: s.ms for s in header.stages},
-                      reuse=_REUSE.get(header.reuse, f"reuse-{header.reuse}"), traced_targets=header.traced_targets)
+                      reuse=_REUSE.get(header.reuse, f"reuse-{header.reuse}"), traced_targets=header.traced_targets,
+                      state=_STATES.get(header.state, f"state-{header.state}"),
+                      accumulated_spp=header.accumulated_spp, accumulated_spp_max=header.accumulated_spp_max,
+                      reset_targets=header.reset_targets)
         dtype = _DTYPES.get(name)
         if dtype is not None:
             shape = (views, header.height, header.width, 4)
