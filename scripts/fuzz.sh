@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # libFuzzer run (issue 4): configure + build the HOLOTRACE_FUZZ build (clang, ASan+UBSan, only ht_camera_models,
-# ht_scene, ht_devices and tests/fuzz/), then fuzz each target for a fixed time starting from its seed corpus
-# (tests/fuzz/corpus/<target>/; new inputs go to a scratch copy, the checked-in seeds are not changed).
+# ht_scene, ht_devices and tests/fuzz/), or, when $HOLOTRACE_FUZZ_BUILD_DIR is a configured clang sanitizer build
+# (HOLOTRACE_SANITIZE=ON, as scripts/test.sh passes its ASan build), build the fuzz targets there; then fuzz each
+# target for a fixed time starting from its seed corpus (tests/fuzz/corpus/<target>/; new inputs go to a scratch
+# copy, the checked-in seeds are not changed).
 # Exit status 1 on any crash, sanitizer report, leak, timeout or out-of-memory; reproducers are kept in
 # $HOLOTRACE_FUZZ_BUILD_DIR (default build-fuzz)/artifacts/<target>/.
 # fuzz_display_config also parses each input deeply nested and repeated to 1 MiB (tests/fuzz/fuzz_display_config.cpp),
@@ -19,10 +21,14 @@ if ! command -v clang++ >/dev/null 2>&1; then
   echo "=== fuzz.sh: clang++ not found (Debian 12: apt-get install clang libclang-rt-14-dev)" >&2
   exit 1
 fi
-echo "=== fuzz.sh: configure + build $BUILD"
 # -O1 -g1: the usual libFuzzer optimisation level; line numbers in reports.
-if ! CC=clang CXX=clang++ cmake -S "$ROOT" -B "$BUILD" -G Ninja -DHOLOTRACE_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-       "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" >/dev/null ||
+configure=(cmake -S "$ROOT" -B "$BUILD" -G Ninja -DHOLOTRACE_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
+           "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG")
+if grep -q '^HOLOTRACE_SANITIZE:BOOL=ON' "$BUILD/CMakeCache.txt" 2>/dev/null; then
+  configure=(true)  # the sanitizer build holds the fuzz targets already (tests/fuzz/CMakeLists.txt)
+fi
+echo "=== fuzz.sh: configure + build $BUILD"
+if ! CC=clang CXX=clang++ "${configure[@]}" >/dev/null ||
    ! cmake --build "$BUILD" -j "$JOBS" --target "${TARGETS[@]/#/fuzz_}"; then
   echo "=== fuzz.sh: BUILD FAILED" >&2
   exit 1

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Setup + tests: install the Debian packages, build Release (build/, GCC) and ASan+UBSan (build-asan/, clang), run
-# ctest on both, then a short libFuzzer run (scripts/fuzz.sh, build-fuzz/). Exit status 0 only if all three pass.
+# ctest on both, then a short libFuzzer run (scripts/fuzz.sh, in build-asan/). Exit status 0 only if all three pass.
 # Usage (as root): bash scripts/test.sh
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -55,10 +55,11 @@ run_suite "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
 run_suite "$ASAN_BUILD_DIR" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DHOLOTRACE_SANITIZE=ON -DHOLOTRACE_BUILD_BENCH=OFF
 
-# libFuzzer smoke run (issue 4): clang + ASan/UBSan build of the parsers only (build-fuzz/), each target fuzzed for
-# HOLOTRACE_FUZZ_SECONDS (default 20 s) from its seed corpus; a crash, leak or timeout fails the suite.
+# libFuzzer smoke run (issue 4): the fuzz targets of the clang ASan/UBSan build above, whose parser libraries carry
+# libFuzzer's coverage instrumentation (tests/fuzz/CMakeLists.txt), each fuzzed for HOLOTRACE_FUZZ_SECONDS
+# (default 20 s) from its seed corpus; a crash, leak or timeout fails the suite.
 fuzz_start=$(date +%s)
-if ! bash scripts/fuzz.sh "${HOLOTRACE_FUZZ_SECONDS:-20}"; then
+if ! HOLOTRACE_FUZZ_BUILD_DIR="$ASAN_BUILD_DIR" bash scripts/fuzz.sh "${HOLOTRACE_FUZZ_SECONDS:-20}"; then
   echo "=== test.sh: FUZZ FINDINGS (scripts/fuzz.sh)" >&2
   status=1
 fi
