@@ -119,7 +119,7 @@ class SceneLibrary {
   // a session whose frames keep reuse state (RenderRequest.reuse_after_edits) needs it before the frame that records
   // the state, or its first edit would start a new Renderer without it. The copy counts against the scene budget.
   // forNodeMoves: the new Renderer traces the two-level BVH, whose progressive accumulations record the segment
-  // cells a node move's partial restart needs (a progressive stream with reuse_after_edits; docs/REUSE.md §5).
+  // cells a node move's partial restart needs (a progressive stream with reuse_after_edits; docs/REUSE.md §7).
   void ownRenderer(const std::string& client, const std::string& id, bool forNodeMoves = false);
 
   // Ends sessions idle for longer than the TTL and evicts contents over the budget (the daemon calls it

@@ -238,7 +238,7 @@ TEST_F(ProgressiveStreamTest, ALaterMoveRestartsOnlyNearbyTargetsAndConvergesToT
   expectAMoveRestartsOnlyNearbyTargets(*stub_, progressiveRequest(scene.scene_id()), 0.25);
 }
 
-// A stream with reuse_after_edits records segment cells from its first frame (docs/REUSE.md §5), so that even the
+// A stream with reuse_after_edits records segment cells from its first frame (docs/REUSE.md §7), so that even the
 // session's first node move restarts only the targets near the node. Without the flag that move gives the session
 // its own renderer and the accumulation starts over (AnEditDuringAccumulationRestarts... above).
 TEST_F(ProgressiveStreamTest, WithReuseAfterEditsTheFirstMoveRestartsOnlyNearbyTargets) {
