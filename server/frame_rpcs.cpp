@@ -267,8 +267,7 @@ grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v
     FrameJob job = checkRenderRequest(state_, *request);
     StreamSlot slot(state_);
     if (job.reuse) {  // the session's own Renderer keeps the state, so that its first edit reuses it too
-      state_.scenes.ownRenderer(clientKey(*context), request->scene_id());
-      job.session = state_.scenes.find(request->scene_id());
+      job.session = state_.scenes.ownRenderer(clientKey(*context), request->scene_id());
     }
     CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.streamStallSeconds, "RenderFrame");
     if (!renderAndSend(state_, clientKey(*context), job, request->format(), 0, *writer, watch)) {
@@ -301,8 +300,7 @@ grpc::Status HolotraceService::StreamFrames(grpc::ServerContext* context, const 
     CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.streamStallSeconds, "StreamFrames");
     const std::string client = clientKey(*context);
     if (progressive && job.reuse) {  // from the first frame on the renderer the session's node moves will update
-      state_.scenes.ownRenderer(client, request->render().scene_id(), true);
-      job.session = state_.scenes.find(request->render().scene_id());
+      job.session = state_.scenes.ownRenderer(client, request->render().scene_id(), true);
     }
     if (progressive) {
       streamProgressive(state_, *context, *request, job, client, *writer, watch, panel.get());

@@ -346,10 +346,12 @@ gpu::MovedBounds movedBounds(const Scene& before, const Scene& after, const std:
 
 }  // namespace
 
-void SceneLibrary::ownRenderer(const std::string& client, const std::string& id, bool forNodeMoves) {
+std::shared_ptr<const SceneSession> SceneLibrary::ownRenderer(const std::string& client, const std::string& id,
+                                                              bool forNodeMoves) {
   const std::shared_ptr<const SceneSession> session = find(id);
-  if (session->content->quilt || session->content->editedBy == id) return;
+  if (session->content->quilt || session->content->editedBy == id) return session;
   editScene(client, id, forNodeMoves, {});  // re-checked under the edit lock; forNodeMoves: the two-level BVH
+  return find(id);
 }
 
 SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, const std::string& id, bool movesGeometry,

@@ -120,7 +120,9 @@ class SceneLibrary {
   // the state, or its first edit would start a new Renderer without it. The copy counts against the scene budget.
   // forNodeMoves: the new Renderer traces the two-level BVH, whose progressive accumulations record the segment
   // cells a node move's partial restart needs (a progressive stream with reuse_after_edits; docs/REUSE.md §7).
-  void ownRenderer(const std::string& client, const std::string& id, bool forNodeMoves = false);
+  // Returns the session as it is now, for the caller's frame job.
+  std::shared_ptr<const SceneSession> ownRenderer(const std::string& client, const std::string& id,
+                                                  bool forNodeMoves = false);
 
   // Ends sessions idle for longer than the TTL and evicts contents over the budget (the daemon calls it
   // periodically; every open() does too). True if any session or content was released since the last sweep.
