@@ -132,6 +132,7 @@ void mark_candidate() {
 }
 
 void main() {
+  load_moved_view();
   if (MODE == MARK_SECONDARY_ENTRIES) {
     mark_secondary_entry();
   } else if (MODE == MARK_CANDIDATES) {

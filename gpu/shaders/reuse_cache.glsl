@@ -9,8 +9,15 @@ uint reuse_header_word(uint k) { return UintRef(FRAME.refine).v[k]; }
 vec3 reuse_header_vec3(uint first) {
   return uintBitsToFloat(uvec3(reuse_header_word(first), reuse_header_word(first + 1u), reuse_header_word(first + 2u)));
 }
-vec3 moved_lo() { return reuse_header_vec3(4u); }
-vec3 moved_hi() { return reuse_header_vec3(8u); }
+// The padded moved bounds, loaded once per invocation by load_moved_view(): lavapipe does not keep a load through a
+// buffer reference in a register across calls, and the marking pass's tests read them for every segment.
+vec3 gMovedLo = vec3(1.0f), gMovedHi = vec3(-1.0f);
+void load_moved_view() {
+  gMovedLo = reuse_header_vec3(4u);
+  gMovedHi = reuse_header_vec3(8u);
+}
+vec3 moved_lo() { return gMovedLo; }
+vec3 moved_hi() { return gMovedHi; }
 
 // The frame path of path `batchPath` of a batch of listed targets (entry (batchFirst + batchPath) / spp of the list).
 uint listed_frame_path(uint batchPath) {

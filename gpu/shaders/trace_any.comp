@@ -53,7 +53,10 @@ void main() {
     if (SHADOW_CACHE != SHADOW_CACHE_OFF) {
       cachePath = slot_frame_path(slot);
       cacheBit = 1u << (slot % FRAME.scene.x);
-      recorded = SHADOW_CACHE == SHADOW_CACHE_REUSE && recorded_occlusion_holds(cachePath, ray);
+      if (SHADOW_CACHE == SHADOW_CACHE_REUSE) {
+        load_moved_view();
+        recorded = recorded_occlusion_holds(cachePath, ray);
+      }
     }
     if (recorded) {
       inQueue = false;  // not traced

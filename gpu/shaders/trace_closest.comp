@@ -26,6 +26,7 @@ void main() {
   uint steps = 0u;
   bool overflow = false;
   if (REUSE_PRIMARY && inQueue) {  // queue 0 entry i is path i of the batch
+    load_moved_view();
     uint path = listed_frame_path(i);
     if (!cached_primary_meets_moved(path)) {
       uvec4 h = cached_primary_hit(path);
