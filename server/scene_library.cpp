@@ -349,7 +349,9 @@ gpu::MovedBounds movedBounds(const Scene& before, const Scene& after, const std:
 std::shared_ptr<const SceneSession> SceneLibrary::ownRenderer(const std::string& client, const std::string& id,
                                                               bool forNodeMoves) {
   const std::shared_ptr<const SceneSession> session = find(id);
-  if (session->content->quilt || session->content->editedBy == id) return session;
+  const SceneContent& content = *session->content;
+  if (content.quilt) return session;
+  if (content.editedBy == id && (content.twoLevel || !forNodeMoves)) return session;
   editScene(client, id, forNodeMoves, {});  // re-checked under the edit lock; forNodeMoves: the two-level BVH
   return find(id);
 }
@@ -362,7 +364,10 @@ SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, cons
   auto content = std::make_shared<SceneContent>(*session->content);  // copies the scene, shares the Renderer
   if (edit) edit(content->scene);
   const std::vector<std::uint32_t> moved = movedNodes(session->content->scene, content->scene);
-  const bool newRenderer = content->editedBy != id;
+  const bool ownedAlready = content->editedBy == id;
+  // ownRenderer for node moves on a session whose own Renderer traces the flattened BVH: a new one, two-level.
+  const bool relayout = !edit && movesGeometry && ownedAlready && !content->twoLevel;
+  const bool newRenderer = !ownedAlready || relayout;
   if (!edit && !newRenderer) return {};  // ownRenderer: the session has its own already
   const auto start = std::chrono::steady_clock::now();
   // A first edit's BVH is built here, off the render worker (as a load's); a scene whose nodes move is traced with
@@ -390,7 +395,8 @@ SceneLibrary::EditResult SceneLibrary::editScene(const std::string& client, cons
   result.updateMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   result.sahCost = content->renderer->bvhReport().sahCost;
   result.bvh = content->renderer->bvhStats();
-  if (newRenderer) {
+  content->twoLevel = result.bvh.layout == bvh::BvhLayout::TwoLevel;
+  if (newRenderer && !ownedAlready) {
     content->editedBy = id;
     content->contentKey += "@" + id;
   }

@@ -41,6 +41,7 @@ struct SceneContent {
   std::uint64_t memoryBytes = 0;  // estimate: sceneMemoryBytes(scene), or the decoded quilt image
   std::string editedBy;  // "" = loaded content, shared by every session of the same bytes; else the one session
                          // whose edits (UpdateScene nodes / lights) it carries
+  bool twoLevel = false;  // the session's own renderer (editedBy != "") traces the two-level BVH
   std::shared_ptr<const QuiltContent> quilt;  // a quilt image (server/quilt_content.h): no scene, no renderer
 };
 
@@ -118,8 +119,10 @@ class SceneLibrary {
   // Gives session `id` its own Renderer now, as its first edit would (nothing for a quilt or a session that has one):
   // a session whose frames keep reuse state (RenderRequest.reuse_after_edits) needs it before the frame that records
   // the state, or its first edit would start a new Renderer without it. The copy counts against the scene budget.
-  // forNodeMoves: the new Renderer traces the two-level BVH, whose progressive accumulations record the segment
-  // cells a node move's partial restart needs (a progressive stream with reuse_after_edits; docs/REUSE.md §7).
+  // forNodeMoves: the Renderer traces the two-level BVH, whose progressive accumulations record the segment cells a
+  // node move's partial restart needs (a progressive stream with reuse_after_edits; docs/REUSE.md §7): a session
+  // whose own Renderer traces the flattened BVH gets a new one on the two-level BVH (its reuse state and
+  // accumulations start over once).
   // Returns the session as it is now, for the caller's frame job.
   std::shared_ptr<const SceneSession> ownRenderer(const std::string& client, const std::string& id,
                                                   bool forNodeMoves = false);

@@ -166,21 +166,28 @@ TEST_F(ProgressiveStreamTest, AnEditDuringAccumulationRestartsAndConvergesToTheE
   freshReader->Finish();
 }
 
-// A move of teal-box lifted by `height` (world matrix, column-major, translation in elements 12-14).
-v1::UpdateSceneRequest liftTealBox(const std::string& sceneId, double height) {
+// A move of `node` to the world matrix that lifts it by `height` (column-major, translation in elements 12-14).
+v1::UpdateSceneRequest liftNode(const std::string& sceneId, const std::string& node, double height) {
   v1::UpdateSceneRequest edit;
   edit.set_scene_id(sceneId);
   v1::NodeTransform& move = *edit.add_nodes();
-  move.set_node("teal-box");
+  move.set_node(node);
   for (int i = 0; i < 16; ++i) move.add_world(i % 5 == 0 ? 1.0 : 0.0);
   move.set_world(13, height);
   return edit;
 }
 
-// Streams `request` until converged, moves teal-box to `height`, and checks the stream's answer: the converged stream
-// wakes up, only the targets whose recorded paths met the box's old or new bounds start over (reset_targets), the
-// others keep their samples, and it converges to the bits of a fresh stream of a session that made only that move.
-void expectAMoveRestartsOnlyNearbyTargets(v1::Holotrace::Stub& stub, const v1::StreamRequest& request, double height) {
+v1::UpdateSceneRequest liftTealBox(const std::string& sceneId, double height) {
+  return liftNode(sceneId, "teal-box", height);
+}
+
+// Streams `request` until converged, moves `node` to `height` (liftNode), and checks the stream's answer: the
+// converged stream wakes up, only the targets whose recorded paths met the node's old or new bounds start over
+// (reset_targets), the others keep their samples, and it converges to the bits of a fresh stream of a session of
+// `sceneName` that made only that move.
+void expectAMoveRestartsOnlyNearbyTargets(v1::Holotrace::Stub& stub, const v1::StreamRequest& request, double height,
+                                          const std::string& sceneName = "builtin:plain",
+                                          const std::string& node = "teal-box") {
   grpc::ClientContext context;
   auto reader = stub.StreamFrames(&context, request);
   const std::vector<ReceivedFrame> before = readUntilConverged(*reader, 64);
@@ -189,7 +196,7 @@ void expectAMoveRestartsOnlyNearbyTargets(v1::Holotrace::Stub& stub, const v1::S
   v1::UpdateSceneResponse response;
   {
     grpc::ClientContext editContext;
-    ASSERT_TRUE(stub.UpdateScene(&editContext, liftTealBox(request.render().scene_id(), height), &response).ok());
+    ASSERT_TRUE(stub.UpdateScene(&editContext, liftNode(request.render().scene_id(), node, height), &response).ok());
   }
   EXPECT_EQ(response.bvh_instance_updates(), 1u);  // the two-level fast path, no rebuild
   const std::vector<ReceivedFrame> after = readUntilConverged(*reader, 64);
@@ -207,10 +214,10 @@ void expectAMoveRestartsOnlyNearbyTargets(v1::Holotrace::Stub& stub, const v1::S
   reader->Finish();
 
   v1::SceneHandle fresh;
-  ASSERT_TRUE(loadScene(stub, "builtin:plain", &fresh).ok());
+  ASSERT_TRUE(loadScene(stub, sceneName, &fresh).ok());
   {
     grpc::ClientContext editContext;
-    ASSERT_TRUE(stub.UpdateScene(&editContext, liftTealBox(fresh.scene_id(), height), &response).ok());
+    ASSERT_TRUE(stub.UpdateScene(&editContext, liftNode(fresh.scene_id(), node, height), &response).ok());
   }
   v1::StreamRequest freshRequest = request;
   freshRequest.mutable_render()->set_scene_id(fresh.scene_id());
@@ -247,6 +254,20 @@ TEST_F(ProgressiveStreamTest, WithReuseAfterEditsTheFirstMoveRestartsOnlyNearbyT
   v1::StreamRequest request = progressiveRequest(scene.scene_id());
   request.mutable_render()->set_reuse_after_edits(true);
   expectAMoveRestartsOnlyNearbyTargets(*stub_, request, 0.25);
+}
+
+// The same when the session already has its own renderer on the flattened BVH: a reusing RenderFrame of
+// builtin:showcase, a static scene the flattened BVH traces faster, made it. The reusing stream moves that renderer
+// to the two-level BVH before its first frame.
+TEST_F(ProgressiveStreamTest, AReusingStreamMovesTheSessionsFlattenedRendererToTheTwoLevelBvh) {
+  v1::SceneHandle scene;
+  ASSERT_TRUE(loadScene(*stub_, "builtin:showcase", &scene).ok());
+  v1::RenderRequest frame = tinyRequest(scene.scene_id());
+  frame.set_reuse_after_edits(true);
+  ASSERT_TRUE(renderOne(*stub_, frame).ok());
+  v1::StreamRequest request = progressiveRequest(scene.scene_id());
+  request.mutable_render()->set_reuse_after_edits(true);
+  expectAMoveRestartsOnlyNearbyTargets(*stub_, request, 0.05, "builtin:showcase", "glow-sphere");
 }
 
 TEST(ProgressiveStreamLimit, OverTheAccumulatorLimitIsResourceExhaustedNamingTheLimit) {
