@@ -39,8 +39,8 @@ struct SceneContent {
   std::shared_ptr<gpu::Renderer> renderer;  // used on the render worker thread only, and destroyed there
   double loadMs = 0.0;
   std::uint64_t memoryBytes = 0;  // estimate: sceneMemoryBytes(scene), or the decoded quilt image
-  std::string editedBy;  // "" = loaded content, shared by every session of the same bytes; else the one session
-                         // whose edits (UpdateScene nodes / lights) it carries
+  std::string editedBy;   // "" = loaded content, shared by every session of the same bytes; else the one session
+                          // whose edits (UpdateScene nodes / lights) it carries
   bool twoLevel = false;  // the session's own renderer (editedBy != "") traces the two-level BVH
   std::shared_ptr<const QuiltContent> quilt;  // a quilt image (server/quilt_content.h): no scene, no renderer
 };
