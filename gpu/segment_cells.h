@@ -27,6 +27,9 @@ HT_SHARED_BEGIN
 HT_CONST uint HT_GRID_CELLS = 4u;             // per axis: 64 cells, one bit each
 HT_CONST float HT_GRID_PAD = 1.0f / 1024.0f;  // cells: pads moved bounds over the rounding of segment points
 HT_CONST float HT_GRID_T_INFINITY = 3.4e38f;  // beyond any ray's tmax (3e38 for rays that run to infinity)
+// Targets one invocation of the marking pass's per-target mode compares (mark_dirty.comp MARK_TARGETS): lavapipe
+// pays much per invocation, and the comparison itself is a few instructions.
+HT_CONST uint HT_MARK_TARGETS_PER_INVOCATION = 4u;
 
 // The grid in the FrameBlock: cell coordinate = (p - origin) * scale, cells [0, 4) per axis.
 struct SegmentGrid {

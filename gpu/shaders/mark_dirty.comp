@@ -6,9 +6,9 @@
 //   pc.depth >= 1 (pc.batchCount entries of the batch starting at path pc.batchFirst). An entry whose segment, or a
 //   shadow ray from its hit, meets the padded moved bounds sets mask words 0-1 of its target to all ones; targets
 //   whose words 0-1 already hold cells (re-traced after the cache was filled) are left to those cells.
-// - MARK_TARGETS: one invocation per target of the frame. A target whose mask words 0-1 meet the moved bounds' cells
-//   (FRAME.refine words 0-1) is appended to the dirty list (count in word 2, entries from word FRAME.refineInfo.y)
-//   and its mask cleared for the re-trace to record again. With the primary rays and hits cached
+// - MARK_TARGETS: one invocation per HT_MARK_TARGETS_PER_INVOCATION (4) targets of the frame. A target whose mask
+//   words 0-1 meet the moved bounds' cells (FRAME.refine words 0-1) is appended to the dirty list (count in word 2,
+//   entries from word FRAME.refineInfo.y) and its mask cleared for the re-trace to record again. With the primary rays and hits cached
 //   (FRAME.primaryHits != 0), a target whose words 2-3 (the cells of its primary segments and their shadow rays) meet
 //   those cells is a candidate: appended to the candidate list (count in word 3, entries from word 11's value).
 // - MARK_CANDIDATES: one invocation per candidate: dirty when the cached primary segment of one of its samples, or a
@@ -108,16 +108,22 @@ void mark_dirty(bool dirty, uint target) {
 }
 
 void mark_target() {
-  uint target = pc.batchFirst + gl_GlobalInvocationID.x;  // dispatched in slices of targets; batchCount: all
-  bool dirty = false, candidate = false;
-  if (target < pc.batchCount) {
-    uvec4 mask = MaskRef(FRAME.segmentMasks).m[target];
-    uvec2 moved = uvec2(reuse_header_word(0u), reuse_header_word(1u));
-    dirty = ((mask.x & moved.x) | (mask.y & moved.y)) != 0u;
-    candidate = !dirty && ((mask.z & moved.x) | (mask.w & moved.y)) != 0u && reuse_header_word(11u) != 0u;
+  // Dispatched in slices of targets (pc.batchFirst: the slice's first; batchCount: all targets), each invocation
+  // comparing HT_MARK_TARGETS_PER_INVOCATION consecutive targets.
+  uint first = pc.batchFirst + HT_MARK_TARGETS_PER_INVOCATION * gl_GlobalInvocationID.x;
+  uvec2 moved = uvec2(reuse_header_word(0u), reuse_header_word(1u));
+  uint candidates = reuse_header_word(11u);
+  for (uint k = 0u; k < HT_MARK_TARGETS_PER_INVOCATION; ++k) {
+    uint target = first + k;
+    bool dirty = false, candidate = false;
+    if (target < pc.batchCount) {
+      uvec4 mask = MaskRef(FRAME.segmentMasks).m[target];
+      dirty = ((mask.x & moved.x) | (mask.y & moved.y)) != 0u;
+      candidate = !dirty && ((mask.z & moved.x) | (mask.w & moved.y)) != 0u && candidates != 0u;
+    }
+    mark_dirty(dirty, target);
+    append_where(candidate, 3u, candidates, target);
   }
-  mark_dirty(dirty, target);
-  append_where(candidate, 3u, reuse_header_word(11u), target);
 }
 
 void mark_candidate() {
@@ -132,7 +138,7 @@ void mark_candidate() {
 }
 
 void main() {
-  load_moved_view();
+  if (MODE != MARK_TARGETS) load_moved_view();  // the per-target pass compares cells only
   if (MODE == MARK_SECONDARY_ENTRIES) {
     mark_secondary_entry();
   } else if (MODE == MARK_CANDIDATES) {
