@@ -84,11 +84,11 @@ void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulatio
   }
   for (std::uint64_t first = 0; first < targets; first += kMarkTargetsPerDispatch) {
     const std::uint64_t n = std::min(kMarkTargetsPerDispatch, targets - first);
-    rec.dispatch(markPipeline(kMarkTargets),
-                 passConstants(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(targets), 0, 0),
-                 groupsFor((n + gpu_shared::HT_MARK_TARGETS_PER_INVOCATION - 1) /
-                           gpu_shared::HT_MARK_TARGETS_PER_INVOCATION),
-                 Stage::Mark);
+    rec.dispatch(
+        markPipeline(kMarkTargets),
+        passConstants(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(targets), 0, 0),
+        groupsFor((n + gpu_shared::HT_MARK_TARGETS_PER_INVOCATION - 1) / gpu_shared::HT_MARK_TARGETS_PER_INVOCATION),
+        Stage::Mark);
   }
   submitAndWait();
   rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
