@@ -8,9 +8,10 @@
 //   whose words 0-1 already hold cells (re-traced after the cache was filled) are left to those cells.
 // - MARK_TARGETS: one invocation per HT_MARK_TARGETS_PER_INVOCATION (4) targets of the frame. A target whose mask
 //   words 0-1 meet the moved bounds' cells (FRAME.refine words 0-1) is appended to the dirty list (count in word 2,
-//   entries from word FRAME.refineInfo.y) and its mask cleared for the re-trace to record again. With the primary rays and hits cached
-//   (FRAME.primaryHits != 0), a target whose words 2-3 (the cells of its primary segments and their shadow rays) meet
-//   those cells is a candidate: appended to the candidate list (count in word 3, entries from word 11's value).
+//   entries from word FRAME.refineInfo.y) and its mask cleared for the re-trace to record again. With the primary
+//   rays and hits cached (FRAME.primaryHits != 0), a target whose words 2-3 (the cells of its primary segments and
+//   their shadow rays) meet those cells is a candidate: appended to the candidate list (count in word 3, entries
+//   from word 11's value).
 // - MARK_CANDIDATES: one invocation per candidate: dirty when the cached primary segment of one of its samples, or a
 //   shadow ray from that hit to a light (ht_shadow_meets_box), meets the padded moved bounds (words 4-6 and 8-10,
 //   float bits). A separate pass over a compact list, so that no subgroup runs the exact tests for lanes that do not
