@@ -377,7 +377,7 @@ class Client:
         (a new frame every tick), docs/SERVICE.md §4.1. present_on: a display id with a panel sink (daemon config
         "present") that also shows every new frame on its panel (docs/SERVICE.md §11). reuse_after_edits: a
         progressive stream records from its first frame what a node move needs to restart only the targets near
-        the node, even at the session's first move (docs/SERVICE.md §4.2)."""
+        the node, even at the session's first move (docs/SERVICE.md §4.1)."""
         self._check_open()
         if not fps > 0:
             raise ValueError(f"fps must be > 0, got {fps!r}")
