@@ -31,6 +31,7 @@ void FrameReuseState::geometryMoved(const Bounds3& oldBounds, const Bounds3& new
 void FrameReuseState::invalidate() {
   hitsValid_ = masksValid_ = secondaryValid_ = secondaryMarkable_ = false;
   lightsEdited_ = moved_ = false;
+  lightRaysChanged_ = 0;
   movedBounds_ = Bounds3{};
 }
 
@@ -89,9 +90,19 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
   cachedPaths_ = paths;
   p.recordSegments = true;
   if (p.primaryCached) {
+    // Occlusion words for every depth where the hits of every depth are cached, else for depth 0. A partial
+    // re-render writes depth 0's for its listed paths and leaves the later depths' stale, as it leaves their hits:
+    // the words of depths >= 1 hold while the secondary cache does (loadSecondary), which every frame that writes
+    // that cache fills with its words.
+    const std::uint32_t depths = secondaryFits ? secondaryDepths + 1 : 1;
+    p.occlusionDepths = p.mode == FrameReuse::PartialRetrace ? 1 : depths;
+    if (p.mode == FrameReuse::CachedPrimaryHits) {
+      p.occlusionKeptDepths = p.loadSecondary ? depths : 1;
+      p.keptLightRays = ~lightRaysChanged_ & ((1u << gpu_shared::HT_MAX_LIGHTS) - 1u);
+    }
     ensure(primaryRays, paths * sizeof(gpu_shared::HtRay), MemoryPlace::Device);
     ensure(primaryHits, paths * sizeof(gpu_shared::HtHit), MemoryPlace::Device);
-    ensure(shadowOcclusion, paths * sizeof(std::uint32_t), MemoryPlace::Device);
+    ensure(shadowOcclusion, depths * paths * sizeof(std::uint32_t), MemoryPlace::Device);
   }
   ensure(segmentMasks, targets * kMaskWords * sizeof(std::uint32_t), MemoryPlace::Device);
   // The dirty list, then (with the primary cache) the marking pass's candidates for its exact tests.

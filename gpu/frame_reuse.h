@@ -51,6 +51,12 @@ struct ReusePlan {
   // PartialRetrace: the cells of the moved bounds (lo, hi words) and those bounds padded by HT_GRID_PAD cells.
   std::uint32_t gridCells[2] = {0, 0};
   glm::vec3 movedLo{0.0f}, movedHi{0.0f};
+  // The shadow-occlusion cache (shadowOcclusion; docs/REUSE.md §3): a word per depth and path, bits 0-15 the
+  // occlusion of the path's shadow ray to light l at that depth, bits 16-31 whether that ray was traced since its
+  // hit was found. `occlusionDepths`: the depths whose words the frame writes (shade.comp OCCLUSION; 0: none).
+  // CachedPrimaryHits: `occlusionKeptDepths` of them still hold for the lights in `keptLightRays`, whose shadow rays
+  // are those recorded; their slots take the recorded occlusion and are not traced.
+  std::uint32_t occlusionDepths = 0, occlusionKeptDepths = 0, keptLightRays = 0;
 };
 
 class FrameReuseState {
@@ -66,7 +72,12 @@ class FrameReuseState {
   // geometry; a reused frame records its shadow segments again). A node moved from `oldBounds` to `newBounds`: the
   // masks and hits stay valid for the marking pass (the partial re-render writes its targets' new hits). Anything
   // else (replaceScene without bounds): nothing is kept.
-  void lightsEdited() { lightsEdited_ = true; }
+  // `raysChanged`: bit l = light l's shadow rays changed (GpuScene::updateLights); the others' recorded occlusion
+  // stays.
+  void lightsEdited(std::uint32_t raysChanged) {
+    lightsEdited_ = true;
+    lightRaysChanged_ |= raysChanged;
+  }
   void geometryMoved(const Bounds3& oldBounds, const Bounds3& newBounds);
   void invalidate();
 
@@ -87,7 +98,8 @@ class FrameReuseState {
   // indices and hits (secondaryRegion); entries of a batch start at its first path.
   // secondaryCounts: the entries of each batch's queue of each depth (batch * (secondaryDepths + 1) + depth), copied
   // from the queue counters by the frame that fills the secondary cache; host visible.
-  // shadowOcclusion: with the primary hits, a word per path: bit l = its depth-0 shadow ray to light l was occluded.
+  // shadowOcclusion: with the primary hits, a word per path and depth (depth-major: word depth * paths + path), for
+  // depth 0 and, with the secondary cache, every later depth (ReusePlan::occlusionDepths).
   DeviceBuffer primaryRays, primaryHits, segmentMasks, dirtyList, secondaryCache, secondaryCounts, shadowOcclusion;
   struct SecondaryRegion {
     VkDeviceSize rays, paths, hits;  // byte offsets of entry 0 of the depth's rays, path indices, hits
@@ -119,6 +131,7 @@ class FrameReuseState {
   std::uint32_t countsDepths_ = 0;
   std::uint64_t maskedTargets_ = 0;
   bool lightsEdited_ = false, moved_ = false;
+  std::uint32_t lightRaysChanged_ = 0;  // since the last frame
   Bounds3 movedBounds_;
 };
 

@@ -122,6 +122,7 @@ void GpuScene::uploadRecords(const Scene& scene) {
   std::vector<gpu_shared::GpuLight> lightData = packLights(scene);
   lightCount_ = static_cast<std::uint32_t>(lightData.size());
   lights = uploadVector(vk, lightData);
+  lightRecords_ = std::move(lightData);
 
   std::vector<gpu_shared::GpuTexture> directory;
   std::vector<glm::vec4> texelData;
@@ -218,13 +219,24 @@ bool GpuScene::moveInstances(const Scene& scene, std::span<const std::uint32_t> 
   return reallocated;
 }
 
-void GpuScene::updateLights(const Scene& scene) {
-  const std::vector<gpu_shared::GpuLight> lightData = packLights(scene);
+std::uint32_t GpuScene::updateLights(const Scene& scene) {
+  std::vector<gpu_shared::GpuLight> lightData = packLights(scene);
   if (lightData.size() != lightCount_) {
     throw GpuError("updateLights: the scene has " + std::to_string(lightData.size()) + " lights, the device scene " +
                    std::to_string(lightCount_) + " (a changed light count needs Renderer::replaceScene)");
   }
   lights.upload(lightData.data(), sizeof(gpu_shared::GpuLight) * lightData.size());
+  // A shadow ray runs from the surface point to the light's position, or against its direction (shade.comp
+  // light_incidence): colour, intensity, range and cone change only what it carries.
+  std::uint32_t raysChanged = 0;
+  for (std::size_t l = 0; l < lightData.size(); ++l) {
+    const gpu_shared::GpuLight &before = lightRecords_[l], &after = lightData[l];
+    if (before.position != after.position || glm::vec3(before.direction) != glm::vec3(after.direction)) {
+      raysChanged |= 1u << l;
+    }
+  }
+  lightRecords_ = std::move(lightData);
+  return raysChanged;
 }
 
 }  // namespace ht::gpu

@@ -34,8 +34,10 @@ class GpuScene {
   glm::vec3 background() const { return background_; }
   glm::vec3 ambient() const { return ambient_; }
 
-  // Replaces the light records with `scene`'s (same count as at construction, else GpuError).
-  void updateLights(const Scene& scene);
+  // Replaces the light records with `scene`'s (same count as at construction, else GpuError). Returns the lights
+  // whose shadow rays changed (bit l: light l's type, position or direction differs), so that occlusion recorded for
+  // the others still holds (gpu/frame_reuse.h).
+  std::uint32_t updateLights(const Scene& scene);
 
   bvh::BvhLayout layout() const { return layout_; }
   const bvh::TwoLevelBvh* twoLevel() const { return twoLevel_.get(); }
@@ -64,6 +66,7 @@ class GpuScene {
   bvh::BuildReport bvhReport_;
   SceneFeatures features_;
   std::uint32_t lightCount_ = 0, textureCount_ = 0;
+  std::vector<gpu_shared::GpuLight> lightRecords_;  // as uploaded
   glm::vec3 background_{0.0f}, ambient_{0.0f};
 };
 

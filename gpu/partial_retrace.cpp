@@ -19,7 +19,8 @@ void appendBytes(std::vector<std::byte>& out, const T& value) {
   std::memcpy(out.data() + at, &value, sizeof(T));
 }
 
-// Targets per marking dispatch: within the 65,535 workgroups a dispatch dimension is guaranteed.
+// Targets per marking (and listed interleave) dispatch: within the 65,535 workgroups a dispatch dimension is
+// guaranteed.
 constexpr std::uint64_t kMarkTargetsPerDispatch = 1ull << 21;
 // mark_dirty.comp's MODE.
 constexpr std::uint32_t kMarkTargets = 0, kMarkSecondaryEntries = 1, kMarkCandidates = 2;
@@ -104,6 +105,21 @@ void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulatio
   }
   submitAndWait();
   exact.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+}
+
+void Renderer::Impl::recordDirtyInterleave(PassRecorder& rec, const FrameShape& shape) {
+  // The output image holds the frame this one re-renders in part: the same reuse key (shape, camera, settings) and
+  // no frame between them, or the plan would not be a partial re-render.
+  const std::uint32_t dirty = static_cast<const std::uint32_t*>(reuse.dirtyList.mapped())[2];
+  FrameBlock& f = frameBlock();
+  f.refine = reuse.dirtyList.address();
+  f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
+  const ComputePipeline& listed = pipeline(ShaderId::Interleave, {shape.model, 1u});
+  for (std::uint64_t first = 0; first < dirty; first += kMarkTargetsPerDispatch) {
+    const std::uint64_t n = std::min<std::uint64_t>(kMarkTargetsPerDispatch, dirty - first);
+    rec.dispatch(listed, passConstants(static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(n), 0, 0),
+                 groupsFor(n), Stage::Interleave);
+  }
 }
 
 void Renderer::Impl::copySecondary(std::uint32_t depth, std::uint32_t batchFirst, std::uint32_t count, bool load) {

@@ -200,9 +200,9 @@ void Renderer::Impl::moveNodes(const Scene& s, std::span<const std::uint32_t> mo
 
 void Renderer::Impl::updateLights(const Scene& s) {
   HT_VK(vkQueueWaitIdle(vk.queue));
-  scene.updateLights(s);
+  const std::uint32_t raysChanged = scene.updateLights(s);
   sceneChanged(std::nullopt);
-  reuse.lightsEdited();
+  reuse.lightsEdited(raysChanged);
 }
 
 void Renderer::Impl::bindScene() {

@@ -250,6 +250,9 @@ struct Renderer::Impl {
   std::uint64_t retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t targets,
                              std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
                              const std::function<void(double)>& progress);
+  // The interleave of a partial re-render: only the pixels of its listed targets, whose dirty list it names in the
+  // frame block (the caller clears FrameBlock::refine once the pass ran).
+  void recordDirtyInterleave(PassRecorder& rec, const FrameShape& shape);
   // Adaptive refinement (refinement_pass.cpp); byError: the targets the accumulation's stop rule says need samples.
   std::uint64_t selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast,
                                      StageTimes& stageMs, bool byError = false);

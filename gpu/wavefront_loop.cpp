@@ -122,18 +122,24 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
     frameBlock().shadowOcclusion = reuse.shadowOcclusion.address();
   }
   result.reuse = framePlan.mode;
+  frameBlock().frame.w = framePlan.keptLightRays;  // after reuseKey: not part of the frame's identity
 
   if (accumulating) {
     accumulateChunk(camera, shape, band, viewFirst, viewCount, settings, perBatch, stageMs, result);
   } else {
     renderChunkSamples(camera, shape, targets, perBatch, settings, stageMs, result);
   }
-  const ComputePipeline& interleave = pipeline(ShaderId::Interleave);
   beginCommands();
   PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
-  rec.dispatch(interleave, passConstants(0, 0, 0, 0),
-               groupsFor(static_cast<std::uint64_t>(shape.width) * shape.height * viewCount), Stage::Interleave);
+  if (framePlan.mode == FrameReuse::PartialRetrace) {
+    recordDirtyInterleave(rec, shape);
+  } else {
+    rec.dispatch(pipeline(ShaderId::Interleave), passConstants(0, 0, 0, 0),
+                 groupsFor(static_cast<std::uint64_t>(shape.width) * shape.height * viewCount), Stage::Interleave);
+  }
   submitAndWait();
+  frameBlock().refine = 0;  // recordDirtyInterleave's list
+  frameBlock().refineInfo = glm::uvec4(0u);
   rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
   const GpuCounters& c = counterBlock();
   result.raysTraced += c.raysTraced;
@@ -198,19 +204,23 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   const bool record = (which != TracedTargets::Refined || accumulating) && framePlan.recordSegments;
 
   const bool progressive = accumulating != nullptr;
-  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenSpec(camera, shape, listed, progressive));
   const ComputePipeline& traceClosest = pipeline(ShaderId::TraceClosest, traceSpec({}));
-  // A partial re-render's primary rays take their cached hits where the move cannot have changed them.
+  // A partial re-render's primary rays are copied from the cache (raygen.comp FROM_CACHE) and take their cached
+  // hits where the move cannot have changed them.
   const bool reusePrimary =
       which == TracedTargets::Dirty && framePlan.mode == FrameReuse::PartialRetrace && framePlan.primaryCached;
+  std::vector<std::uint32_t> raygenConstants = raygenSpec(camera, shape, listed, progressive);
+  if (reusePrimary) raygenConstants = withConstant(std::move(raygenConstants), 5, 1u);
+  const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenConstants);
   const ComputePipeline& tracePrimary = reusePrimary ? pipeline(ShaderId::TraceClosest, traceSpec({1u})) : traceClosest;
-  const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u}));
-  // Depth 0's shadow rays: their occlusion is recorded with the primary hits, and a partial re-render takes it where
-  // the move cannot have changed it (trace_any.comp SHADOW_CACHE).
-  const bool recordOcclusion = which == TracedTargets::All && framePlan.primaryCached && !accumulating;
-  const ComputePipeline& traceAnyPrimary = reusePrimary      ? pipeline(ShaderId::TraceAny, traceSpec({1u, 2u}))
-                                           : recordOcclusion ? pipeline(ShaderId::TraceAny, traceSpec({1u, 1u}))
-                                                             : traceAny;
+  // The shadow-occlusion cache (ReusePlan::occlusionDepths): shade.comp's OCCLUSION mode at each depth -- record, take
+  // the recorded occlusion of the lights a light edit kept, or (depth 0 of a partial re-render) of the segments a
+  // move kept -- and trace_any.comp's SHADOW_CACHE, which records what it traces.
+  auto occlusionMode = [&](std::uint32_t depth) -> std::uint32_t {
+    if (!lights || accumulating || which == TracedTargets::Refined || depth >= framePlan.occlusionDepths) return 0u;
+    if (which == TracedTargets::Dirty) return depth == 0 && reusePrimary ? 3u : 0u;
+    return depth < framePlan.occlusionKeptDepths ? 2u : 1u;
+  };
   const std::vector<std::uint32_t> shadeFeatures = {lights, mirror, glass, textures};
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
@@ -251,7 +261,13 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
       const std::uint32_t q = depth % 2;
       PassConstants pc = passConstants(batchFirst, count, depth, q);
       const VkDeviceSize queueArgs = offsetof(GpuCounters, dispatch) + q * sizeof(glm::uvec4);
-      const ComputePipeline& shade = pipeline(ShaderId::Shade, depthSpec(shadeFeatures, depth));
+      const std::uint32_t occlusion = occlusionMode(depth);
+      std::vector<std::uint32_t> shadeConstants = shadeFeatures;
+      if (occlusion != 0) shadeConstants.push_back(occlusion);  // only when set: other frames keep their pipelines
+      const ComputePipeline& shade = pipeline(ShaderId::Shade, depthSpec(std::move(shadeConstants), depth));
+      const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u, occlusion == 0   ? 0u
+                                                                                    : occlusion == 3 ? 2u
+                                                                                                     : 1u}));
       const ComputePipeline& gather = pipeline(ShaderId::GatherDirect, depthSpec({}, depth));
       auto overQueue = [&](const ComputePipeline& pass, Stage stage) {  // one invocation per entry of queue q
         if (depth == 0)
@@ -278,8 +294,8 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
       overQueue(shade, Stage::Shade);
       rec.dispatch(afterShade, pc, 1, Stage::Queues);
       if (lights) {
-        rec.dispatchIndirect(depth == 0 ? traceAnyPrimary : traceAny, pc, args,
-                             offsetof(GpuCounters, dispatch) + 2 * sizeof(glm::uvec4), Stage::Shadow);
+        rec.dispatchIndirect(traceAny, pc, args, offsetof(GpuCounters, dispatch) + 2 * sizeof(glm::uvec4),
+                             Stage::Shadow);
         recordSegments();  // before gather_direct clears the shadow slots
         overQueue(gather, Stage::Shadow);
       } else {

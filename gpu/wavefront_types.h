@@ -71,7 +71,8 @@ struct FrameBlock {
                        // w = first row of the band (from the bottom) this chunk renders of each view
   uvec4 scene;         // x = light count, y = texture count, z = step limit, w = max depth
   uvec4 frame;         // x = seed, y = rows of a whole view (dims.y: of the band), z = targets per pixel;
-                       // w unused (per-dispatch values travel in PassConstants)
+                       // w = the lights whose recorded shadow occlusion a frame re-shaded from cached hits keeps
+                       // (ReusePlan::keptLightRays; set after the frame's reuse key is taken, 0 otherwise)
   uvec4 refineInfo;    // adaptive refinement (refine_select.comp): x = contrast threshold (float bits), y = first
                        // entry of the target list in `refine` (!= 0 while listed targets are traced: refinement
                        // or a partial re-render, gpu/frame_reuse.h), z = subgroup size the slots assume,
@@ -93,8 +94,8 @@ struct FrameBlock {
   uint64_t segmentMasks;
   uint64_t primaryRays;
   uint64_t primaryHits;
-  // ... and the occlusion of every path's depth-0 shadow rays, bit l of the path's word for light l (device address;
-  // 0 = none; trace_any.comp SHADOW_CACHE).
+  // ... and the occlusion of every path's shadow rays, a word per depth and path (device address; 0 = none;
+  // gpu/frame_reuse.h ReusePlan::occlusionDepths, shade.comp OCCLUSION, trace_any.comp SHADOW_CACHE).
   uint64_t shadowOcclusion;
   SegmentGrid grid;
 };

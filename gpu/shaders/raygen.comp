@@ -18,6 +18,10 @@ layout(constant_id = 3) const bool REFINING = false;
 // Progressive accumulation (gpu/accumulator.h): sample s of a target is index (its samples so far + s) of one
 // sequence, with no spp-1 / spp-2 special case (docs/REUSE.md §1, §6 item 1).
 layout(constant_id = 4) const bool PROGRESSIVE = false;
+// A partial re-render with the primary rays cached (docs/REUSE.md §4): a listed target's rays are the frame's own,
+// so they are copied from the cache rather than generated again (lenticular and projector rays cost more than a
+// copy).
+layout(constant_id = 5) const bool FROM_CACHE = false;
 #define HT_LENTICULAR_CELL_MODE(p) LENTICULAR_CELL_MODE
 #define HT_LENTICULAR_CELL_COUNT(p) LENTICULAR_CELL_COUNT
 #include "camera_models/lenticular_model.h"
@@ -28,6 +32,8 @@ layout(constant_id = 4) const bool PROGRESSIVE = false;
 #define HT_RAY_TABLE_ORIGIN(i) texelFetch(rayTableTexels, int(2u * (i))).xyz
 #define HT_RAY_TABLE_DIRECTION(i) texelFetch(rayTableTexels, int(2u * (i) + 1u)).xyz
 #include "camera_models/ray_table_model.h"
+#include "gpu/segment_cells.h"
+#include "gpu/shaders/reuse_cache.glsl"
 
 // Projector `view` assembled from single uniform members (projector_model.h ProjectorView: no 8 KiB copy).
 ProjectorView frame_projector(uint view) {
@@ -51,6 +57,13 @@ void main() {
   // target; its samples are those of a frame rendered at this spp.
   uint target = REFINING ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + path / spp] : path / spp;
   uint s = path % spp;
+  if (FROM_CACHE) {
+    uint framePath = target * spp + s;
+    vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * framePath];
+    vec4 b = RayCacheRef(FRAME.primaryRays).v[2u * framePath + 1u];
+    store_ray(0u, i, HtRay(a.xyz, a.w, b.xyz, b.w));
+    return;
+  }
   uint perPixel = ht_model_has_subpixel_targets(MODEL) ? 3u : 1u;
   uint pixel = target / perPixel;
   uint c = target % perPixel;

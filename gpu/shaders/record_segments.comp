@@ -46,7 +46,10 @@ void main() {
   uvec2 shadowCells = uvec2(0u);
   for (uint l = 0u; l < lightCount; ++l) {
     uint slot = path * lightCount + l;
-    if (imageLoad(shadowContribBuffer, int(slot)).w != 0.0f) {  // live: emitted at this depth (occluded or not)
+    // Live: emitted at this depth (occluded or not). A light edit adds only the rays it traced (w = 1): one that
+    // took its recorded occlusion (w = 2, shade.comp OCCLUSION) is the ray recorded when it was traced.
+    float live = imageLoad(shadowContribBuffer, int(slot)).w;
+    if (SHADOWS_ONLY ? live == 1.0f : live != 0.0f) {
       HtRay shadow = load_shadow_ray(slot);
       shadowCells |= ht_segment_cells(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, FRAME.grid);
     }

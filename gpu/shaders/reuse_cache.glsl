@@ -37,3 +37,13 @@ bool cached_primary_meets_moved(uint path) {
   float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : b.w;
   return ht_segment_meets_box(a.xyz, b.xyz, a.w, tEnd, moved_lo(), moved_hi());
 }
+
+// The shadow-occlusion cache (gpu/frame_reuse.h ReusePlan::occlusionDepths): a word per depth and frame path, bit l
+// = the path's shadow ray to light l at that depth was occluded, bit 16 + l = that ray was traced since the path's
+// hit at that depth was found (only then does bit l say anything).
+const uint HT_OCCLUSION_TRACED_SHIFT = 16u;
+// The word of batch path `batchPath` at this dispatch's depth; `listed`: the batch traces listed targets.
+uint occlusion_word_index(uint batchPath, bool listed) {
+  uint framePath = listed ? listed_frame_path(batchPath) : pc.batchFirst + batchPath;
+  return pc.depth * FRAME.dims.w * FRAME.dims.z + framePath;
+}

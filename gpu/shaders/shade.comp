@@ -11,11 +11,25 @@
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_ballot : require
 #include "bvh/offset_ray.h"
+#include "gpu/segment_cells.h"
+#include "gpu/shaders/reuse_cache.glsl"
 
 layout(constant_id = 0) const bool HAS_LIGHTS = true;
 layout(constant_id = 1) const bool HAS_MIRROR = true;
 layout(constant_id = 2) const bool HAS_GLASS = true;
 layout(constant_id = 3) const bool HAS_TEXTURES = true;
+// The shadow-occlusion cache (docs/REUSE.md §3-4, reuse_cache.glsl): with OCCLUSION != OFF, shade writes the word of
+// each path it shades: a ray it takes from the cache keeps its bits, every other bit is cleared, and trace_any sets
+// those of the rays it traces (SHADOW_CACHE). A ray whose recorded occlusion holds gets what trace_any would give its
+// slot and is not queued (its slot's w = 2: live, not traced), so trace_any's subgroups hold only rays it traces.
+//   RECORD: nothing is taken from the cache.
+//   KEPT_LIGHTS (a frame re-shaded from cached hits after a light edit): the path's hit is the recorded one, so a ray
+//     to a light in FRAME.frame.w (its position and direction unchanged) is the recorded ray, in unchanged geometry.
+//   KEPT_SEGMENTS (depth 0 of a partial re-render after a node move): a ray whose path kept its cached primary hit
+//     (the same surface point and lights, so the same ray) and whose segment avoids the padded moved bounds (no moved
+//     triangle can meet it).
+const uint OCCLUSION_OFF = 0u, OCCLUSION_RECORD = 1u, OCCLUSION_KEPT_LIGHTS = 2u, OCCLUSION_KEPT_SEGMENTS = 3u;
+layout(constant_id = 4) const uint OCCLUSION = OCCLUSION_OFF;
 
 const float HT_INV_PI = 0.31830988618379067154f;
 const float HT_RAY_FAR = 3.0e38f;
@@ -112,9 +126,22 @@ vec3 light_incidence(GpuLight light, vec3 p, out vec3 wi, out float dist) {
   return e;
 }
 
-void emit_shadow_rays(uint path, SurfacePoint s, vec3 weight) {
+// Emits the path's shadow rays; returns the word of the occlusion cache to store (OCCLUSION != OFF).
+uint emit_shadow_rays(uint path, SurfacePoint s, vec3 weight) {
   uint lightCount = FRAME.scene.x;
   vec3 origin = ht_offset_ray(s.p, s.nFace);
+  uint word = 0u;      // the path's recorded word
+  uint holding = 0u;   // bit l: light l's recorded occlusion holds (if the ray's segment allows, KEPT_SEGMENTS)
+  if (OCCLUSION == OCCLUSION_KEPT_LIGHTS || OCCLUSION == OCCLUSION_KEPT_SEGMENTS) {
+    word = UintRef(FRAME.shadowOcclusion).v[occlusion_word_index(path, OCCLUSION == OCCLUSION_KEPT_SEGMENTS)];
+    holding = word >> HT_OCCLUSION_TRACED_SHIFT;
+    if (OCCLUSION == OCCLUSION_KEPT_LIGHTS) holding &= FRAME.frame.w;
+    if (OCCLUSION == OCCLUSION_KEPT_SEGMENTS) {
+      load_moved_view();
+      if (cached_primary_meets_moved(listed_frame_path(path))) holding = 0u;  // depth 0: path = batch path
+    }
+  }
+  uint taken = 0u;  // bit l: light l's slot takes the recorded occlusion
   for (uint l = 0u; l < lightCount; ++l) {
     vec3 wi;
     float dist;
@@ -122,14 +149,25 @@ void emit_shadow_rays(uint path, SurfacePoint s, vec3 weight) {
     float cosTheta = dot(s.nShade, wi);
     vec3 contrib = weight * e * max(cosTheta, 0.0f);
     bool want = cosTheta > 0.0f && dot(s.nFace, wi) > 0.0f && max(contrib.x, max(contrib.y, contrib.z)) > 0.0f;
-    uint q = append_slot(want, 2u);
+    bool recorded = want && (holding & (1u << l)) != 0u;
+    if (OCCLUSION == OCCLUSION_KEPT_SEGMENTS && recorded) {
+      recorded = !ht_segment_meets_box(origin, wi, 0.0f, dist, moved_lo(), moved_hi());
+    }
+    uint q = append_slot(want && !recorded, 2u);
     if (want) {
       uint slot = path * lightCount + l;
-      store_shadow_ray(slot, HtRay(origin, 0.0f, wi, dist));
-      imageStore(shadowContribBuffer, int(slot), vec4(contrib, 1.0f));
-      imageStore(shadowQueueBuffer, int(q), uvec4(slot));
+      store_shadow_ray(slot, HtRay(origin, 0.0f, wi, dist));  // (record_segments reads it)
+      if (recorded) {
+        taken |= 1u << l;
+        bool occluded = (word & (1u << l)) != 0u;
+        imageStore(shadowContribBuffer, int(slot), occluded ? vec4(0.0f, 0.0f, 0.0f, 2.0f) : vec4(contrib, 2.0f));
+      } else {
+        imageStore(shadowContribBuffer, int(slot), vec4(contrib, 1.0f));
+        imageStore(shadowQueueBuffer, int(q), uvec4(slot));
+      }
     }
   }
+  return word & (taken | (taken << HT_OCCLUSION_TRACED_SHIFT));
 }
 
 // Exact unpolarised Fresnel reflectance of a dielectric interface (pbrt-v4 FrDielectric).
@@ -214,7 +252,11 @@ void main() {
   add_path_radiance(path, radiance);
 
   // Subgroup operations act on the lanes active at the call, so each divergent group appends for itself.
-  if (HAS_LIGHTS && wantShadows) emit_shadow_rays(path, s, throughput * albedo * HT_INV_PI);
+  uint occlusionWord = 0u;  // a path without shadow rays here has no recorded occlusion here
+  if (HAS_LIGHTS && wantShadows) occlusionWord = emit_shadow_rays(path, s, throughput * albedo * HT_INV_PI);
+  if (OCCLUSION != OCCLUSION_OFF) {
+    UintRef(FRAME.shadowOcclusion).v[occlusion_word_index(path, OCCLUSION == OCCLUSION_KEPT_SEGMENTS)] = occlusionWord;
+  }
   if (HAS_MIRROR || HAS_GLASS) {
     uint out_queue = 1u - pc.queue;
     uint q = append_slot(continues, out_queue);

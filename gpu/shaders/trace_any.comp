@@ -11,27 +11,13 @@
 #include "gpu/segment_cells.h"
 
 layout(constant_id = 0) const uint SHADOW_QUEUE = 1u;
-// Frame reuse (docs/REUSE.md §4), depth-0 shadow rays only: 1 records each ray's occlusion in FRAME.shadowOcclusion
-// (a frame that caches its primary hits); 2, in a partial re-render, takes the recorded occlusion of a ray whose path
-// kept its cached primary hit (the same surface point and lights, so the same ray as recorded) and whose segment
-// avoids the padded moved bounds (FRAME.refine words 4-6, 8-10: no moved triangle can meet it), and records the
-// others.
-const uint SHADOW_CACHE_OFF = 0u, SHADOW_CACHE_RECORD = 1u, SHADOW_CACHE_REUSE = 2u;
+// Frame reuse (docs/REUSE.md §3-4): records each traced ray's occlusion in the occlusion cache (reuse_cache.glsl),
+// whose word shade.comp (OCCLUSION) wrote for this depth: 1 for a frame's own paths, 2 for the listed targets of a
+// partial re-render. Shade queued only the rays whose recorded occlusion does not hold.
+const uint SHADOW_CACHE_OFF = 0u, SHADOW_CACHE_RECORD = 1u, SHADOW_CACHE_RECORD_LISTED = 2u;
 layout(constant_id = 1) const uint SHADOW_CACHE = SHADOW_CACHE_OFF;
 
 #include "gpu/shaders/reuse_cache.glsl"
-
-// The frame-wide path of shadow slot `slot` (slot = batch path * lights + light).
-uint slot_frame_path(uint slot) {
-  uint path = slot / FRAME.scene.x;
-  return SHADOW_CACHE == SHADOW_CACHE_REUSE ? listed_frame_path(path) : pc.batchFirst + path;
-}
-
-// Is the recorded occlusion of this depth-0 shadow ray of frame path `path` still its occlusion?
-bool recorded_occlusion_holds(uint path, HtRay shadow) {
-  return !cached_primary_meets_moved(path) &&
-         !ht_segment_meets_box(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, moved_lo(), moved_hi());
-}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -48,43 +34,25 @@ void main() {
     } else {
       ray = load_ray(0u, i);
     }
-    uint cachePath = 0u, cacheBit = 0u;
-    bool recorded = false;
-    if (SHADOW_CACHE != SHADOW_CACHE_OFF) {
-      cachePath = slot_frame_path(slot);
-      cacheBit = 1u << (slot % FRAME.scene.x);
-      if (SHADOW_CACHE == SHADOW_CACHE_REUSE) {
-        load_moved_view();
-        recorded = recorded_occlusion_holds(cachePath, ray);
-      }
-    }
-    if (recorded) {
-      inQueue = false;  // not traced
-      if ((UintRef(FRAME.shadowOcclusion).v[cachePath] & cacheBit) != 0u) {
-        imageStore(shadowContribBuffer, int(slot), vec4(0.0f, 0.0f, 0.0f, 1.0f));
-      }
+    HtTraceResult r;
+    if (TWO_LEVEL) {
+      r = ht_trace_two_level_any(ray, FRAME.scene.z);
     } else {
-      HtTraceResult r;
-      if (TWO_LEVEL) {
-        r = ht_trace_two_level_any(ray, FRAME.scene.z);
-      } else {
-        r = ht_trace_any(ray, FRAME.scene.z);
-      }
-      steps = r.steps;
-      overflow = r.overflow;
-      bool occluded = r.hit.triId != HT_MISS || r.overflow;
-      if (SHADOW_QUEUE == 1u) {
-        if (occluded) imageStore(shadowContribBuffer, int(slot), vec4(0.0f, 0.0f, 0.0f, 1.0f));
-      } else {
-        store_hit(i, r.hit);
-      }
-      if (SHADOW_CACHE != SHADOW_CACHE_OFF) {
-        if (occluded) {
-          atomicOr(UintRef(FRAME.shadowOcclusion).v[cachePath], cacheBit);
-        } else {
-          atomicAnd(UintRef(FRAME.shadowOcclusion).v[cachePath], ~cacheBit);
-        }
-      }
+      r = ht_trace_any(ray, FRAME.scene.z);
+    }
+    steps = r.steps;
+    overflow = r.overflow;
+    bool occluded = r.hit.triId != HT_MISS || r.overflow;
+    if (SHADOW_QUEUE == 1u) {
+      if (occluded) imageStore(shadowContribBuffer, int(slot), vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    } else {
+      store_hit(i, r.hit);
+    }
+    if (SHADOW_CACHE != SHADOW_CACHE_OFF) {
+      uint lightCount = FRAME.scene.x, l = slot % lightCount;
+      uint word = occlusion_word_index(slot / lightCount, SHADOW_CACHE == SHADOW_CACHE_RECORD_LISTED);
+      uint bits = (1u << (HT_OCCLUSION_TRACED_SHIFT + l)) | (occluded ? 1u << l : 0u);
+      atomicOr(UintRef(FRAME.shadowOcclusion).v[word], bits);
     }
   }
   uint maxSteps = subgroupMax(steps);
