@@ -265,9 +265,8 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
       std::vector<std::uint32_t> shadeConstants = shadeFeatures;
       if (occlusion != 0) shadeConstants.push_back(occlusion);  // only when set: other frames keep their pipelines
       const ComputePipeline& shade = pipeline(ShaderId::Shade, depthSpec(std::move(shadeConstants), depth));
-      const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u, occlusion == 0   ? 0u
-                                                                                    : occlusion == 3 ? 2u
-                                                                                                     : 1u}));
+      const std::uint32_t shadowCache = occlusion == 0 ? 0u : occlusion == 3 ? 2u : 1u;  // trace_any SHADOW_CACHE
+      const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u, shadowCache}));
       const ComputePipeline& gather = pipeline(ShaderId::GatherDirect, depthSpec({}, depth));
       auto overQueue = [&](const ComputePipeline& pass, Stage stage) {  // one invocation per entry of queue q
         if (depth == 0)
@@ -275,10 +274,16 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
         else
           rec.dispatchIndirect(pass, pc, args, queueArgs, stage);
       };
+      const VkDeviceSize shadowArgs = offsetof(GpuCounters, dispatch) + 2 * sizeof(glm::uvec4);
       auto recordSegments = [&] {
-        // Segments of depths >= 1 that stay in (or go to) the secondary cache are tested there, not recorded.
-        if (record && !(secondaryCached && depth > 0)) {
-          overQueue(pipeline(ShaderId::RecordSegments, depthSpec({listed, loadHits}, depth)), Stage::Record);
+        // Segments of depths >= 1 that stay in (or go to) the secondary cache are tested there, not recorded. A
+        // frame re-shaded from cached hits adds the shadow rays it traced: one invocation per shadow-queue entry.
+        if (!record || (secondaryCached && depth > 0)) return;
+        const ComputePipeline& pass = pipeline(ShaderId::RecordSegments, depthSpec({listed, loadHits}, depth));
+        if (loadHits) {
+          rec.dispatchIndirect(pass, pc, args, shadowArgs, Stage::Record);
+        } else {
+          overQueue(pass, Stage::Record);
         }
       };
       if (depth == 0 ? !loadHits : !loadSecondary) overQueue(depth == 0 ? tracePrimary : traceClosest, Stage::Trace);
@@ -294,8 +299,7 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
       overQueue(shade, Stage::Shade);
       rec.dispatch(afterShade, pc, 1, Stage::Queues);
       if (lights) {
-        rec.dispatchIndirect(traceAny, pc, args, offsetof(GpuCounters, dispatch) + 2 * sizeof(glm::uvec4),
-                             Stage::Shadow);
+        rec.dispatchIndirect(traceAny, pc, args, shadowArgs, Stage::Shadow);
         recordSegments();  // before gather_direct clears the shadow slots
         overQueue(gather, Stage::Shadow);
       } else {

@@ -15,25 +15,45 @@
 layout(constant_id = 0) const bool LISTED = false;  // paths of listed targets (a partial re-render)
 // A frame re-shaded from cached hits (a light edit): its closest-hit segments are those already in the masks, so only
 // the shadow segments are added, to masks not cleared: the old shadow cells stay, a superset, still conservative.
+// Only the rays it traced are added, one invocation per entry of the shadow queue: a ray that took its recorded
+// occlusion (shade.comp OCCLUSION) is the ray whose cells were recorded when it was traced.
 layout(constant_id = 1) const bool SHADOWS_ONLY = false;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer HitCacheRef { uvec4 h[]; };
 
+// The target of batch path `path`.
+uint path_target(uint path) {
+  uint entry = (pc.batchFirst + path) / FRAME.dims.z;
+  return LISTED ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;
+}
+
+// SHADOWS_ONLY: the cells of shadow-queue entry i's ray, into words 2-3 for the shadow rays of cached primary hits.
+void record_traced_shadow_ray(uint i) {
+  if (i >= COUNTERS.shadowCount) return;
+  uint slot = imageLoad(shadowQueueBuffer, int(i)).x;
+  uint target = path_target(slot / FRAME.scene.x);
+  HtRay shadow = load_shadow_ray(slot);
+  uvec2 cells = ht_segment_cells(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, FRAME.grid);
+  uint word = 4u * target + (pc.depth == 0u && FRAME.primaryHits != 0ul ? 2u : 0u);
+  if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[word], cells.x);
+  if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[word + 1u], cells.y);
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
+  if (SHADOWS_ONLY) {
+    record_traced_shadow_ray(i);
+    return;
+  }
   if (i >= COUNTERS.queueCount[pc.queue]) return;
   uint path = queue_path(i);
   uint spp = FRAME.dims.z;
-  uint entry = (pc.batchFirst + path) / spp;
-  uint target = LISTED ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;
+  uint target = path_target(path);
   HtRay ray = load_ray(pc.queue, i);
   HtHit hit = load_hit(i);
   bool cachedPrimary = pc.depth == 0u && FRAME.primaryHits != 0ul;
-  uvec2 cells = uvec2(0u);
-  if (!SHADOWS_ONLY) {
-    cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, hit.triId != HT_MISS ? hit.t : ray.tmax, FRAME.grid);
-  }
-  if (cachedPrimary && !SHADOWS_ONLY) {  // words 2-3: the marking pass's quick reject before its exact test of the cached segments
+  uvec2 cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, hit.triId != HT_MISS ? hit.t : ray.tmax, FRAME.grid);
+  if (cachedPrimary) {  // words 2-3: the marking pass's quick reject before its exact test of the cached segments
     if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], cells.x);
     if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], cells.y);
     cells = uvec2(0u);
@@ -46,10 +66,8 @@ void main() {
   uvec2 shadowCells = uvec2(0u);
   for (uint l = 0u; l < lightCount; ++l) {
     uint slot = path * lightCount + l;
-    // Live: emitted at this depth (occluded or not). A light edit adds only the rays it traced (w = 1): one that
-    // took its recorded occlusion (w = 2, shade.comp OCCLUSION) is the ray recorded when it was traced.
-    float live = imageLoad(shadowContribBuffer, int(slot)).w;
-    if (SHADOWS_ONLY ? live == 1.0f : live != 0.0f) {
+    // Live: emitted at this depth (occluded or not; traced, w = 1, or taken from the occlusion cache, w = 2).
+    if (imageLoad(shadowContribBuffer, int(slot)).w != 0.0f) {
       HtRay shadow = load_shadow_ray(slot);
       shadowCells |= ht_segment_cells(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, FRAME.grid);
     }

@@ -19,6 +19,7 @@
 #include "gpu/segment_cells.h"
 #include "gpu_test_util.h"
 #include "scene/load_scene.h"
+#include "scene/mesh_generators.h"
 #include "scene/scene_edits.h"
 
 namespace ht::test {
@@ -230,6 +231,46 @@ TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesEqualsAFullRender) {
     EXPECT_TRUE(sameBits(relit, fullRender(edited, camera)));
   }
   EXPECT_LT(traced, total) << "every target was re-traced: the masks select nothing";
+}
+
+// A light edit's frame records the cells of the shadow rays it traced, so a later move is tested against where the
+// light is now. The lamp moves from the left to low on the right: the rays from the floor now run through the cells
+// of a box on the right, whose shadow falls on floor that sees neither the box nor its cells. The box then rises,
+// and that floor must be re-traced (with the old lamp's cells only, it was not).
+TEST(FrameReuse, ALightEditRecordsItsShadowRaysForTheMovesAfter) {
+  Scene scene;
+  scene.name = "test:lamp-and-box";
+  const std::uint32_t white = addDiffuseMirrorGlass(scene).diffuse;
+  makeQuad(scene, glm::vec3(0.0f), glm::vec3(2.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, -2.0f), white);
+  SceneNode box;
+  box.name = "box";
+  box.firstVertex = static_cast<std::uint32_t>(scene.positions.size());
+  const TriangleRange r = makeBox(scene, glm::vec3(0.0f), glm::vec3(0.15f), white);
+  box.firstTriangle = static_cast<std::uint32_t>(r.first);
+  box.triangleCount = static_cast<std::uint32_t>(r.count);
+  box.vertexCount = static_cast<std::uint32_t>(scene.positions.size()) - box.firstVertex;
+  scene.nodes.push_back(box);
+  setNodeWorldMatrix(scene, "box", glm::translate(glm::dmat4(1.0), glm::dvec3(1.5, 0.2, 0.0)));
+  Light lamp;
+  lamp.position = glm::vec3(-1.5f, 1.0f, 0.0f);
+  lamp.intensity = 2.0f;
+  scene.lights.push_back(lamp);
+  const gpu::FrameCamera camera = lookAt(glm::vec3(0.6f, 1.4f, 1.0f), glm::vec3(0.6f, 0.0f, 0.0f), 40.0f, 48, 36);
+
+  gpu::Renderer renderer(sharedContext(), scene);
+  Scene edited = scene;
+  ASSERT_EQ(renderer.render(camera, reuseSettings()).reuse, FrameReuse::None);
+  LightEdit lowRight;
+  lowRight.position = glm::dvec3(1.95, 0.5, 0.0);
+  editLight(edited, 0, lowRight);
+  renderer.updateLights(edited);
+  const gpu::RenderResult lit = renderer.render(camera, reuseSettings());
+  ASSERT_EQ(lit.reuse, FrameReuse::CachedPrimaryHits);
+  moveNode(edited, "box", glm::dvec3(0.0, 0.12, 0.0), renderer);
+  const gpu::RenderResult moved = renderer.render(camera, reuseSettings());
+  EXPECT_EQ(moved.reuse, FrameReuse::PartialRetrace);
+  EXPECT_FALSE(sameBits(moved, lit)) << "the box's shadow did not move in view";
+  EXPECT_TRUE(sameBits(moved, fullRender(edited, camera)));
 }
 
 // The same over many batches: the secondary cache's queues are kept per batch, and the marking pass tests each
