@@ -79,16 +79,23 @@ void moveNode(Scene& scene, const std::string& node, glm::dvec3 by, gpu::Rendere
   renderer.replaceSceneAfterMove(scene, before, nodeWorldBounds(scene, index));
 }
 
+// Edits light `light` of `edited`, tells `renderer` and renders the next frame, which re-shades the cached hits.
+gpu::RenderResult relight(Scene& edited, std::size_t light, const LightEdit& edit, gpu::Renderer& renderer,
+                          const gpu::FrameCamera& camera) {
+  editLight(edited, light, edit);
+  renderer.updateLights(edited);
+  gpu::RenderResult r = renderer.render(camera, reuseSettings());
+  EXPECT_EQ(r.reuse, FrameReuse::CachedPrimaryHits);
+  return r;
+}
+
 // Colour and intensity edits leave every shadow ray where it was: its recorded occlusion holds, at every depth, and
 // no ray is traced at all. A light switched off emits no shadow rays, so when it is switched on again its rays have
 // no recorded occlusion and are traced; a light that moves has its rays traced too.
 void expectLightEditsTraceOnlyTheRaysOfMovedOrRelitLights(const Scene& scene, Scene& edited, gpu::Renderer& renderer,
                                                           const gpu::FrameCamera& camera) {
   auto editAndRender = [&](std::size_t light, const LightEdit& edit) {
-    editLight(edited, light, edit);
-    renderer.updateLights(edited);
-    gpu::RenderResult r = renderer.render(camera, reuseSettings());
-    EXPECT_EQ(r.reuse, FrameReuse::CachedPrimaryHits);
+    gpu::RenderResult r = relight(edited, light, edit, renderer, camera);
     EXPECT_TRUE(sameBits(r, fullRender(edited, camera)));
     return r;
   };
@@ -216,18 +223,14 @@ TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesEqualsAFullRender) {
     // The partial re-renders kept the primary-hit cache up to date: a light edit now re-shades it.
     LightEdit warmer;
     warmer.color = glm::dvec3(1.0, 0.8, 0.6);
-    editLight(edited, 0, warmer);
-    renderer.updateLights(edited);
-    const gpu::RenderResult lit = renderer.render(camera, reuseSettings());
-    EXPECT_EQ(lit.reuse, FrameReuse::CachedPrimaryHits);
+    const gpu::RenderResult lit = relight(edited, 0, warmer, renderer, camera);
     EXPECT_TRUE(sameBits(lit, fullRender(edited, camera)));
-    // That frame traced the bounces again (the moves left their cache stale) and cached them: the next light edit
-    // traces nothing.
+    // That frame traced the bounces again (the moves left their cache stale) and cached them and the occlusion of
+    // their shadow rays: the next light edit traces nothing.
     warmer.intensity = 3.0;
-    editLight(edited, 0, warmer);
-    renderer.updateLights(edited);
-    const gpu::RenderResult relit = renderer.render(camera, reuseSettings());
+    const gpu::RenderResult relit = relight(edited, 0, warmer, renderer, camera);
     EXPECT_EQ(stageMs(relit, "trace"), 0.0);
+    EXPECT_EQ(relit.raysTraced, 0u);
     EXPECT_TRUE(sameBits(relit, fullRender(edited, camera)));
   }
   EXPECT_LT(traced, total) << "every target was re-traced: the masks select nothing";
@@ -262,10 +265,7 @@ TEST(FrameReuse, ALightEditRecordsItsShadowRaysForTheMovesAfter) {
   ASSERT_EQ(renderer.render(camera, reuseSettings()).reuse, FrameReuse::None);
   LightEdit lowRight;
   lowRight.position = glm::dvec3(1.95, 0.5, 0.0);
-  editLight(edited, 0, lowRight);
-  renderer.updateLights(edited);
-  const gpu::RenderResult lit = renderer.render(camera, reuseSettings());
-  ASSERT_EQ(lit.reuse, FrameReuse::CachedPrimaryHits);
+  const gpu::RenderResult lit = relight(edited, 0, lowRight, renderer, camera);
   moveNode(edited, "box", glm::dvec3(0.0, 0.12, 0.0), renderer);
   const gpu::RenderResult moved = renderer.render(camera, reuseSettings());
   EXPECT_EQ(moved.reuse, FrameReuse::PartialRetrace);
