@@ -126,13 +126,18 @@ VkDeviceSize FrameReuseState::secondaryCountOffset(std::uint64_t batchFirst, std
   return ((batchFirst / countsPerBatch_) * countsDepths_ + depth) * sizeof(std::uint32_t);
 }
 
+std::uint32_t FrameReuseState::secondaryCount(std::uint64_t batchFirst, std::uint32_t depth) const {
+  const auto* counts = static_cast<const std::uint32_t*>(secondaryCounts.mapped());
+  if (counts == nullptr || countsPerBatch_ == 0 || depth >= countsDepths_) return 0;
+  return counts[secondaryCountOffset(batchFirst, depth) / sizeof(std::uint32_t)];
+}
+
 std::vector<FrameReuseState::SecondaryQueue> FrameReuseState::secondaryQueues() const {
   std::vector<SecondaryQueue> queues;
-  const auto* counts = static_cast<const std::uint32_t*>(secondaryCounts.mapped());
-  if (counts == nullptr || countsPerBatch_ == 0) return queues;
+  if (countsPerBatch_ == 0) return queues;
   for (std::uint64_t first = 0; first < cachedPaths_; first += countsPerBatch_) {
     for (std::uint32_t depth = 1; depth < countsDepths_; ++depth) {
-      const std::uint32_t count = counts[secondaryCountOffset(first, depth) / sizeof(std::uint32_t)];
+      const std::uint32_t count = secondaryCount(first, depth);
       if (count > 0) queues.push_back({static_cast<std::uint32_t>(first), depth, count});
     }
   }

@@ -112,6 +112,7 @@ class FrameReuseState {
     std::uint32_t batchFirst, depth, count;
   };
   std::vector<SecondaryQueue> secondaryQueues() const;
+  std::uint32_t secondaryCount(std::uint64_t batchFirst, std::uint32_t depth) const;  // entries of one cached queue
   std::uint64_t cachedPaths() const { return cachedPaths_; }
   bool secondaryMarkable() const { return secondaryMarkable_; }
   // List header: moved cells (words 0-1), count (2), candidates for the exact tests (3; their entries from word 11's

@@ -123,6 +123,11 @@ void Renderer::Impl::recordDirtyInterleave(PassRecorder& rec, const FrameShape& 
 }
 
 void Renderer::Impl::copySecondary(std::uint32_t depth, std::uint32_t batchFirst, std::uint32_t count, bool load) {
+  // Loading, the queue's size is known here (the frame that filled the cache copied it to secondaryCounts): only
+  // its entries are copied, not the batch's worth (the later depths' queues are a fraction of the batch, and
+  // lavapipe copies at memcpy speed on one thread: 4 x 26 MB took about 15 ms on the HPO wall).
+  if (load) count = reuse.secondaryCount(batchFirst, depth);
+  if (count == 0) return;
   const FrameReuseState::SecondaryRegion r = reuse.secondaryRegion(depth);
   const std::uint32_t q = depth % 2;
   const struct {

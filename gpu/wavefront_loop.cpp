@@ -250,10 +250,13 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
     const VkDeviceSize hitBytes = VkDeviceSize{count} * sizeof(gpu_shared::HtHit);
     PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
     if (loadHits) {  // what raygen's first invocation writes: queue 0 holds the batch, the others are empty
+      // (shade reads the cached rays and hits in place: HITS_FROM_CACHE)
       const std::uint32_t queues[3] = {count, 0u, 0u};
       vkCmdUpdateBuffer(cmd, counters.handle(), offsetof(GpuCounters, queueCount), sizeof(queues), queues);
-      recordComputeCopy(cmd, reuse.primaryRays, batchFirst * sizeof(gpu_shared::HtRay), work.rays[0], 0, rayBytes);
-      recordComputeCopy(cmd, reuse.primaryHits, batchFirst * sizeof(gpu_shared::HtHit), work.hits, 0, hitBytes);
+      VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &b, 0,
+                           nullptr, 0, nullptr);
     } else {
       rec.dispatch(raygen, passConstants(batchFirst, count, 0, 0), groupsFor(count), Stage::Raygen);
     }
@@ -262,8 +265,10 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
       PassConstants pc = passConstants(batchFirst, count, depth, q);
       const VkDeviceSize queueArgs = offsetof(GpuCounters, dispatch) + q * sizeof(glm::uvec4);
       const std::uint32_t occlusion = occlusionMode(depth);
+      // shade.comp's reuse constants OCCLUSION and HITS_FROM_CACHE only when set: other frames keep their pipelines.
       std::vector<std::uint32_t> shadeConstants = shadeFeatures;
-      if (occlusion != 0) shadeConstants.push_back(occlusion);  // only when set: other frames keep their pipelines
+      if (occlusion != 0) shadeConstants = withConstant(std::move(shadeConstants), 4, occlusion);
+      if (depth == 0 && loadHits) shadeConstants = withConstant(std::move(shadeConstants), 5, 1u);
       const ComputePipeline& shade = pipeline(ShaderId::Shade, depthSpec(std::move(shadeConstants), depth));
       const std::uint32_t shadowCache = occlusion == 0 ? 0u : occlusion == 3 ? 2u : 1u;  // trace_any SHADOW_CACHE
       const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u, shadowCache}));

@@ -58,10 +58,7 @@ void main() {
   uint target = REFINING ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + path / spp] : path / spp;
   uint s = path % spp;
   if (FROM_CACHE) {
-    uint framePath = target * spp + s;
-    vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * framePath];
-    vec4 b = RayCacheRef(FRAME.primaryRays).v[2u * framePath + 1u];
-    store_ray(0u, i, HtRay(a.xyz, a.w, b.xyz, b.w));
+    store_ray(0u, i, cached_primary_ray(target * spp + s));
     return;
   }
   uint perPixel = ht_model_has_subpixel_targets(MODEL) ? 3u : 1u;

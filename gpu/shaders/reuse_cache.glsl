@@ -27,15 +27,19 @@ uint listed_frame_path(uint batchPath) {
 }
 
 uvec4 cached_primary_hit(uint path) { return HitCacheRef(FRAME.primaryHits).h[path]; }
+HtRay cached_primary_ray(uint path) {
+  vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * path], b = RayCacheRef(FRAME.primaryRays).v[2u * path + 1u];
+  return HtRay(a.xyz, a.w, b.xyz, b.w);
+}
 
 // Does the cached primary segment of frame path `path`, to its cached hit (a miss: to tmax), meet the padded moved
 // bounds? If not, that hit is still the path's primary hit: every triangle of the moved node lies inside those
 // bounds, every other triangle is unchanged, and the closest hit is the order-free one.
 bool cached_primary_meets_moved(uint path) {
-  vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * path], b = RayCacheRef(FRAME.primaryRays).v[2u * path + 1u];
+  HtRay ray = cached_primary_ray(path);
   uvec4 hit = cached_primary_hit(path);
-  float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : b.w;
-  return ht_segment_meets_box(a.xyz, b.xyz, a.w, tEnd, moved_lo(), moved_hi());
+  float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : ray.tmax;
+  return ht_segment_meets_box(ray.origin, ray.dir, ray.tmin, tEnd, moved_lo(), moved_hi());
 }
 
 // The shadow-occlusion cache (gpu/frame_reuse.h ReusePlan::occlusionDepths): a word per depth and frame path, bit l

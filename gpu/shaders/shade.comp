@@ -30,6 +30,10 @@ layout(constant_id = 3) const bool HAS_TEXTURES = true;
 //     triangle can meet it).
 const uint OCCLUSION_OFF = 0u, OCCLUSION_RECORD = 1u, OCCLUSION_KEPT_LIGHTS = 2u, OCCLUSION_KEPT_SEGMENTS = 3u;
 layout(constant_id = 4) const uint OCCLUSION = OCCLUSION_OFF;
+// Depth 0 of a frame re-shaded from cached hits: the primary rays and hits are read from the cache in place (path
+// order, from pc.batchFirst) rather than copied into queue 0 and the hit buffer first (the copies cost lavapipe
+// about 10 ms on the HPO wall); no other pass of such a frame reads them at depth 0.
+layout(constant_id = 5) const bool HITS_FROM_CACHE = false;
 
 const float HT_INV_PI = 0.31830988618379067154f;
 const float HT_RAY_FAR = 3.0e38f;
@@ -156,7 +160,8 @@ uint emit_shadow_rays(uint path, SurfacePoint s, vec3 weight) {
     uint q = append_slot(want && !recorded, 2u);
     if (want) {
       uint slot = path * lightCount + l;
-      store_shadow_ray(slot, HtRay(origin, 0.0f, wi, dist));  // (record_segments reads it)
+      // record_segments reads the queued rays, and in a partial re-render every live one
+      if (!recorded || OCCLUSION == OCCLUSION_KEPT_SEGMENTS) store_shadow_ray(slot, HtRay(origin, 0.0f, wi, dist));
       if (recorded) {
         taken |= 1u << l;
         bool occluded = (word & (1u << l)) != 0u;
@@ -198,8 +203,16 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= COUNTERS.queueCount[pc.queue]) return;
   uint path = queue_path(i);
-  HtRay ray = load_ray(pc.queue, i);
-  HtHit hit = load_hit(i);
+  HtRay ray;
+  HtHit hit;
+  if (HITS_FROM_CACHE) {
+    ray = cached_primary_ray(pc.batchFirst + i);
+    uvec4 h = cached_primary_hit(pc.batchFirst + i);
+    hit = HtHit(uintBitsToFloat(h.x), h.y, uintBitsToFloat(h.z), uintBitsToFloat(h.w));
+  } else {
+    ray = load_ray(pc.queue, i);
+    hit = load_hit(i);
+  }
   vec3 throughput = path_throughput(path);
   vec3 radiance = vec3(0.0f);
   bool hitSurface = hit.triId != HT_MISS;
