@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "bench/bench_main.h"
+#include "bench/image_metrics.h"
 #include "bench/output_file.h"
 #include "bench/timing_series.h"
 #include "camera_models/display_config.h"
@@ -107,17 +108,6 @@ DisplayConfig scaledDisplay(const std::string& spec, double scale) {
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// Fraction of output values (channels of every pixel of every view) that differ between two frames.
-double changedFraction(const gpu::RenderResult& a, const gpu::RenderResult& b) {
-  std::size_t changed = 0, values = 0;
-  for (std::size_t i = 0; i < a.rgba.size(); ++i) {
-    if (i % 4 == 3) continue;
-    ++values;
-    changed += a.rgba[i] != b.rgba[i] ? 1 : 0;
-  }
-  return values ? double(changed) / double(values) : 0.0;
 }
 
 // Fraction of the cached primary hits on the node's triangles.
@@ -218,7 +208,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     e.lightVsRecording.push_back(light / recorded.totalMs);
     e.moveVsRecording.push_back(move / recorded.totalMs);
     e.traced.push_back(double(moved.tracedTargets) / double(e.targets));
-    e.changed.push_back(changedFraction(lit, moved));
+    e.changed.push_back(changedValueFraction(lit.rgba, moved.rgba));
     appendStages(stageRuns[0], fullFrame.stages);
     appendStages(stageRuns[1], lit.stages);
     appendStages(stageRuns[2], moved.stages);

@@ -233,11 +233,13 @@ void timeToQuality(const StreamOptions& o, const DisplayConfig& display, const S
       o.spp, median(singleMs), median(uniformRatio), median(adaptiveRatio), median(uniformSppRatio));
 }
 
-// Frames until the stop rule holds everywhere (at most 200); their summed time, count and the first frame's report.
+// Frames until the stop rule holds everywhere (at most 200); their summed time, count, the first frame's report and
+// the last frame's image.
 struct Convergence {
   double ms = 0.0;
   std::uint32_t frames = 0;
   gpu::AccumulationReport first;
+  std::vector<float> lastRgba;
 };
 
 Convergence converge(gpu::Renderer& renderer, const gpu::FrameCamera& camera, const gpu::RenderSettings& frame,
@@ -249,6 +251,7 @@ Convergence converge(gpu::Renderer& renderer, const gpu::FrameCamera& camera, co
     c.ms += shown.totalMs;
     c.frames += 1;
     done = shown.accumulation.converged;
+    c.lastRgba = std::move(shown.rgba);
   }
   return c;
 }
@@ -276,7 +279,7 @@ void nodeMove(const StreamOptions& o, const DisplayConfig& display, Scene scene)
     const std::uint32_t moved[] = {static_cast<std::uint32_t>(*node)};
     renderer.moveNodes(scene, moved);
   }
-  std::vector<double> ratio, resetFraction;
+  std::vector<double> ratio, resetFraction, changedFraction;
   for (std::uint32_t run = 0; run < o.runs; ++run) {
     gpu::Accumulator accumulator(policy);
     const Convergence full = converge(renderer, camera.camera, frame, accumulator);
@@ -289,14 +292,19 @@ void nodeMove(const StreamOptions& o, const DisplayConfig& display, Scene scene)
     const Convergence again = converge(renderer, camera.camera, frame, accumulator);
     ratio.push_back(again.ms / full.ms);
     resetFraction.push_back(double(again.first.resetTargets) / double(again.first.targets));
+    // What the move changed: the converged frames differ where it did (a restarted target it did not change
+    // converges to the same bits, docs/REUSE.md §4 in streams).
+    changedFraction.push_back(changedValueFraction(full.lastRgba, again.lastRgba));
     std::printf(
         "run %u: converged in %u frames, %.0f ms; after the move %u frames, %.0f ms (%.3fx), %.2f %% of the "
-        "targets restarted%s\n",
+        "targets restarted%s, %.2f %% of the output values changed\n",
         run + 1, full.frames, full.ms, again.frames, again.ms, again.ms / full.ms, 100.0 * resetFraction.back(),
-        again.first.restarted ? " (the whole accumulation restarted)" : "");
+        again.first.restarted ? " (the whole accumulation restarted)" : "", 100.0 * changedFraction.back());
   }
-  std::printf("median re-convergence after moving %s: %.3fx the first convergence, %.2f %% of the targets restarted\n",
-              o.node.c_str(), median(ratio), 100.0 * median(resetFraction));
+  std::printf(
+      "median re-convergence after moving %s: %.3fx the first convergence, %.2f %% of the targets restarted, %.2f %% "
+      "of the output values changed\n",
+      o.node.c_str(), median(ratio), 100.0 * median(resetFraction), 100.0 * median(changedFraction));
 }
 
 // Reads one frame's parts; false at the end of the stream.

@@ -99,4 +99,18 @@ ImageMetrics compareImages(std::span<const float> test, std::span<const float> r
   return m;
 }
 
+double changedValueFraction(std::span<const float> a, std::span<const float> b) {
+  if (a.size() != b.size()) {
+    throw Error("changedValueFraction: frames of " + std::to_string(a.size()) + " and " + std::to_string(b.size()) +
+                " values");
+  }
+  std::size_t changed = 0, values = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (i % 4 == 3) continue;
+    ++values;
+    changed += a[i] != b[i] ? 1 : 0;
+  }
+  return values ? double(changed) / double(values) : 0.0;
+}
+
 }  // namespace ht::bench

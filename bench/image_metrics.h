@@ -23,4 +23,8 @@ double psnrFromMse(double mse);
 ImageMetrics compareImages(std::span<const float> test, std::span<const float> reference, std::uint32_t width,
                            std::uint32_t height);
 
+// Fraction of the RGB values (alpha skipped) of two RGBA frames that differ at all; 0 for empty frames. Throws
+// ht::Error if the sizes differ.
+double changedValueFraction(std::span<const float> a, std::span<const float> b);
+
 }  // namespace ht::bench

@@ -53,6 +53,17 @@ QualityPoint point(const char* path, std::uint32_t spp, double ms, double psnr, 
 // Equal-time / equal-PSNR comparisons worked by hand: the direct curve (1 s, 40 dB) -> (2 s, 44 dB); the adaptive
 // curve keeps, of the adaptive and direct points, those better than every faster one: (1 s, 40) -> (1.5 s, 45)
 // -> (4 s, 47); (1.8 s, 44) and (2 s, 44) are dominated.
+TEST(ImageMetrics, ChangedValueFractionCountsColourValuesThatDifferAndSkipsAlpha) {
+  std::vector<float> a = uniformImage(4, 2, 0.5f), b = a;
+  EXPECT_EQ(changedValueFraction(a, b), 0.0);
+  b[3] = 0.25f;  // alpha of pixel 0: not a colour value
+  EXPECT_EQ(changedValueFraction(a, b), 0.0);
+  b[0] = 0.25f;                               // red of pixel 0
+  b[4 * 5 + 2] = std::nextafter(0.5f, 1.0f);  // blue of pixel 5, one ulp off
+  EXPECT_DOUBLE_EQ(changedValueFraction(a, b), 2.0 / 24.0);
+  EXPECT_THROW(changedValueFraction(a, uniformImage(4, 1, 0.5f)), Error);
+}
+
 TEST(QualityComparison, DirectAndAdaptiveCurvesAgainstAQuiltPoint) {
   DisplayQuality d;
   d.points = {point("direct", 1, 1000, 40),      point("direct", 2, 2000, 44),
