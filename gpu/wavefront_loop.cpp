@@ -217,9 +217,14 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   // the recorded occlusion of the lights a light edit kept, or (depth 0 of a partial re-render) of the segments a
   // move kept -- and trace_any.comp's SHADOW_CACHE, which records what it traces.
   auto occlusionMode = [&](std::uint32_t depth) -> std::uint32_t {
-    if (!lights || accumulating || which == TracedTargets::Refined || depth >= framePlan.occlusionDepths) return 0u;
-    if (which == TracedTargets::Dirty) return depth == 0 && reusePrimary ? 3u : 0u;
-    return depth < framePlan.occlusionKeptDepths ? 2u : 1u;
+    using namespace gpu_shared;
+    if (!lights || accumulating || which == TracedTargets::Refined || depth >= framePlan.occlusionDepths) {
+      return HT_OCCLUSION_OFF;
+    }
+    if (which == TracedTargets::Dirty) {
+      return depth == 0 && reusePrimary ? HT_OCCLUSION_KEPT_SEGMENTS : HT_OCCLUSION_OFF;
+    }
+    return depth < framePlan.occlusionKeptDepths ? HT_OCCLUSION_KEPT_LIGHTS : HT_OCCLUSION_RECORD;
   };
   const std::vector<std::uint32_t> shadeFeatures = {lights, mirror, glass, textures};
   const ComputePipeline& afterShade = pipeline(ShaderId::Prepare, {0u});
@@ -267,10 +272,14 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
       const std::uint32_t occlusion = occlusionMode(depth);
       // shade.comp's reuse constants OCCLUSION and HITS_FROM_CACHE only when set: other frames keep their pipelines.
       std::vector<std::uint32_t> shadeConstants = shadeFeatures;
-      if (occlusion != 0) shadeConstants = withConstant(std::move(shadeConstants), 4, occlusion);
+      if (occlusion != gpu_shared::HT_OCCLUSION_OFF) {
+        shadeConstants = withConstant(std::move(shadeConstants), 4, occlusion);
+      }
       if (depth == 0 && loadHits) shadeConstants = withConstant(std::move(shadeConstants), 5, 1u);
       const ComputePipeline& shade = pipeline(ShaderId::Shade, depthSpec(std::move(shadeConstants), depth));
-      const std::uint32_t shadowCache = occlusion == 0 ? 0u : occlusion == 3 ? 2u : 1u;  // trace_any SHADOW_CACHE
+      const std::uint32_t shadowCache = occlusion == gpu_shared::HT_OCCLUSION_OFF ? gpu_shared::HT_SHADOW_CACHE_OFF
+                                        : which == TracedTargets::Dirty ? gpu_shared::HT_SHADOW_CACHE_RECORD_LISTED
+                                                                        : gpu_shared::HT_SHADOW_CACHE_RECORD;
       const ComputePipeline& traceAny = pipeline(ShaderId::TraceAny, traceSpec({1u, shadowCache}));
       const ComputePipeline& gather = pipeline(ShaderId::GatherDirect, depthSpec({}, depth));
       auto overQueue = [&](const ComputePipeline& pass, Stage stage) {  // one invocation per entry of queue q

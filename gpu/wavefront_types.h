@@ -22,6 +22,20 @@ using uint64_t = std::uint64_t;
 
 HT_CONST uint HT_WORKGROUP_SIZE = 64u;
 HT_CONST uint HT_MAX_LIGHTS = 16u;
+// Frame reuse's shadow-occlusion cache (gpu/frame_reuse.h ReusePlan::occlusionDepths, docs/REUSE.md §3): a word per
+// depth and frame path, bit l = the path's shadow ray to light l was occluded, bit HT_OCCLUSION_TRACED_SHIFT + l =
+// that ray was traced since the path's hit at that depth was found (16 lights at most, so both fit).
+HT_CONST uint HT_OCCLUSION_TRACED_SHIFT = 16u;
+// shade.comp OCCLUSION: what shade takes from the cache (nothing, the lights a light edit kept, the segments a move
+// kept at depth 0 of a partial re-render); every mode but OFF rewrites the words of the paths it shades.
+HT_CONST uint HT_OCCLUSION_OFF = 0u;
+HT_CONST uint HT_OCCLUSION_RECORD = 1u;
+HT_CONST uint HT_OCCLUSION_KEPT_LIGHTS = 2u;
+HT_CONST uint HT_OCCLUSION_KEPT_SEGMENTS = 3u;
+// trace_any.comp SHADOW_CACHE: where the traced rays' occlusion goes (the batch's own paths, or listed targets').
+HT_CONST uint HT_SHADOW_CACHE_OFF = 0u;
+HT_CONST uint HT_SHADOW_CACHE_RECORD = 1u;
+HT_CONST uint HT_SHADOW_CACHE_RECORD_LISTED = 2u;
 
 // Material kinds (scene.h MaterialKind) and light types (scene.h Light::Type).
 HT_CONST uint HT_MATERIAL_DIFFUSE = 0u;

@@ -27,6 +27,10 @@ uint listed_frame_path(uint batchPath) {
 }
 
 uvec4 cached_primary_hit(uint path) { return HitCacheRef(FRAME.primaryHits).h[path]; }
+HtHit cached_primary_ht_hit(uint path) {
+  uvec4 h = cached_primary_hit(path);
+  return HtHit(uintBitsToFloat(h.x), h.y, uintBitsToFloat(h.z), uintBitsToFloat(h.w));
+}
 HtRay cached_primary_ray(uint path) {
   vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * path], b = RayCacheRef(FRAME.primaryRays).v[2u * path + 1u];
   return HtRay(a.xyz, a.w, b.xyz, b.w);
@@ -42,11 +46,7 @@ bool cached_primary_meets_moved(uint path) {
   return ht_segment_meets_box(ray.origin, ray.dir, ray.tmin, tEnd, moved_lo(), moved_hi());
 }
 
-// The shadow-occlusion cache (gpu/frame_reuse.h ReusePlan::occlusionDepths): a word per depth and frame path, bit l
-// = the path's shadow ray to light l at that depth was occluded, bit 16 + l = that ray was traced since the path's
-// hit at that depth was found (only then does bit l say anything).
-const uint HT_OCCLUSION_TRACED_SHIFT = 16u;
-// The word of batch path `batchPath` at this dispatch's depth; `listed`: the batch traces listed targets.
+// The shadow-occlusion cache's word (gpu/wavefront_types.h HT_OCCLUSION_TRACED_SHIFT) of batch path `batchPath` at this dispatch's depth; `listed`: the batch traces listed targets.
 uint occlusion_word_index(uint batchPath, bool listed) {
   uint framePath = listed ? listed_frame_path(batchPath) : pc.batchFirst + batchPath;
   return pc.depth * FRAME.dims.w * FRAME.dims.z + framePath;

@@ -18,9 +18,9 @@ layout(constant_id = 0) const bool HAS_LIGHTS = true;
 layout(constant_id = 1) const bool HAS_MIRROR = true;
 layout(constant_id = 2) const bool HAS_GLASS = true;
 layout(constant_id = 3) const bool HAS_TEXTURES = true;
-// The shadow-occlusion cache (docs/REUSE.md §3-4, reuse_cache.glsl): with OCCLUSION != OFF, shade writes the word of
-// each path it shades: a ray it takes from the cache keeps its bits, every other bit is cleared, and trace_any sets
-// those of the rays it traces (SHADOW_CACHE). A ray whose recorded occlusion holds gets what trace_any would give its
+// The shadow-occlusion cache (docs/REUSE.md §3-4; modes HT_OCCLUSION_* in gpu/wavefront_types.h): with OCCLUSION !=
+// OFF, shade writes the word of each path it shades: a ray it takes from the cache keeps its bits, every other bit
+// is cleared, and trace_any sets those of the rays it traces (SHADOW_CACHE). A ray whose recorded occlusion holds gets what trace_any would give its
 // slot and is not queued (its slot's w = 2: live, not traced), so trace_any's subgroups hold only rays it traces.
 //   RECORD: nothing is taken from the cache.
 //   KEPT_LIGHTS (a frame re-shaded from cached hits after a light edit): the path's hit is the recorded one, so a ray
@@ -28,8 +28,7 @@ layout(constant_id = 3) const bool HAS_TEXTURES = true;
 //   KEPT_SEGMENTS (depth 0 of a partial re-render after a node move): a ray whose path kept its cached primary hit
 //     (the same surface point and lights, so the same ray) and whose segment avoids the padded moved bounds (no moved
 //     triangle can meet it).
-const uint OCCLUSION_OFF = 0u, OCCLUSION_RECORD = 1u, OCCLUSION_KEPT_LIGHTS = 2u, OCCLUSION_KEPT_SEGMENTS = 3u;
-layout(constant_id = 4) const uint OCCLUSION = OCCLUSION_OFF;
+layout(constant_id = 4) const uint OCCLUSION = HT_OCCLUSION_OFF;
 // Depth 0 of a frame re-shaded from cached hits: the primary rays and hits are read from the cache in place (path
 // order, from pc.batchFirst) rather than copied into queue 0 and the hit buffer first (the copies cost lavapipe
 // about 10 ms on the HPO wall); no other pass of such a frame reads them at depth 0.
@@ -136,11 +135,11 @@ uint emit_shadow_rays(uint path, SurfacePoint s, vec3 weight) {
   vec3 origin = ht_offset_ray(s.p, s.nFace);
   uint word = 0u;      // the path's recorded word
   uint holding = 0u;   // bit l: light l's recorded occlusion holds (if the ray's segment allows, KEPT_SEGMENTS)
-  if (OCCLUSION == OCCLUSION_KEPT_LIGHTS || OCCLUSION == OCCLUSION_KEPT_SEGMENTS) {
-    word = UintRef(FRAME.shadowOcclusion).v[occlusion_word_index(path, OCCLUSION == OCCLUSION_KEPT_SEGMENTS)];
+  if (OCCLUSION == HT_OCCLUSION_KEPT_LIGHTS || OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS) {
+    word = UintRef(FRAME.shadowOcclusion).v[occlusion_word_index(path, OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS)];
     holding = word >> HT_OCCLUSION_TRACED_SHIFT;
-    if (OCCLUSION == OCCLUSION_KEPT_LIGHTS) holding &= FRAME.frame.w;
-    if (OCCLUSION == OCCLUSION_KEPT_SEGMENTS) {
+    if (OCCLUSION == HT_OCCLUSION_KEPT_LIGHTS) holding &= FRAME.frame.w;
+    if (OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS) {
       load_moved_view();
       if (cached_primary_meets_moved(listed_frame_path(path))) holding = 0u;  // depth 0: path = batch path
     }
@@ -154,14 +153,14 @@ uint emit_shadow_rays(uint path, SurfacePoint s, vec3 weight) {
     vec3 contrib = weight * e * max(cosTheta, 0.0f);
     bool want = cosTheta > 0.0f && dot(s.nFace, wi) > 0.0f && max(contrib.x, max(contrib.y, contrib.z)) > 0.0f;
     bool recorded = want && (holding & (1u << l)) != 0u;
-    if (OCCLUSION == OCCLUSION_KEPT_SEGMENTS && recorded) {
+    if (OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS && recorded) {
       recorded = !ht_segment_meets_box(origin, wi, 0.0f, dist, moved_lo(), moved_hi());
     }
     uint q = append_slot(want && !recorded, 2u);
     if (want) {
       uint slot = path * lightCount + l;
       // record_segments reads the queued rays, and in a partial re-render every live one
-      if (!recorded || OCCLUSION == OCCLUSION_KEPT_SEGMENTS) store_shadow_ray(slot, HtRay(origin, 0.0f, wi, dist));
+      if (!recorded || OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS) store_shadow_ray(slot, HtRay(origin, 0.0f, wi, dist));
       if (recorded) {
         taken |= 1u << l;
         bool occluded = (word & (1u << l)) != 0u;
@@ -207,8 +206,7 @@ void main() {
   HtHit hit;
   if (HITS_FROM_CACHE) {
     ray = cached_primary_ray(pc.batchFirst + i);
-    uvec4 h = cached_primary_hit(pc.batchFirst + i);
-    hit = HtHit(uintBitsToFloat(h.x), h.y, uintBitsToFloat(h.z), uintBitsToFloat(h.w));
+    hit = cached_primary_ht_hit(pc.batchFirst + i);
   } else {
     ray = load_ray(pc.queue, i);
     hit = load_hit(i);
@@ -267,8 +265,8 @@ void main() {
   // Subgroup operations act on the lanes active at the call, so each divergent group appends for itself.
   uint occlusionWord = 0u;  // a path without shadow rays here has no recorded occlusion here
   if (HAS_LIGHTS && wantShadows) occlusionWord = emit_shadow_rays(path, s, throughput * albedo * HT_INV_PI);
-  if (OCCLUSION != OCCLUSION_OFF) {
-    UintRef(FRAME.shadowOcclusion).v[occlusion_word_index(path, OCCLUSION == OCCLUSION_KEPT_SEGMENTS)] = occlusionWord;
+  if (OCCLUSION != HT_OCCLUSION_OFF) {
+    UintRef(FRAME.shadowOcclusion).v[occlusion_word_index(path, OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS)] = occlusionWord;
   }
   if (HAS_MIRROR || HAS_GLASS) {
     uint out_queue = 1u - pc.queue;

@@ -11,11 +11,11 @@
 #include "gpu/segment_cells.h"
 
 layout(constant_id = 0) const uint SHADOW_QUEUE = 1u;
-// Frame reuse (docs/REUSE.md §3-4): records each traced ray's occlusion in the occlusion cache (reuse_cache.glsl),
-// whose word shade.comp (OCCLUSION) wrote for this depth: 1 for a frame's own paths, 2 for the listed targets of a
-// partial re-render. Shade queued only the rays whose recorded occlusion does not hold.
-const uint SHADOW_CACHE_OFF = 0u, SHADOW_CACHE_RECORD = 1u, SHADOW_CACHE_RECORD_LISTED = 2u;
-layout(constant_id = 1) const uint SHADOW_CACHE = SHADOW_CACHE_OFF;
+// Frame reuse (docs/REUSE.md §3-4): records each traced ray's occlusion in the occlusion cache (HT_SHADOW_CACHE_*,
+// gpu/wavefront_types.h), whose word shade.comp (OCCLUSION) wrote for this depth: RECORD for a frame's own paths,
+// RECORD_LISTED for the listed targets of a partial re-render. Shade queued only the rays whose recorded occlusion
+// does not hold.
+layout(constant_id = 1) const uint SHADOW_CACHE = HT_SHADOW_CACHE_OFF;
 
 #include "gpu/shaders/reuse_cache.glsl"
 
@@ -48,9 +48,9 @@ void main() {
     } else {
       store_hit(i, r.hit);
     }
-    if (SHADOW_CACHE != SHADOW_CACHE_OFF) {
+    if (SHADOW_CACHE != HT_SHADOW_CACHE_OFF) {
       uint lightCount = FRAME.scene.x, l = slot % lightCount;
-      uint word = occlusion_word_index(slot / lightCount, SHADOW_CACHE == SHADOW_CACHE_RECORD_LISTED);
+      uint word = occlusion_word_index(slot / lightCount, SHADOW_CACHE == HT_SHADOW_CACHE_RECORD_LISTED);
       uint bits = (1u << (HT_OCCLUSION_TRACED_SHIFT + l)) | (occluded ? 1u << l : 0u);
       atomicOr(UintRef(FRAME.shadowOcclusion).v[word], bits);
     }

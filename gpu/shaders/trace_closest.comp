@@ -29,8 +29,7 @@ void main() {
     load_moved_view();
     uint path = listed_frame_path(i);
     if (!cached_primary_meets_moved(path)) {
-      uvec4 h = cached_primary_hit(path);
-      store_hit(i, HtHit(uintBitsToFloat(h.x), h.y, uintBitsToFloat(h.z), uintBitsToFloat(h.w)));
+      store_hit(i, cached_primary_ht_hit(path));
       inQueue = false;  // not traced
     }
   }
