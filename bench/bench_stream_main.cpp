@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -239,6 +240,8 @@ struct Convergence {
   double ms = 0.0;
   std::uint32_t frames = 0;
   gpu::AccumulationReport first;
+  double firstMarkMs = 0.0;               // the first frame's marking pass (after a move: which targets restart)
+  std::map<std::string, double> stageMs;  // summed over the frames
   std::vector<float> lastRgba;
 };
 
@@ -248,6 +251,10 @@ Convergence converge(gpu::Renderer& renderer, const gpu::FrameCamera& camera, co
   for (bool done = false; !done && c.frames < 200;) {
     const gpu::RenderResult shown = renderer.accumulate(camera, frame, accumulator);
     if (c.frames == 0) c.first = shown.accumulation;
+    for (const gpu::StageTiming& s : shown.stages) {
+      c.stageMs[s.name] += s.ms;
+      if (c.frames == 0 && s.name == "mark") c.firstMarkMs = s.ms;
+    }
     c.ms += shown.totalMs;
     c.frames += 1;
     done = shown.accumulation.converged;
@@ -273,11 +280,17 @@ void nodeMove(const StreamOptions& o, const DisplayConfig& display, Scene scene)
   const double step = 0.05 * glm::length(glm::dvec3(sceneBounds.hi - sceneBounds.lo));
   std::cout << "frame: " << camera.shape.targets() << " targets; moving " << o.node << " by " << step
             << " along x and back\n";
-  {  // warm-up: the pipelines, and the first move switches the scene to the two-level BVH
+  {  // warm-up: the first move switches the scene to the two-level BVH; then the pipelines of recording frames and
+     // of a move's marking pass (a move in place) are compiled before the timed runs
     gpu::Accumulator warm(policy);
     renderer.accumulate(camera.camera, frame, warm);
     const std::uint32_t moved[] = {static_cast<std::uint32_t>(*node)};
     renderer.moveNodes(scene, moved);
+    gpu::Accumulator recording(policy);
+    renderer.accumulate(camera.camera, frame, recording);
+    const Bounds3 bounds = nodeWorldBounds(scene, *node);
+    renderer.moveNodes(scene, moved, gpu::MovedBounds{bounds, bounds});
+    renderer.accumulate(camera.camera, frame, recording);
   }
   std::vector<double> ratio, resetFraction, changedFraction;
   for (std::uint32_t run = 0; run < o.runs; ++run) {
@@ -300,6 +313,9 @@ void nodeMove(const StreamOptions& o, const DisplayConfig& display, Scene scene)
         "targets restarted%s, %.2f %% of the output values changed\n",
         run + 1, full.frames, full.ms, again.frames, again.ms, again.ms / full.ms, 100.0 * resetFraction.back(),
         again.first.restarted ? " (the whole accumulation restarted)" : "", 100.0 * changedFraction.back());
+    std::printf("  after the move, GPU ms summed over its frames:");
+    for (const auto& [name, ms] : again.stageMs) std::printf(" %s %.0f", name.c_str(), ms);
+    std::printf(" (the marking pass %.1f ms)\n", again.firstMarkMs);
   }
   std::printf(
       "median re-convergence after moving %s: %.3fx the first convergence, %.2f %% of the targets restarted, %.2f %% "

@@ -48,6 +48,20 @@ Accumulator::~Accumulator() = default;
 std::uint64_t Accumulator::deviceBytes() const { return state_->targets.size() + state_->masks.size(); }
 void Accumulator::restart() { state_->key.clear(); }
 
+std::vector<std::uint32_t> Accumulator::downloadMasks() const {
+  std::vector<std::uint32_t> masks;
+  if (!state_->masksValid) return masks;
+  masks.resize(state_->masks.size() / sizeof(std::uint32_t));
+  state_->masks.download(masks.data(), state_->masks.size());
+  return masks;
+}
+
+std::vector<std::uint32_t> Accumulator::lastResetTargets() const {
+  if (report_.resetTargets == 0) return {};
+  const auto* list = static_cast<const std::uint32_t*>(state_->dirty.mapped());
+  return {list + FrameReuseState::kListFirst, list + FrameReuseState::kListFirst + list[2]};
+}
+
 std::vector<float> Accumulator::downloadSums() const {
   std::vector<gpu_shared::AccumTarget> targets(state_->targets.size() / sizeof(gpu_shared::AccumTarget));
   if (!targets.empty()) state_->targets.download(targets.data(), targets.size() * sizeof(gpu_shared::AccumTarget));
@@ -108,7 +122,9 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
     st.key.clear();
     st.masksValid = false;
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(frame.targets()) * sizeof(gpu_shared::AccumTarget);
-    const VkDeviceSize maskBytes = static_cast<VkDeviceSize>(frame.targets()) * kMaskWords * sizeof(std::uint32_t);
+    // kMaskWords per target, then a reach word per target (common.glsl accum_reach_word)
+    const VkDeviceSize maskBytes =
+        static_cast<VkDeviceSize>(frame.targets()) * (kMaskWords + 1) * sizeof(std::uint32_t);
     if (st.targets.size() != bytes) {
       st.targets = DeviceBuffer();  // the old sums go before the new ones are allocated
       st.masks = DeviceBuffer();
@@ -163,7 +179,8 @@ void Renderer::Impl::accumulateChunk(const FrameCamera& camera, const FrameShape
   fillAccumulation(frameBlock(), accumulator);
   Accumulator::State& st = accumulator.state();
   if (st.pendingMove) {
-    accumulator.mutableReport().resetTargets = resetMovedTargets(accumulator, *st.pendingMove, targets, stageMs);
+    accumulator.mutableReport().resetTargets =
+        resetMovedTargets(accumulator, *st.pendingMove, camera, shape, targets, stageMs);
     st.pendingMove.reset();
   }
   // Every pass of the accumulation ORs its segments' cells into the accumulation's masks (cleared at its restart).
@@ -203,24 +220,32 @@ void Renderer::Impl::accumulateChunk(const FrameCamera& camera, const FrameShape
   framePlan.recordSegments = false;  // the renderer's own reuse state recorded nothing (frameDone)
 }
 
-std::uint64_t Renderer::Impl::resetMovedTargets(Accumulator& accumulator, const Bounds3& moved, std::uint64_t targets,
-                                                StageTimes& stageMs) {
+std::uint64_t Renderer::Impl::resetMovedTargets(Accumulator& accumulator, const Bounds3& moved,
+                                                const FrameCamera& camera, const FrameShape& shape,
+                                                std::uint64_t targets, StageTimes& stageMs) {
   Accumulator::State& st = accumulator.state();
-  const VkDeviceSize listBytes = (FrameReuseState::kListFirst + targets) * sizeof(std::uint32_t);
+  // The header, the dirty targets, then the candidates of the exact primary test (at most one entry per target each)
+  const VkDeviceSize listBytes = (FrameReuseState::kListFirst + 2 * targets) * sizeof(std::uint32_t);
   if (st.dirty.size() < listBytes) st.dirty = DeviceBuffer(vk, listBytes, MemoryPlace::HostReadback);
   auto* list = static_cast<std::uint32_t*>(st.dirty.mapped());
   const gpu_shared::uvec2 cells = gpu_shared::ht_grid_bounds_mask(moved.lo, moved.hi, reuse.grid());
   std::memset(list, 0, FrameReuseState::kListFirst * sizeof(std::uint32_t));
   list[0] = cells.x;
   list[1] = cells.y;
+  const Bounds3 padded = paddedMovedBounds(moved, reuse.grid());
+  std::memcpy(list + 4, &padded.lo, sizeof(glm::vec3));
+  std::memcpy(list + 8, &padded.hi, sizeof(glm::vec3));
+  list[11] = static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets);
   FrameBlock& f = frameBlock();
   f.segmentMasks = st.masks.address();
   f.grid = reuse.grid();
-  f.primaryRays = 0;  // no cached primary segments: the masks hold them (words 0-1)
+  f.primaryRays = 0;  // no cached primary rays or hits: mark_accumulated.comp generates the rays again
   f.primaryHits = 0;
   f.refine = st.dirty.address();
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
-  runMarkingPass(targets, true, list, stageMs);
+  const std::vector<std::uint32_t> spec = raygenSpec(camera, shape);
+  const ComputePipeline& exact = pipeline(ShaderId::MarkAccumulated, {spec[0], spec[1], spec[2]});
+  runMarkingPass(targets, true, list, stageMs, {}, &exact);
   f.refine = 0;
   f.refineInfo = glm::uvec4(0u);
   return list[2];

@@ -24,7 +24,8 @@ enum class ShaderId {
   RefineSelect,
   AccumShow,
   RecordSegments,
-  MarkDirty
+  MarkDirty,
+  MarkAccumulated
 };
 
 std::span<const std::uint32_t> embeddedSpirv(ShaderId id);

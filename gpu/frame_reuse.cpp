@@ -63,9 +63,9 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
       const gpu_shared::uvec2 cells = gpu_shared::ht_grid_bounds_mask(movedBounds_.lo, movedBounds_.hi, grid_);
       p.gridCells[0] = cells.x;
       p.gridCells[1] = cells.y;
-      const glm::vec3 pad = gpu_shared::HT_GRID_PAD / glm::vec3(grid_.scale);
-      p.movedLo = movedBounds_.lo - pad;
-      p.movedHi = movedBounds_.hi + pad;
+      const Bounds3 padded = paddedMovedBounds(movedBounds_, grid_);
+      p.movedLo = padded.lo;
+      p.movedHi = padded.hi;
     } else {  // nothing moved: an empty box no segment meets
       p.movedLo = glm::vec3(1.0f);
       p.movedHi = glm::vec3(-1.0f);
@@ -191,6 +191,36 @@ std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks
     const bool primaryNear = ((m[2] & plan.gridCells[0]) | (m[3] & plan.gridCells[1])) != 0;
     for (std::uint32_t s = 0; !hit && primaryNear && !primaryHits.empty() && s < spp; ++s) {
       hit = cachedSegmentsMeetMoved(primaryRays[t * spp + s], primaryHits[t * spp + s], plan, lights);
+    }
+    if (hit) dirty.push_back(static_cast<std::uint32_t>(t));
+  }
+  return dirty;
+}
+
+Bounds3 paddedMovedBounds(const Bounds3& moved, const gpu_shared::SegmentGrid& grid) {
+  if (moved.empty()) return Bounds3{glm::vec3(1.0f), glm::vec3(-1.0f)};
+  const glm::vec3 pad = gpu_shared::HT_GRID_PAD / glm::vec3(grid.scale);
+  return Bounds3{moved.lo - pad, moved.hi + pad};
+}
+
+std::vector<std::uint32_t> markAccumulatedTargets(std::span<const std::uint32_t> masks, const std::uint32_t cells[2],
+                                                  const Bounds3& padded, std::span<const std::uint32_t> samples,
+                                                  std::span<const gpu_shared::HtRay> rays,
+                                                  std::uint32_t raysPerTarget) {
+  const std::size_t targets = masks.size() / (kMaskWords + 1);
+  std::vector<std::uint32_t> dirty;
+  for (std::size_t t = 0; t < targets; ++t) {
+    const std::uint32_t* m = masks.data() + t * kMaskWords;
+    bool hit = ((m[0] & cells[0]) | (m[1] & cells[1])) != 0;
+    if (!hit && ((m[2] & cells[0]) | (m[3] & cells[1])) != 0) {
+      float reach = 0.0f;
+      std::memcpy(&reach, &masks[targets * kMaskWords + t], sizeof(reach));
+      hit = samples[t] > gpu_shared::HT_MARK_MAX_SAMPLES;
+      if (!hit && samples[t] > raysPerTarget) throw GpuError("markAccumulatedTargets: fewer rays than samples");
+      for (std::uint32_t k = 0; !hit && k < samples[t]; ++k) {
+        const gpu_shared::HtRay& r = rays[t * raysPerTarget + k];
+        hit = gpu_shared::ht_segment_meets_box(r.origin, r.dir, r.tmin, reach, padded.lo, padded.hi);
+      }
     }
     if (hit) dirty.push_back(static_cast<std::uint32_t>(t));
   }

@@ -141,6 +141,19 @@ class FrameReuseState {
 // record_segments.comp.
 inline constexpr std::uint32_t kMaskWords = 4;
 
+// The moved bounds `moved` padded by HT_GRID_PAD cells of `grid`, what the marking passes test segments against (an
+// empty box: one no segment meets).
+Bounds3 paddedMovedBounds(const Bounds3& moved, const gpu_shared::SegmentGrid& grid);
+
+// CPU reference of an accumulation's marking pass (mark_dirty.comp MARK_TARGETS with RESET_ACCUMULATION, then
+// mark_accumulated.comp): the targets (ascending) whose mask words 0-1 share a cell with `cells`, or whose words
+// 2-3 do and one of whose first samples[t] primary rays (`rays`: raysPerTarget per target, sample k of target t at
+// t * raysPerTarget + k) meets `padded` up to the target's reach; a target of more than HT_MARK_MAX_SAMPLES samples
+// restarts untested. `masks`: Accumulator::downloadMasks().
+std::vector<std::uint32_t> markAccumulatedTargets(std::span<const std::uint32_t> masks, const std::uint32_t cells[2],
+                                                  const Bounds3& padded, std::span<const std::uint32_t> samples,
+                                                  std::span<const gpu_shared::HtRay> rays, std::uint32_t raysPerTarget);
+
 // CPU reference of mark_dirty.comp: the targets (ascending) whose masks (kMaskWords per target) share a cell with
 // `plan.gridCells` in words 0-1; or whose words 0-1 are zero and one of whose `secondary` segments (empty unless
 // plan.secondaryExact), or a shadow ray from its hit, meets the box [plan.movedLo, plan.movedHi]; or, with cached

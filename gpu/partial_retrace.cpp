@@ -70,7 +70,8 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
 }
 
 void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulation, const std::uint32_t* list,
-                                    StageTimes& stageMs, std::span<const FrameReuseState::SecondaryQueue> secondary) {
+                                    StageTimes& stageMs, std::span<const FrameReuseState::SecondaryQueue> secondary,
+                                    const ComputePipeline* accumulatedCandidates) {
   // Specialisation: RESET_ACCUMULATION, then MODE (mark_dirty.comp); RESET_ACCUMULATION only when set, so that a
   // single frame's partial re-render keeps the pipeline it always had.
   auto markPipeline = [&](std::uint32_t mode) -> const ComputePipeline& {
@@ -99,8 +100,9 @@ void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulatio
   if (candidates == 0) return;
   beginCommands();
   PassRecorder exact(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+  const ComputePipeline& test = accumulatedCandidates ? *accumulatedCandidates : markPipeline(kMarkCandidates);
   for (std::uint32_t first = 0; first < candidates; first += kMarkTargetsPerDispatch) {
-    exact.dispatch(markPipeline(kMarkCandidates), passConstants(first, candidates, 0, 0),
+    exact.dispatch(test, passConstants(first, candidates, 0, 0),
                    groupsFor(std::min<std::uint64_t>(kMarkTargetsPerDispatch, candidates - first)), Stage::Mark);
   }
   submitAndWait();

@@ -30,6 +30,9 @@ HT_CONST float HT_GRID_T_INFINITY = 3.4e38f;  // beyond any ray's tmax (3e38 for
 // Targets one invocation of the marking pass's per-target mode compares (mark_dirty.comp MARK_TARGETS): lavapipe
 // pays much per invocation, and the comparison itself is a few instructions.
 HT_CONST uint HT_MARK_TARGETS_PER_INVOCATION = 4u;
+// Samples per target the accumulations' exact test (mark_accumulated.comp) generates again; a target with more
+// restarts untested. lavapipe stops an invocation's loops after 65,535 iterations in all: this stays far below.
+HT_CONST uint HT_MARK_MAX_SAMPLES = 1024u;
 
 // The grid in the FrameBlock: cell coordinate = (p - origin) * scale, cells [0, 4) per axis.
 struct SegmentGrid {

@@ -293,7 +293,10 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
         // Segments of depths >= 1 that stay in (or go to) the secondary cache are tested there, not recorded. A
         // frame re-shaded from cached hits adds the shadow rays it traced: one invocation per shadow-queue entry.
         if (!record || (secondaryCached && depth > 0)) return;
-        const ComputePipeline& pass = pipeline(ShaderId::RecordSegments, depthSpec({listed, loadHits}, depth));
+        // record_segments.comp: LISTED, SHADOWS_ONLY, and ACCUMULATING only when set (frames keep their pipelines)
+        std::vector<std::uint32_t> spec{listed, loadHits};
+        if (progressive) spec.push_back(1u);
+        const ComputePipeline& pass = pipeline(ShaderId::RecordSegments, depthSpec(std::move(spec), depth));
         if (loadHits) {
           rec.dispatchIndirect(pass, pc, args, shadowArgs, Stage::Record);
         } else {

@@ -75,6 +75,12 @@ uint frame_global_target(uint target) {
 // Progressive frames (FRAME.accum.x = 1, gpu/accumulator.h): the samples target `globalTarget` already has. Sample
 // s of this frame is sample index n + s of the target's sequence (docs/REUSE.md §1 rule 1).
 uint accum_samples_so_far(uint globalTarget) { return AccumRef(FRAME.accumTargets).t[globalTarget].n; }
+// An accumulation's reach of target `target` (docs/REUSE.md §4 in streams; an accumulation that records segments is
+// one chunk covering the whole frame, so chunk and frame index agree): the word after the masks of all FRAME.dims.w
+// targets (gpu/frame_reuse.h kMaskWords per target) holding the largest primary hit distance of its samples so far
+// (a miss: its tmax) as float bits. record_segments.comp raises it (t >= 0, so float bits order as unsigned
+// integers); mark_accumulated.comp tests the samples' primary segments up to it.
+uint accum_reach_word(uint target) { return 4u * FRAME.dims.w + target; }
 
 HtRay load_ray(uint q, uint i) {
   int k = int(2u * i);

@@ -11,7 +11,8 @@
 //   entries from word FRAME.refineInfo.y) and its mask cleared for the re-trace to record again. With the primary
 //   rays and hits cached (FRAME.primaryHits != 0), a target whose words 2-3 (the cells of its primary segments and
 //   their shadow rays) meet those cells is a candidate: appended to the candidate list (count in word 3, entries
-//   from word 11's value).
+//   from word 11's value). So is one of a progressive accumulation (RESET_ACCUMULATION), whose words 2-3 hold the
+//   cells of its primary segments alone; mark_accumulated.comp tests those candidates.
 // - MARK_CANDIDATES: one invocation per candidate: dirty when the cached primary segment of one of its samples, or a
 //   shadow ray from that hit to a light (ht_shadow_meets_box), meets the padded moved bounds (words 4-6 and 8-10,
 //   float bits). A separate pass over a compact list, so that no subgroup runs the exact tests for lanes that do not
@@ -23,6 +24,7 @@
 #extension GL_KHR_shader_subgroup_ballot : require
 #include "gpu/segment_cells.h"
 #include "gpu/shaders/reuse_cache.glsl"
+#include "gpu/shaders/dirty_list.glsl"
 
 // In a progressive accumulation after node moves (accumulation_pass.cpp resetMovedTargets): a dirty target's sums
 // start over too (sum, n, half sum, half count = 0); the others keep theirs.
@@ -86,28 +88,6 @@ void mark_secondary_entry() {
   }
 }
 
-// Appends `value` where `want`, to the list whose count is header word `countWord` and whose entries start at word
-// `first` (one atomic per subgroup); returns whether it did. Called by every invocation (subgroup operations).
-void append_where(bool want, uint countWord, uint first, uint value) {
-  uvec4 ballot = subgroupBallot(want);
-  uint total = subgroupBallotBitCount(ballot);
-  uint base = 0u;
-  if (subgroupElect() && total > 0u) base = atomicAdd(UintRef(FRAME.refine).v[countWord], total);
-  base = subgroupBroadcastFirst(base);
-  if (want) UintRef(FRAME.refine).v[first + base + subgroupBallotExclusiveBitCount(ballot)] = value;
-}
-
-// A dirty target: listed, its mask cleared for the re-trace to record again, its sums zeroed in an accumulation.
-void mark_dirty(bool dirty, uint target) {
-  append_where(dirty, 2u, FRAME.refineInfo.y, target);
-  if (dirty) {
-    for (uint w = 0u; w < 4u; ++w) UintRef(FRAME.segmentMasks).v[4u * target + w] = 0u;
-    if (RESET_ACCUMULATION) {
-      AccumRef(FRAME.accumTargets).t[frame_global_target(target)] = AccumTarget(vec3(0.0f), 0u, vec3(0.0f), 0u);
-    }
-  }
-}
-
 void mark_target() {
   // Dispatched in slices of targets (pc.batchFirst: the slice's first; batchCount: all targets), each invocation
   // comparing HT_MARK_TARGETS_PER_INVOCATION consecutive targets.
@@ -122,7 +102,7 @@ void mark_target() {
       dirty = ((mask.x & moved.x) | (mask.y & moved.y)) != 0u;
       candidate = !dirty && ((mask.z & moved.x) | (mask.w & moved.y)) != 0u && candidates != 0u;
     }
-    mark_dirty(dirty, target);
+    mark_dirty(dirty, target, RESET_ACCUMULATION);
     append_where(candidate, 3u, candidates, target);
   }
 }
@@ -135,7 +115,7 @@ void mark_candidate() {
     target = reuse_header_word(reuse_header_word(11u) + i);
     dirty = primary_meets_moved(target);
   }
-  mark_dirty(dirty, target);
+  mark_dirty(dirty, target, RESET_ACCUMULATION);
 }
 
 void main() {

@@ -8,7 +8,9 @@
 // rays; with the primary hits cached (FRAME.primaryHits != 0) the cells of the primary segments and of the shadow rays
 // from their hits go to words 2-3 (mark_dirty.comp then tests those segments exactly where those cells meet the moved
 // bounds), and a partial re-render writes the new primary hits of its listed targets into the cache. Depths >= 1 of a
-// frame whose queues go to the secondary cache are not recorded at all (wavefront_loop.cpp).
+// frame whose queues go to the secondary cache are not recorded at all (wavefront_loop.cpp). In a progressive
+// accumulation (ACCUMULATING; it caches no hits) the primary segments go to words 2-3 and their hit distance into the
+// target's reach (common.glsl accum_reach_word), the shadow rays from their hits to words 0-1.
 #include "gpu/shaders/common.glsl"
 #include "gpu/segment_cells.h"
 
@@ -18,6 +20,9 @@ layout(constant_id = 0) const bool LISTED = false;  // paths of listed targets (
 // Only the rays it traced are added, one invocation per entry of the shadow queue: a ray that took its recorded
 // occlusion (shade.comp OCCLUSION) is the ray whose cells were recorded when it was traced.
 layout(constant_id = 1) const bool SHADOWS_ONLY = false;
+// A progressive accumulation's passes: the primary segments go to words 2-3 and raise the target's reach (common.glsl
+// accum_reach_word), up to which mark_accumulated.comp tests them after a move.
+layout(constant_id = 2) const bool ACCUMULATING = false;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer HitCacheRef { uvec4 h[]; };
 
@@ -52,7 +57,17 @@ void main() {
   HtRay ray = load_ray(pc.queue, i);
   HtHit hit = load_hit(i);
   bool cachedPrimary = pc.depth == 0u && FRAME.primaryHits != 0ul;
-  uvec2 cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, hit.triId != HT_MISS ? hit.t : ray.tmax, FRAME.grid);
+  float tEnd = hit.triId != HT_MISS ? hit.t : ray.tmax;
+  uvec2 cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, tEnd, FRAME.grid);
+  if (ACCUMULATING && pc.depth == 0u) {
+    // An accumulation's primary segments: their cells to words 2-3 and the target's reach raised to this segment's
+    // end. After a move, mark_accumulated.comp generates the rays of a target whose words 2-3 meet the moved cells
+    // again and tests them exactly up to the reach. Their shadow rays stay in words 0-1 below.
+    if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], cells.x);
+    if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], cells.y);
+    atomicMax(UintRef(FRAME.segmentMasks).v[accum_reach_word(target)], floatBitsToUint(max(tEnd, 0.0f)));
+    cells = uvec2(0u);
+  }
   if (cachedPrimary) {  // words 2-3: the marking pass's quick reject before its exact test of the cached segments
     if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], cells.x);
     if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], cells.y);

@@ -5,17 +5,22 @@
 // nothing more.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <memory>
 #include <optional>
 #include <random>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "camera_models/display_config.h"
 #include "camera_models/display_model_registry.h"
 #include "gpu/accumulation_error.h"
 #include "gpu/display_camera.h"
+#include "gpu/frame_reuse.h"
 #include "gpu_test_util.h"
 #include "scene/scene.h"
 #include "scene/scene_edits.h"
@@ -190,6 +195,21 @@ gpu::RenderResult accumulateToConvergence(gpu::Renderer& renderer, const FrameCa
   return frame;
 }
 
+// The node-move tests' accumulations: converged after 4-12 samples, `spp` per frame.
+gpu::AccumulationPolicy movePolicy() {
+  gpu::AccumulationPolicy policy;
+  policy.targetError = 0.05f;
+  policy.minSpp = 4;
+  policy.maxSpp = 12;
+  return policy;
+}
+gpu::RenderSettings moveSettings(std::uint32_t spp) {
+  gpu::RenderSettings settings;
+  settings.spp = spp;
+  settings.seed = 7;
+  return settings;
+}
+
 // Property test of the partial restart (docs/REUSE.md §4 in streams): random node moves (the mirror, glass and
 // glowing spheres and a box of the showcase, which has a shadowing light) during a converged accumulation restart
 // only the targets whose recorded segment cells meet the moved bounds; the others keep their sums, and the
@@ -198,13 +218,8 @@ TEST(Accumulation, NodeMovesRestartOnlyNearbyTargetsAndConvergeToTheFreshAccumul
   Scene scene = loadScene("builtin:showcase");
   // On the two-level BVH, as holotraced traces a scene whose nodes move: only such scenes record segment cells.
   gpu::Renderer renderer(sharedContext(), scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::TwoLevel));
-  gpu::AccumulationPolicy policy;
-  policy.targetError = 0.05f;
-  policy.minSpp = 4;
-  policy.maxSpp = 12;
-  gpu::RenderSettings settings;
-  settings.spp = 2;
-  settings.seed = 7;
+  const gpu::AccumulationPolicy policy = movePolicy();
+  const gpu::RenderSettings settings = moveSettings(2);
   const DisplayConfig projectors = smallProjectorArray();
   const std::vector<std::pair<std::string, FrameCamera>> cameras = {
       {"pinhole", lookAt(glm::vec3(0.0f, 0.4f, 2.6f), glm::vec3(0.0f, 0.1f, 0.0f), 45.0f, 32, 24)},
@@ -242,6 +257,99 @@ TEST(Accumulation, NodeMovesRestartOnlyNearbyTargetsAndConvergeToTheFreshAccumul
   }
   EXPECT_GT(resetSum, 0u) << "no move touched a target: the test would be vacuous";
   EXPECT_LT(resetSum * 2, targetSum) << "moves of small objects restarted most targets";
+}
+
+// The reach an accumulation records per target (record_segments.comp; docs/REUSE.md §4 in streams), checked against
+// its samples' rays (`rays`, raysPerTarget per target; sample k of a progressive target = sample k of a single frame
+// of >= 3 samples) traced by the renderer: the farthest primary hit (a miss: tmax), bit for bit.
+void expectReachIsTheFarthestHit(gpu::Renderer& renderer, std::span<const std::uint32_t> masks,
+                                 std::span<const std::uint32_t> samples, std::span<const gpu_shared::HtRay> rays,
+                                 std::uint32_t raysPerTarget) {
+  const std::size_t targets = samples.size();
+  const std::vector<gpu_shared::HtHit> hits = renderer.traceClosest(rays);
+  std::uint64_t checked = 0;
+  for (std::size_t t = 0; t < targets; ++t) {
+    float reach = 0.0f;
+    for (std::uint32_t k = 0; k < samples[t]; ++k) {
+      const gpu_shared::HtHit& h = hits[t * raysPerTarget + k];
+      reach = std::max(reach, h.triId != gpu_shared::HT_MISS ? h.t : rays[t * raysPerTarget + k].tmax);
+    }
+    float recorded = 0.0f;
+    std::memcpy(&recorded, &masks[targets * gpu::kMaskWords + t], sizeof(recorded));
+    ASSERT_EQ(recorded, reach) << "target " << t;  // the same rays and the order-free closest hit: the same bits
+    checked += samples[t];
+  }
+  EXPECT_GE(checked, targets * 4);
+}
+
+// CPU reference of an accumulation's restart after a node move (gpu::markAccumulatedTargets, docs/REUSE.md §4 in
+// streams): the targets the marking pass restarted are those whose shadow and bounce cells (mask words 0-1) meet the
+// moved bounds' cells, or whose primary cells (words 2-3) do and one of whose samples' primary rays (raygen's rays,
+// traced: the recorded reach is their farthest hit) meets the padded bounds up to that reach. Pinhole and lenticular
+// (non-linear subpixel rays), the glow sphere and a box.
+TEST(Accumulation, AMovesRestartedTargetsEqualTheirCpuReference) {
+  Scene scene = loadScene("builtin:showcase");
+  gpu::Renderer renderer(sharedContext(), scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::TwoLevel));
+  const gpu::AccumulationPolicy policy = movePolicy();
+  const gpu::RenderSettings settings = moveSettings(4);
+  DisplayConfig portrait = builtinDisplay("portrait");
+  portrait.calibration->screenW = 48;  // 48 x 64 pixels, 3 subpixel targets each
+  portrait.calibration->screenH = 64;
+  const std::vector<std::pair<std::string, FrameCamera>> cameras = {
+      {"pinhole", lookAt(glm::vec3(0.0f, 0.4f, 2.6f), glm::vec3(0.0f, 0.1f, 0.0f), 45.0f, 40, 30)},
+      {"lenticular", gpu::makeDisplayCamera(portrait, scene.bounds()).camera}};
+  std::uint64_t exactSum = 0, cellSum = 0;
+  for (const auto& [cameraName, camera] : cameras) {
+    for (const char* name : {"glow-sphere", "red-box"}) {
+      SCOPED_TRACE(cameraName + ", " + name);
+      gpu::Accumulator accumulator(policy);
+      accumulateToConvergence(renderer, camera, accumulator, settings);
+      const std::vector<std::uint32_t> masks = accumulator.downloadMasks();
+      const std::vector<float> sums = accumulator.downloadSums();
+      const std::size_t targets = sums.size() / 8;
+      ASSERT_EQ(masks.size(), targets * (gpu::kMaskWords + 1));
+      std::vector<std::uint32_t> samples(targets);
+      for (std::size_t t = 0; t < targets; ++t) samples[t] = static_cast<std::uint32_t>(sums[t * 8 + 3]);
+      gpu::RenderSettings raySettings = settings;
+      raySettings.spp = policy.maxSpp;
+      const std::vector<gpu_shared::HtRay> rays =
+          renderer.generateRays(camera, raySettings, 0, static_cast<std::uint32_t>(targets));
+      expectReachIsTheFarthestHit(renderer, masks, samples, rays, policy.maxSpp);
+
+      const std::size_t node = *findNode(scene, name);
+      Bounds3 moved = nodeWorldBounds(scene, node);
+      const Bounds3 before = moved;
+      setNodeWorldMatrix(scene, name, glm::translate(scene.nodes[node].world, glm::dvec3(0.07, 0.02, -0.05)));
+      const Bounds3 after = nodeWorldBounds(scene, node);
+      moved.extend(after.lo);
+      moved.extend(after.hi);
+      const std::uint32_t movedNodes[] = {static_cast<std::uint32_t>(node)};
+      renderer.moveNodes(scene, movedNodes, gpu::MovedBounds{before, after});
+      const gpu::RenderResult frame = renderer.accumulate(camera, settings, accumulator);
+      ASSERT_FALSE(frame.accumulation.restarted);
+
+      const gpu_shared::SegmentGrid grid = renderer.reuseSnapshot().grid;
+      const gpu_shared::uvec2 cellMask = gpu_shared::ht_grid_bounds_mask(moved.lo, moved.hi, grid);
+      const std::uint32_t cells[2] = {cellMask.x, cellMask.y};
+      const std::vector<std::uint32_t> expected =
+          gpu::markAccumulatedTargets(masks, cells, gpu::paddedMovedBounds(moved, grid), samples, rays, policy.maxSpp);
+      std::vector<std::uint32_t> restarted = accumulator.lastResetTargets();
+      std::sort(restarted.begin(), restarted.end());
+      EXPECT_EQ(restarted, expected);
+      EXPECT_EQ(frame.accumulation.resetTargets, expected.size());
+      std::uint64_t byCells = 0;  // what the cells alone would restart
+      for (std::size_t t = 0; t < targets; ++t) {
+        const std::uint32_t* m = masks.data() + t * gpu::kMaskWords;
+        byCells += (((m[0] | m[2]) & cells[0]) | ((m[1] | m[3]) & cells[1])) != 0 ? 1 : 0;
+      }
+      exactSum += expected.size();
+      cellSum += byCells;
+    }
+  }
+  std::printf("[ restart ] %llu targets restarted, %llu by cells alone\n", static_cast<unsigned long long>(exactSum),
+              static_cast<unsigned long long>(cellSum));
+  EXPECT_GT(exactSum, 0u) << "no move touched a target: the test would be vacuous";
+  EXPECT_LT(exactSum * 3, cellSum * 2) << "the exact primary test spared few targets the cells would restart";
 }
 
 // The adaptive policy: after the first frame only targets above the target error get samples; the accumulation

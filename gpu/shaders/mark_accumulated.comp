@@ -1,0 +1,43 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// mark_accumulated: the exact test of the marking pass in a progressive accumulation after node moves (docs/REUSE.md
+// §4 in streams; dispatched by Renderer::Impl::runMarkingPass after mark_dirty.comp's MARK_TARGETS, with
+// RESET_ACCUMULATION). One invocation per candidate: a target whose other segments' cells (mask words 0-1) avoid the
+// moved bounds' cells but whose primary segments' cells (words 2-3) meet them. An accumulation keeps no primary rays
+// or hits (up to max spp of them per target), so its n samples' rays are generated again, with raygen's own code
+// (primary_ray.glsl), and each segment from the ray's origin to the target's reach (the farthest primary hit of its
+// samples, common.glsl accum_reach_word) is tested against the padded moved bounds (header words 4-6, 8-10). A target
+// none of whose segments meets them kept every primary hit: every triangle of the moved nodes lies inside those
+// bounds before and after, every other is unchanged, and the closest hit is the order-free one. The others restart.
+// The bounds are padded by HT_GRID_PAD cells, far above the rounding by which this ray can differ from raygen's.
+// CPU reference: gpu::markAccumulatedTargets (gpu/frame_reuse.h).
+#include "gpu/shaders/common.glsl"
+#extension GL_KHR_shader_subgroup_ballot : require
+#include "gpu/shaders/primary_ray.glsl"  // constants 0-2: raygen's
+#include "gpu/segment_cells.h"
+#include "gpu/shaders/reuse_cache.glsl"
+#include "gpu/shaders/dirty_list.glsl"
+
+// Does the primary segment of one of the target's samples so far meet the padded moved bounds?
+bool samples_meet_moved(uint target) {
+  uint n = accum_samples_so_far(frame_global_target(target));
+  if (n > HT_MARK_MAX_SAMPLES) return true;  // lavapipe's loop budget (segment_cells.h): restart, never miss one
+  float reach = uintBitsToFloat(UintRef(FRAME.segmentMasks).v[accum_reach_word(target)]);
+  for (uint k = 0u; k < n; ++k) {
+    HtRay ray = primary_ray(target, k, 1u, true);
+    if (ht_segment_meets_box(ray.origin, ray.dir, ray.tmin, reach, moved_lo(), moved_hi())) return true;
+  }
+  return false;
+}
+
+void main() {
+  load_moved_view();
+  uint i = pc.batchFirst + gl_GlobalInvocationID.x;  // dispatched in slices of candidates; batchCount: all
+  bool dirty = false;
+  uint target = 0u;
+  if (i < pc.batchCount) {
+    target = reuse_header_word(reuse_header_word(11u) + i);
+    dirty = samples_meet_moved(target);
+  }
+  mark_dirty(dirty, target, true);
+}
