@@ -122,9 +122,9 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
     st.key.clear();
     st.masksValid = false;
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(frame.targets()) * sizeof(gpu_shared::AccumTarget);
-    // kMaskWords per target, then a reach word per target (common.glsl accum_reach_word)
+    // kMaskWords per target, then the bounds of each target's primary segments (common.glsl accum_reach_word)
     const VkDeviceSize maskBytes =
-        static_cast<VkDeviceSize>(frame.targets()) * (kMaskWords + 1) * sizeof(std::uint32_t);
+        static_cast<VkDeviceSize>(frame.targets()) * (kMaskWords + kAccumulationBoundWords) * sizeof(std::uint32_t);
     if (st.targets.size() != bytes) {
       st.targets = DeviceBuffer();  // the old sums go before the new ones are allocated
       st.masks = DeviceBuffer();

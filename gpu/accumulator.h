@@ -45,9 +45,10 @@ struct AccumulationReport {
 
 class Accumulator {
  public:
-  // rgb sum + n, half sum + its count (gpu_shared::AccumTarget, 32 B), the segment-cell mask (16 B) and the reach
-  // of its primary segments (4 B) that let a node move restart only the targets near it.
-  static constexpr std::uint64_t kBytesPerTarget = 52;
+  // rgb sum + n, half sum + its count (gpu_shared::AccumTarget, 32 B), the segment-cell mask (16 B) and the bounds
+  // of its primary segments (reach, nearest and farthest hit: 12 B) that let a node move restart only the targets
+  // near it.
+  static constexpr std::uint64_t kBytesPerTarget = 60;
   // Device memory an accumulation of `shape` holds.
   static std::uint64_t bytesFor(const FrameShape& shape) { return shape.targets() * kBytesPerTarget; }
 
@@ -66,8 +67,8 @@ class Accumulator {
   // the half count as float values): the CPU side of the error-estimate parity test. Empty before the first frame.
   std::vector<float> downloadSums() const;
   // What lets a node move restart only nearby targets, for tests: per target of the whole frame, its kMaskWords
-  // segment-cell words (gpu/frame_reuse.h), then a reach word per target (float bits; common.glsl accum_reach_word).
-  // Empty while the accumulation records none.
+  // segment-cell words (gpu/frame_reuse.h), then kAccumulationBoundWords blocks of a word per target (common.glsl
+  // accum_reach_word). Empty while the accumulation records none.
   std::vector<std::uint32_t> downloadMasks() const;
   // The targets the last frame restarted after node moves (the marking pass's list, in its order).
   std::vector<std::uint32_t> lastResetTargets() const;

@@ -203,24 +203,56 @@ Bounds3 paddedMovedBounds(const Bounds3& moved, const gpu_shared::SegmentGrid& g
   return Bounds3{moved.lo - pad, moved.hi + pad};
 }
 
+namespace {
+
+// mark_accumulated.comp's samples_meet_moved for target t of `targets` (words of `masks` as it reads them).
+bool accumulatedSamplesMeetMoved(std::span<const std::uint32_t> masks, std::size_t targets, std::size_t t,
+                                 const Bounds3& padded, std::uint32_t samples, std::span<const gpu_shared::HtRay> rays,
+                                 std::span<const gpu_shared::GpuLight> lights) {
+  if (samples > gpu_shared::HT_MARK_MAX_SAMPLES) return true;
+  const auto word = [&](std::uint32_t block) { return masks[(kMaskWords + block) * targets + t]; };
+  const auto asFloat = [](std::uint32_t bits) {
+    float v = 0.0f;
+    std::memcpy(&v, &bits, sizeof(v));
+    return v;
+  };
+  const float reach = asFloat(word(0)), near = asFloat(~word(1)), far = asFloat(word(2));
+  glm::vec3 pLo(gpu_shared::HT_GRID_T_INFINITY), pHi(-gpu_shared::HT_GRID_T_INFINITY);
+  float pErr = 0.0f;
+  for (std::uint32_t k = 0; k < samples; ++k) {
+    const gpu_shared::HtRay& r = rays[k];
+    if (gpu_shared::ht_segment_meets_box(r.origin, r.dir, r.tmin, reach, padded.lo, padded.hi)) return true;
+    const glm::vec3 a = gpu_shared::ht_cached_hit_point(r.origin, r.dir, near);
+    const glm::vec3 b = gpu_shared::ht_cached_hit_point(r.origin, r.dir, far);
+    pLo = glm::min(pLo, glm::min(a, b));
+    pHi = glm::max(pHi, glm::max(a, b));
+    pErr = std::max(pErr, gpu_shared::ht_cached_hit_error(r.origin, r.dir, far));
+  }
+  for (const gpu_shared::GpuLight& light : lights) {
+    if (word(1) != 0 && gpu_shared::ht_box_shadow_meets_box(pLo, pHi, pErr, light.position, glm::vec3(light.direction),
+                                                            padded.lo, padded.hi)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 std::vector<std::uint32_t> markAccumulatedTargets(std::span<const std::uint32_t> masks, const std::uint32_t cells[2],
                                                   const Bounds3& padded, std::span<const std::uint32_t> samples,
-                                                  std::span<const gpu_shared::HtRay> rays,
-                                                  std::uint32_t raysPerTarget) {
-  const std::size_t targets = masks.size() / (kMaskWords + 1);
+                                                  std::span<const gpu_shared::HtRay> rays, std::uint32_t raysPerTarget,
+                                                  std::span<const gpu_shared::GpuLight> lights) {
+  const std::size_t targets = masks.size() / (kMaskWords + kAccumulationBoundWords);
   std::vector<std::uint32_t> dirty;
   for (std::size_t t = 0; t < targets; ++t) {
     const std::uint32_t* m = masks.data() + t * kMaskWords;
     bool hit = ((m[0] & cells[0]) | (m[1] & cells[1])) != 0;
     if (!hit && ((m[2] & cells[0]) | (m[3] & cells[1])) != 0) {
-      float reach = 0.0f;
-      std::memcpy(&reach, &masks[targets * kMaskWords + t], sizeof(reach));
-      hit = samples[t] > gpu_shared::HT_MARK_MAX_SAMPLES;
-      if (!hit && samples[t] > raysPerTarget) throw GpuError("markAccumulatedTargets: fewer rays than samples");
-      for (std::uint32_t k = 0; !hit && k < samples[t]; ++k) {
-        const gpu_shared::HtRay& r = rays[t * raysPerTarget + k];
-        hit = gpu_shared::ht_segment_meets_box(r.origin, r.dir, r.tmin, reach, padded.lo, padded.hi);
+      if (samples[t] > raysPerTarget && samples[t] <= gpu_shared::HT_MARK_MAX_SAMPLES) {
+        throw GpuError("markAccumulatedTargets: fewer rays than samples");
       }
+      hit = accumulatedSamplesMeetMoved(masks, targets, t, padded, samples[t], rays.subspan(t * raysPerTarget), lights);
     }
     if (hit) dirty.push_back(static_cast<std::uint32_t>(t));
   }

@@ -140,6 +140,9 @@ class FrameReuseState {
 // (0-1), the cells of its cached primary segments and their shadow rays (2-3; zero without the cache),
 // record_segments.comp.
 inline constexpr std::uint32_t kMaskWords = 4;
+// What a progressive accumulation records after the masks, in blocks of a word per target: the reach of each
+// target's primary segments, and its nearest and farthest primary hit (common.glsl accum_reach_word).
+inline constexpr std::uint32_t kAccumulationBoundWords = 3;
 
 // The moved bounds `moved` padded by HT_GRID_PAD cells of `grid`, what the marking passes test segments against (an
 // empty box: one no segment meets).
@@ -148,11 +151,13 @@ Bounds3 paddedMovedBounds(const Bounds3& moved, const gpu_shared::SegmentGrid& g
 // CPU reference of an accumulation's marking pass (mark_dirty.comp MARK_TARGETS with RESET_ACCUMULATION, then
 // mark_accumulated.comp): the targets (ascending) whose mask words 0-1 share a cell with `cells`, or whose words
 // 2-3 do and one of whose first samples[t] primary rays (`rays`: raysPerTarget per target, sample k of target t at
-// t * raysPerTarget + k) meets `padded` up to the target's reach; a target of more than HT_MARK_MAX_SAMPLES samples
-// restarts untested. `masks`: Accumulator::downloadMasks().
+// t * raysPerTarget + k) meets `padded` up to the target's reach, or a shadow ray to one of `lights` from the box of
+// their points between its nearest and farthest hit does (ht_box_shadow_meets_box); a target of more than
+// HT_MARK_MAX_SAMPLES samples restarts untested. `masks`: Accumulator::downloadMasks().
 std::vector<std::uint32_t> markAccumulatedTargets(std::span<const std::uint32_t> masks, const std::uint32_t cells[2],
                                                   const Bounds3& padded, std::span<const std::uint32_t> samples,
-                                                  std::span<const gpu_shared::HtRay> rays, std::uint32_t raysPerTarget);
+                                                  std::span<const gpu_shared::HtRay> rays, std::uint32_t raysPerTarget,
+                                                  std::span<const gpu_shared::GpuLight> lights);
 
 // CPU reference of mark_dirty.comp: the targets (ascending) whose masks (kMaskWords per target) share a cell with
 // `plan.gridCells` in words 0-1; or whose words 0-1 are zero and one of whose `secondary` segments (empty unless

@@ -125,6 +125,44 @@ HT_INLINE bool ht_segment_meets_box(vec3 o, vec3 d, float t0, float t1, vec3 lo,
   return a <= b;
 }
 
+// Does a shadow ray from some point of the box [pLo, pHi] (points known to `pErr` per axis), emitted as
+// ht_shadow_meets_box describes, towards the punctual light meet the box [lo, hi]? The points of such rays are, for
+// some u, (1 - u) a + u L with a in the box, u in [0, 1] (point and spot lights at L), or a + u w, u >= 0 (a
+// directional light, w = -direction). For a fixed u they form a box, so per axis the condition is two linear
+// inequalities in u; the rays meet [lo, hi] (grown by the same padding as ht_shadow_meets_box) iff the intervals of u
+// they leave intersect. An accumulation's marking pass (mark_accumulated.comp) tests the box of a target's primary
+// hit points with it: the box bounds every point from which one of its samples can have sent a shadow ray.
+HT_INLINE bool ht_box_shadow_meets_box(vec3 pLo, vec3 pHi, float pErr, vec4 lightPosition, vec3 direction, vec3 lo,
+                                       vec3 hi) {
+  bool directional = uint(lightPosition.w) == 2u;  // HT_LIGHT_DIRECTIONAL (gpu/wavefront_types.h)
+  vec3 light = vec3(lightPosition.x, lightPosition.y, lightPosition.z);
+  vec3 far = directional ? vec3(0.0f, 0.0f, 0.0f) : max(abs(light - pLo), abs(light - pHi));
+  vec3 mag = max(abs(pLo), abs(pHi));
+  HT_PRECISE float offset = (max(max(mag.x, mag.y), mag.z) + pErr) * 3.1e-5f + 1.6e-5f;
+  HT_PRECISE float pad = pErr + offset + max(max(far.x, far.y), far.z) * 1e-5f;
+  float u0 = 0.0f, u1 = directional ? HT_GRID_T_INFINITY : 1.0f;
+  for (int k = 0; k < 3; ++k) {
+    float mLo = lo[k] - pad, mHi = hi[k] + pad;
+    float qLo = directional ? -direction[k] : light[k] - pLo[k];  // the boxes' low corner moves at qLo per unit u
+    float qHi = directional ? -direction[k] : light[k] - pHi[k];
+    if (qLo > 0.0f) {  // pLo + u qLo <= mHi
+      u1 = min(u1, (mHi - pLo[k]) / qLo);
+    } else if (qLo < 0.0f) {
+      u0 = max(u0, (mHi - pLo[k]) / qLo);
+    } else if (pLo[k] > mHi) {
+      return false;
+    }
+    if (qHi > 0.0f) {  // pHi + u qHi >= mLo
+      u0 = max(u0, (mLo - pHi[k]) / qHi);
+    } else if (qHi < 0.0f) {
+      u1 = min(u1, (mLo - pHi[k]) / qHi);
+    } else if (pHi[k] < mLo) {
+      return false;
+    }
+  }
+  return u0 <= u1;
+}
+
 // The surface point of a cached primary hit, o + t d, and a bound per axis on its distance from the point
 // shade.comp interpolates from the triangle's corners (surface_point). Both lie within a few float ULPs of the exact
 // intersection: the watertight t is exact to a few ULPs (Woop et al., JCGT 2013) and the interpolation rounds each

@@ -75,12 +75,16 @@ uint frame_global_target(uint target) {
 // Progressive frames (FRAME.accum.x = 1, gpu/accumulator.h): the samples target `globalTarget` already has. Sample
 // s of this frame is sample index n + s of the target's sequence (docs/REUSE.md §1 rule 1).
 uint accum_samples_so_far(uint globalTarget) { return AccumRef(FRAME.accumTargets).t[globalTarget].n; }
-// An accumulation's reach of target `target` (docs/REUSE.md §4 in streams; an accumulation that records segments is
-// one chunk covering the whole frame, so chunk and frame index agree): the word after the masks of all FRAME.dims.w
-// targets (gpu/frame_reuse.h kMaskWords per target) holding the largest primary hit distance of its samples so far
-// (a miss: its tmax) as float bits. record_segments.comp raises it (t >= 0, so float bits order as unsigned
-// integers); mark_accumulated.comp tests the samples' primary segments up to it.
+// What an accumulation records of target `target`'s primary segments (docs/REUSE.md §4 in streams; an accumulation
+// that records segments is one chunk covering the whole frame, so chunk and frame index agree), after the masks of
+// all FRAME.dims.w targets (gpu/frame_reuse.h kMaskWords per target), a word per target each: its reach, the largest
+// primary hit distance of its samples so far (a miss: its tmax), as float bits; the nearest and the farthest of its
+// hits (the nearest as the complement of its bits, 0 while it has none). record_segments.comp raises them with
+// atomicMax (t >= 0, so float bits order as unsigned integers); mark_accumulated.comp tests the samples' primary
+// segments up to the reach and the shadow rays from their hits between the nearest and the farthest.
 uint accum_reach_word(uint target) { return 4u * FRAME.dims.w + target; }
+uint accum_near_hit_word(uint target) { return 5u * FRAME.dims.w + target; }
+uint accum_far_hit_word(uint target) { return 6u * FRAME.dims.w + target; }
 
 HtRay load_ray(uint q, uint i) {
   int k = int(2u * i);

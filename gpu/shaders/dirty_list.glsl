@@ -13,7 +13,7 @@ void append_where(bool want, uint countWord, uint first, uint value) {
 }
 
 // A dirty target: listed, its mask cleared for the re-trace to record again; in an accumulation
-// (`resetAccumulation`) its sums and its primary reach start over too. Called by every invocation.
+// (`resetAccumulation`) its sums and what bounds its primary segments start over too. Called by every invocation.
 void mark_dirty(bool dirty, uint target, bool resetAccumulation) {
   append_where(dirty, 2u, FRAME.refineInfo.y, target);
   if (dirty) {
@@ -21,6 +21,8 @@ void mark_dirty(bool dirty, uint target, bool resetAccumulation) {
     if (resetAccumulation) {
       AccumRef(FRAME.accumTargets).t[frame_global_target(target)] = AccumTarget(vec3(0.0f), 0u, vec3(0.0f), 0u);
       UintRef(FRAME.segmentMasks).v[accum_reach_word(target)] = 0u;
+      UintRef(FRAME.segmentMasks).v[accum_near_hit_word(target)] = 0u;
+      UintRef(FRAME.segmentMasks).v[accum_far_hit_word(target)] = 0u;
     }
   }
 }

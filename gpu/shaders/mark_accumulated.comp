@@ -3,13 +3,18 @@
 // mark_accumulated: the exact test of the marking pass in a progressive accumulation after node moves (docs/REUSE.md
 // §4 in streams; dispatched by Renderer::Impl::runMarkingPass after mark_dirty.comp's MARK_TARGETS, with
 // RESET_ACCUMULATION). One invocation per candidate: a target whose other segments' cells (mask words 0-1) avoid the
-// moved bounds' cells but whose primary segments' cells (words 2-3) meet them. An accumulation keeps no primary rays
-// or hits (up to max spp of them per target), so its n samples' rays are generated again, with raygen's own code
-// (primary_ray.glsl), and each segment from the ray's origin to the target's reach (the farthest primary hit of its
-// samples, common.glsl accum_reach_word) is tested against the padded moved bounds (header words 4-6, 8-10). A target
-// none of whose segments meets them kept every primary hit: every triangle of the moved nodes lies inside those
-// bounds before and after, every other is unchanged, and the closest hit is the order-free one. The others restart.
-// The bounds are padded by HT_GRID_PAD cells, far above the rounding by which this ray can differ from raygen's.
+// moved bounds' cells but whose primary segments' or their shadow rays' cells (words 2-3) meet them. An accumulation
+// keeps no primary rays or hits (up to max spp of them per target), so its n samples' rays are generated again, with
+// raygen's own code (primary_ray.glsl), and tested against the padded moved bounds (header words 4-6, 8-10):
+// - each segment from the ray's origin to the target's reach (the farthest primary hit or miss of its samples,
+//   common.glsl accum_reach_word): a target none of whose segments meets them kept every primary hit, since every
+//   triangle of the moved nodes lies inside those bounds before and after, every other is unchanged, and the closest
+//   hit is the order-free one;
+// - the shadow rays from its primary hits to each light: every hit lies on its ray between the target's nearest and
+//   farthest hit distance, so within the box of those points of all its rays (grown by the hit points' rounding,
+//   ht_cached_hit_error), and ht_box_shadow_meets_box bounds every shadow ray from that box.
+// A target that passes both restarts only where its other segments' cells said so; the others restart. The bounds are
+// padded by HT_GRID_PAD cells, far above the rounding by which these rays can differ from raygen's.
 // CPU reference: gpu::markAccumulatedTargets (gpu/frame_reuse.h).
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_ballot : require
@@ -18,14 +23,28 @@
 #include "gpu/shaders/reuse_cache.glsl"
 #include "gpu/shaders/dirty_list.glsl"
 
-// Does the primary segment of one of the target's samples so far meet the padded moved bounds?
+// Does the primary segment of one of the target's samples so far, or a shadow ray from one of their hits, meet the
+// padded moved bounds?
 bool samples_meet_moved(uint target) {
   uint n = accum_samples_so_far(frame_global_target(target));
   if (n > HT_MARK_MAX_SAMPLES) return true;  // lavapipe's loop budget (segment_cells.h): restart, never miss one
   float reach = uintBitsToFloat(UintRef(FRAME.segmentMasks).v[accum_reach_word(target)]);
+  uint nearWord = UintRef(FRAME.segmentMasks).v[accum_near_hit_word(target)];
+  bool hits = nearWord != 0u;
+  float near = uintBitsToFloat(~nearWord), far = uintBitsToFloat(UintRef(FRAME.segmentMasks).v[accum_far_hit_word(target)]);
+  vec3 pLo = vec3(HT_GRID_T_INFINITY), pHi = vec3(-HT_GRID_T_INFINITY);
+  float pErr = 0.0f;
   for (uint k = 0u; k < n; ++k) {
     HtRay ray = primary_ray(target, k, 1u, true);
     if (ht_segment_meets_box(ray.origin, ray.dir, ray.tmin, reach, moved_lo(), moved_hi())) return true;
+    vec3 a = ht_cached_hit_point(ray.origin, ray.dir, near), b = ht_cached_hit_point(ray.origin, ray.dir, far);
+    pLo = min(pLo, min(a, b));
+    pHi = max(pHi, max(a, b));
+    pErr = max(pErr, ht_cached_hit_error(ray.origin, ray.dir, far));
+  }
+  for (uint l = 0u; hits && l < FRAME.scene.x; ++l) {
+    GpuLight light = scene_light(l);
+    if (ht_box_shadow_meets_box(pLo, pHi, pErr, light.position, light.direction.xyz, moved_lo(), moved_hi())) return true;
   }
   return false;
 }

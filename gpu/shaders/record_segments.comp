@@ -9,8 +9,8 @@
 // from their hits go to words 2-3 (mark_dirty.comp then tests those segments exactly where those cells meet the moved
 // bounds), and a partial re-render writes the new primary hits of its listed targets into the cache. Depths >= 1 of a
 // frame whose queues go to the secondary cache are not recorded at all (wavefront_loop.cpp). In a progressive
-// accumulation (ACCUMULATING; it caches no hits) the primary segments go to words 2-3 and their hit distance into the
-// target's reach (common.glsl accum_reach_word), the shadow rays from their hits to words 0-1.
+// accumulation (ACCUMULATING; it caches no hits) the primary segments and their shadow rays go to words 2-3 and their
+// hit distances into the target's reach and range of hits (common.glsl accum_reach_word).
 #include "gpu/shaders/common.glsl"
 #include "gpu/segment_cells.h"
 
@@ -60,12 +60,17 @@ void main() {
   float tEnd = hit.triId != HT_MISS ? hit.t : ray.tmax;
   uvec2 cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, tEnd, FRAME.grid);
   if (ACCUMULATING && pc.depth == 0u) {
-    // An accumulation's primary segments: their cells to words 2-3 and the target's reach raised to this segment's
-    // end. After a move, mark_accumulated.comp generates the rays of a target whose words 2-3 meet the moved cells
-    // again and tests them exactly up to the reach. Their shadow rays stay in words 0-1 below.
+    // An accumulation's primary segments: their cells to words 2-3 (their shadow rays' too, below), the target's
+    // reach raised to this segment's end and its range of hit distances widened to this hit. After a move,
+    // mark_accumulated.comp generates the rays of a target whose words 2-3 meet the moved cells again and tests them
+    // exactly up to the reach, and the shadow rays from the box of their points between the nearest and farthest hit.
     if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], cells.x);
     if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], cells.y);
     atomicMax(UintRef(FRAME.segmentMasks).v[accum_reach_word(target)], floatBitsToUint(max(tEnd, 0.0f)));
+    if (hit.triId != HT_MISS) {
+      atomicMax(UintRef(FRAME.segmentMasks).v[accum_near_hit_word(target)], ~floatBitsToUint(max(hit.t, 0.0f)));
+      atomicMax(UintRef(FRAME.segmentMasks).v[accum_far_hit_word(target)], floatBitsToUint(max(hit.t, 0.0f)));
+    }
     cells = uvec2(0u);
   }
   if (cachedPrimary) {  // words 2-3: the marking pass's quick reject before its exact test of the cached segments
@@ -87,7 +92,7 @@ void main() {
       shadowCells |= ht_segment_cells(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, FRAME.grid);
     }
   }
-  if (cachedPrimary) {  // the primary hit's shadow rays: the marking pass tests them exactly from the cached hit
+  if (cachedPrimary || (ACCUMULATING && pc.depth == 0u)) {  // the primary hits' shadow rays: tested exactly
     if (shadowCells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], shadowCells.x);
     if (shadowCells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], shadowCells.y);
   } else {

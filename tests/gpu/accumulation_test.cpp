@@ -21,6 +21,7 @@
 #include "gpu/accumulation_error.h"
 #include "gpu/display_camera.h"
 #include "gpu/frame_reuse.h"
+#include "gpu/gpu_scene.h"
 #include "gpu_test_util.h"
 #include "scene/scene.h"
 #include "scene/scene_edits.h"
@@ -259,24 +260,37 @@ TEST(Accumulation, NodeMovesRestartOnlyNearbyTargetsAndConvergeToTheFreshAccumul
   EXPECT_LT(resetSum * 2, targetSum) << "moves of small objects restarted most targets";
 }
 
-// The reach an accumulation records per target (record_segments.comp; docs/REUSE.md §4 in streams), checked against
-// its samples' rays (`rays`, raysPerTarget per target; sample k of a progressive target = sample k of a single frame
-// of >= 3 samples) traced by the renderer: the farthest primary hit (a miss: tmax), bit for bit.
-void expectReachIsTheFarthestHit(gpu::Renderer& renderer, std::span<const std::uint32_t> masks,
-                                 std::span<const std::uint32_t> samples, std::span<const gpu_shared::HtRay> rays,
-                                 std::uint32_t raysPerTarget) {
+// What an accumulation records per target of its primary segments (record_segments.comp; docs/REUSE.md §4 in
+// streams), checked against its samples' rays (`rays`, raysPerTarget per target; sample k of a progressive target =
+// sample k of a single frame of >= 3 samples) traced by the renderer, bit for bit: the reach is the farthest primary
+// hit or miss (tmax), and the nearest and farthest hit distances are those of its hits.
+void expectPrimaryBoundsAreThoseOfTheHits(gpu::Renderer& renderer, std::span<const std::uint32_t> masks,
+                                          std::span<const std::uint32_t> samples,
+                                          std::span<const gpu_shared::HtRay> rays, std::uint32_t raysPerTarget) {
   const std::size_t targets = samples.size();
   const std::vector<gpu_shared::HtHit> hits = renderer.traceClosest(rays);
   std::uint64_t checked = 0;
+  const auto word = [&](std::uint32_t block, std::size_t t) { return masks[(gpu::kMaskWords + block) * targets + t]; };
+  const auto bits = [](float v) {
+    std::uint32_t b = 0;
+    std::memcpy(&b, &v, sizeof(b));
+    return b;
+  };
   for (std::size_t t = 0; t < targets; ++t) {
-    float reach = 0.0f;
+    float reach = 0.0f, near = 3.4e38f, far = 0.0f;
+    bool hit = false;
     for (std::uint32_t k = 0; k < samples[t]; ++k) {
       const gpu_shared::HtHit& h = hits[t * raysPerTarget + k];
       reach = std::max(reach, h.triId != gpu_shared::HT_MISS ? h.t : rays[t * raysPerTarget + k].tmax);
+      if (h.triId == gpu_shared::HT_MISS) continue;
+      hit = true;
+      near = std::min(near, h.t);
+      far = std::max(far, h.t);
     }
-    float recorded = 0.0f;
-    std::memcpy(&recorded, &masks[targets * gpu::kMaskWords + t], sizeof(recorded));
-    ASSERT_EQ(recorded, reach) << "target " << t;  // the same rays and the order-free closest hit: the same bits
+    // the same rays and the order-free closest hit: the same bits
+    ASSERT_EQ(word(0, t), bits(reach)) << "target " << t;
+    ASSERT_EQ(word(1, t), hit ? ~bits(near) : 0u) << "target " << t;
+    ASSERT_EQ(word(2, t), hit ? bits(far) : 0u) << "target " << t;
     checked += samples[t];
   }
   EXPECT_GE(checked, targets * 4);
@@ -285,8 +299,9 @@ void expectReachIsTheFarthestHit(gpu::Renderer& renderer, std::span<const std::u
 // CPU reference of an accumulation's restart after a node move (gpu::markAccumulatedTargets, docs/REUSE.md §4 in
 // streams): the targets the marking pass restarted are those whose shadow and bounce cells (mask words 0-1) meet the
 // moved bounds' cells, or whose primary cells (words 2-3) do and one of whose samples' primary rays (raygen's rays,
-// traced: the recorded reach is their farthest hit) meets the padded bounds up to that reach. Pinhole and lenticular
-// (non-linear subpixel rays), the glow sphere and a box.
+// traced: the recorded reach is their farthest hit) meets the padded bounds up to that reach, or a shadow ray from
+// the box of their hit points does. Pinhole and lenticular (non-linear subpixel rays), the glow sphere and a box,
+// under the showcase's point light and sun.
 TEST(Accumulation, AMovesRestartedTargetsEqualTheirCpuReference) {
   Scene scene = loadScene("builtin:showcase");
   gpu::Renderer renderer(sharedContext(), scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::TwoLevel));
@@ -307,14 +322,14 @@ TEST(Accumulation, AMovesRestartedTargetsEqualTheirCpuReference) {
       const std::vector<std::uint32_t> masks = accumulator.downloadMasks();
       const std::vector<float> sums = accumulator.downloadSums();
       const std::size_t targets = sums.size() / 8;
-      ASSERT_EQ(masks.size(), targets * (gpu::kMaskWords + 1));
+      ASSERT_EQ(masks.size(), targets * (gpu::kMaskWords + gpu::kAccumulationBoundWords));
       std::vector<std::uint32_t> samples(targets);
       for (std::size_t t = 0; t < targets; ++t) samples[t] = static_cast<std::uint32_t>(sums[t * 8 + 3]);
       gpu::RenderSettings raySettings = settings;
       raySettings.spp = policy.maxSpp;
       const std::vector<gpu_shared::HtRay> rays =
           renderer.generateRays(camera, raySettings, 0, static_cast<std::uint32_t>(targets));
-      expectReachIsTheFarthestHit(renderer, masks, samples, rays, policy.maxSpp);
+      expectPrimaryBoundsAreThoseOfTheHits(renderer, masks, samples, rays, policy.maxSpp);
 
       const std::size_t node = *findNode(scene, name);
       Bounds3 moved = nodeWorldBounds(scene, node);
@@ -331,8 +346,8 @@ TEST(Accumulation, AMovesRestartedTargetsEqualTheirCpuReference) {
       const gpu_shared::SegmentGrid grid = renderer.reuseSnapshot().grid;
       const gpu_shared::uvec2 cellMask = gpu_shared::ht_grid_bounds_mask(moved.lo, moved.hi, grid);
       const std::uint32_t cells[2] = {cellMask.x, cellMask.y};
-      const std::vector<std::uint32_t> expected =
-          gpu::markAccumulatedTargets(masks, cells, gpu::paddedMovedBounds(moved, grid), samples, rays, policy.maxSpp);
+      const std::vector<std::uint32_t> expected = gpu::markAccumulatedTargets(
+          masks, cells, gpu::paddedMovedBounds(moved, grid), samples, rays, policy.maxSpp, gpu::packLights(scene));
       std::vector<std::uint32_t> restarted = accumulator.lastResetTargets();
       std::sort(restarted.begin(), restarted.end());
       EXPECT_EQ(restarted, expected);
