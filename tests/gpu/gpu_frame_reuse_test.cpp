@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <random>
 
@@ -455,6 +456,48 @@ TEST(SegmentCells, ShadowTestMeetsEveryBoxTheTracedShadowRayMeets) {
   EXPECT_GT(tinyMeeting, 5000) << "few tiny boxes on the ray: the padding is not exercised";
   EXPECT_GT(largeMeeting, 1000);
   EXPECT_LT(largeSaid, largeMeeting + largeMeeting / 20) << "the padded test says yes for boxes the ray does not meet";
+}
+
+// The box version an accumulation's marking pass uses (ht_box_shadow_meets_box: shadow rays from any point of a box
+// of hit points): whenever the tested point version (above) says a ray from a point of the box meets a box, so does
+// the box version (corners and random points inside, point and directional lights); for a box of one point both
+// agree; and it is not simply "yes".
+TEST(SegmentCells, BoxShadowTestMeetsWhereTheShadowRayOfAnyPointInTheBoxDoes) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> coord(-4.0f, 4.0f), size(0.0f, 1.0f), unit(0.0f, 1.0f);
+  int pointSaid = 0, boxSaid = 0, singleDiffer = 0, singles = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const bool directional = i % 3 == 0, single = i % 5 == 0;
+    const glm::vec4 light(coord(rng), coord(rng), coord(rng),
+                          directional ? float(gpu_shared::HT_LIGHT_DIRECTIONAL) : 0.0f);
+    const glm::vec3 travel = glm::normalize(glm::vec3(coord(rng), coord(rng), coord(rng)));
+    const glm::vec3 pLo(coord(rng), coord(rng), coord(rng));
+    const glm::vec3 pHi = single ? pLo : pLo + 0.3f * glm::vec3(size(rng), size(rng), size(rng));
+    const float pErr = 1e-4f * size(rng);
+    const glm::vec3 lo = 0.5f * glm::vec3(coord(rng), coord(rng), coord(rng));
+    const glm::vec3 hi = lo + 2.0f * glm::vec3(size(rng), size(rng), size(rng));
+    const bool box = gpu_shared::ht_box_shadow_meets_box(pLo, pHi, pErr, light, travel, lo, hi);
+    boxSaid += box;
+    bool anyPoint = false;
+    for (int k = 0; k < 12; ++k) {  // the 8 corners, then random points
+      const glm::vec3 f =
+          k < 8 ? glm::vec3(k & 1, (k >> 1) & 1, (k >> 2) & 1) : glm::vec3(unit(rng), unit(rng), unit(rng));
+      const glm::vec3 p = pLo + f * (pHi - pLo);
+      if (gpu_shared::ht_shadow_meets_box(p, pErr, light, travel, lo, hi)) {
+        anyPoint = true;
+        ASSERT_TRUE(box) << "case " << i << (directional ? " (directional)" : " (point)") << ", point " << k;
+      }
+    }
+    pointSaid += anyPoint;
+    if (single) {
+      singles += 1;
+      singleDiffer += box != anyPoint;
+    }
+  }
+  std::printf("[ box shadow test ] %d of 100000 said yes, %d with a point of the box saying yes\n", boxSaid, pointSaid);
+  EXPECT_GT(pointSaid, 2000);
+  EXPECT_LT(boxSaid, pointSaid + pointSaid / 2) << "the box test says yes far beyond its points";
+  EXPECT_LT(singleDiffer, singles / 1000 + 1) << "for one point the box test is not the point test";
 }
 
 }  // namespace
