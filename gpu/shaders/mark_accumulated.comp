@@ -13,8 +13,9 @@
 // - the shadow rays from its primary hits to each light: every hit lies on its ray between the target's nearest and
 //   farthest hit distance, so within the box of those points of all its rays (grown by the hit points' rounding,
 //   ht_cached_hit_error), and ht_box_shadow_meets_box bounds every shadow ray from that box.
-// A target that passes both restarts only where its other segments' cells said so; the others restart. The bounds are
-// padded by HT_GRID_PAD cells, far above the rounding by which these rays can differ from raygen's.
+// A target that passes both keeps its sums (its other segments' cells already missed the moved ones); the others
+// restart. The bounds are padded by HT_GRID_PAD cells, far above the rounding by which these rays can differ from
+// raygen's.
 // CPU reference: gpu::markAccumulatedTargets (gpu/frame_reuse.h).
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_ballot : require

@@ -20,8 +20,9 @@ layout(constant_id = 0) const bool LISTED = false;  // paths of listed targets (
 // Only the rays it traced are added, one invocation per entry of the shadow queue: a ray that took its recorded
 // occlusion (shade.comp OCCLUSION) is the ray whose cells were recorded when it was traced.
 layout(constant_id = 1) const bool SHADOWS_ONLY = false;
-// A progressive accumulation's passes: the primary segments go to words 2-3 and raise the target's reach (common.glsl
-// accum_reach_word), up to which mark_accumulated.comp tests them after a move.
+// A progressive accumulation's passes: the primary segments and their shadow rays go to words 2-3, and the primary
+// segments raise the target's reach and widen its range of hit distances (common.glsl accum_reach_word), by which
+// mark_accumulated.comp tests them after a move.
 layout(constant_id = 2) const bool ACCUMULATING = false;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer HitCacheRef { uvec4 h[]; };
