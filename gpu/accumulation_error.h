@@ -26,6 +26,8 @@ HT_INLINE bool ht_accum_in_half(uint i) {
 }
 
 HT_CONST float HT_ACCUM_UNKNOWN_ERROR = 3.0e38f;
+// Targets one invocation of the show pass (accum_show.comp) shows.
+HT_CONST uint HT_ACCUM_SHOW_TARGETS_PER_INVOCATION = 4u;
 
 // Error estimate of a target from its means; `mask` is 1 for each channel the target shows, 0 otherwise. A target
 // without half samples yet (n < 3) reports HT_ACCUM_UNKNOWN_ERROR: it cannot be judged.

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "gpu/accumulation_error.h"
 #include "gpu/renderer_impl.h"
 
 namespace ht::gpu {
@@ -208,12 +209,14 @@ void Renderer::Impl::accumulateChunk(const FrameCamera& camera, const FrameShape
     }
   }
   const ComputePipeline& show = pipeline(ShaderId::AccumShow, {shape.model});
-  const std::uint64_t perDispatch = std::uint64_t{kMaxGroupsPerDispatch} * HT_WORKGROUP_SIZE;
+  constexpr std::uint32_t perInvocation = gpu_shared::HT_ACCUM_SHOW_TARGETS_PER_INVOCATION;
+  const std::uint64_t perDispatch = std::uint64_t{kMaxGroupsPerDispatch} * HT_WORKGROUP_SIZE * perInvocation;
   beginCommands();
   PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
   for (std::uint64_t first = 0; first < targets; first += perDispatch) {
     const auto count = static_cast<std::uint32_t>(std::min(perDispatch, targets - first));
-    rec.dispatch(show, passConstants(static_cast<std::uint32_t>(first), count, 0, 0), groupsFor(count), Stage::Resolve);
+    rec.dispatch(show, passConstants(static_cast<std::uint32_t>(first), count, 0, 0),
+                 groupsFor((count + perInvocation - 1) / perInvocation), Stage::Resolve);
   }
   submitAndWait();
   rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);

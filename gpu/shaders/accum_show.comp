@@ -11,9 +11,13 @@
 
 layout(constant_id = HT_SPEC_MODEL) const uint MODEL = HT_MODEL_LENTICULAR;
 
-void main() {
-  if (gl_GlobalInvocationID.x >= pc.batchCount) return;
-  uint target = pc.batchFirst + gl_GlobalInvocationID.x;  // dispatched in slices (65,535 workgroups at most)
+// The stop-rule statistics of the targets one invocation shows, reduced per subgroup at the end.
+struct ShowStats {
+  uint unconverged, maxErrorBits, minSamples, maxSamples;
+};
+
+// Shows target `target` and folds it into `stats`.
+void show_target(uint target, inout ShowStats stats) {
   AccumTarget a = AccumRef(FRAME.accumTargets).t[frame_global_target(target)];
   vec3 value = a.n > 0u ? a.sum / float(a.n) : vec3(0.0f);
   bool subpixel = ht_model_has_subpixel_targets(MODEL);
@@ -33,18 +37,33 @@ void main() {
     imageStore(subpixelBuffer, int(3u * target + 1u), vec4(value.y));
     imageStore(subpixelBuffer, int(3u * target + 2u), vec4(value.z));
   }
+  bool needs = ht_accum_needs_samples(a.n, error, FRAME.accum.z, FRAME.accum.w, uintBitsToFloat(FRAME.accum.y));
+  stats.unconverged += needs ? 1u : 0u;
+  stats.maxErrorBits = max(stats.maxErrorBits, isnan(error) ? 0u : floatBitsToUint(min(error, HT_ACCUM_UNKNOWN_ERROR)));
+  stats.minSamples = min(stats.minSamples, a.n);
+  stats.maxSamples = max(stats.maxSamples, a.n);
+}
+
+void main() {
+  // HT_ACCUM_SHOW_TARGETS_PER_INVOCATION consecutive targets per invocation (lavapipe pays much per invocation and
+  // per subgroup operation; showing a target is a few loads and stores), dispatched in slices: pc.batchFirst is the
+  // slice's first target, pc.batchCount its targets.
+  uint first = HT_ACCUM_SHOW_TARGETS_PER_INVOCATION * gl_GlobalInvocationID.x;
+  ShowStats stats = ShowStats(0u, 0u, 0xffffffffu, 0u);
+  for (uint k = 0u; k < HT_ACCUM_SHOW_TARGETS_PER_INVOCATION; ++k) {
+    if (first + k < pc.batchCount) show_target(pc.batchFirst + first + k, stats);
+  }
   // Reduced per subgroup first: one atomic of each kind per subgroup, not per target (lavapipe runs atomics lane by
   // lane). The statistics are order-free (sum, min, max), so the result does not depend on the schedule.
-  bool needs = ht_accum_needs_samples(a.n, error, FRAME.accum.z, FRAME.accum.w, uintBitsToFloat(FRAME.accum.y));
-  uint unconverged = subgroupAdd(needs ? 1u : 0u);
-  uint maxErrorBits = subgroupMax(isnan(error) ? 0u : floatBitsToUint(min(error, HT_ACCUM_UNKNOWN_ERROR)));
-  uint minSamples = subgroupMin(a.n);
-  uint maxSamples = subgroupMax(a.n);
+  uint unconverged = subgroupAdd(stats.unconverged);
+  uint maxErrorBits = subgroupMax(stats.maxErrorBits);
+  uint minSamples = subgroupMin(stats.minSamples);
+  uint maxSamples = subgroupMax(stats.maxSamples);
   if (subgroupElect()) {
-    AccumStatsRef stats = AccumStatsRef(FRAME.accumStats);
-    if (unconverged > 0u) atomicAdd(stats.s.unconverged, unconverged);
-    atomicMax(stats.s.maxErrorBits, maxErrorBits);
-    atomicMin(stats.s.minSamples, minSamples);
-    atomicMax(stats.s.maxSamples, maxSamples);
+    AccumStatsRef accumStats = AccumStatsRef(FRAME.accumStats);
+    if (unconverged > 0u) atomicAdd(accumStats.s.unconverged, unconverged);
+    atomicMax(accumStats.s.maxErrorBits, maxErrorBits);
+    if (minSamples != 0xffffffffu) atomicMin(accumStats.s.minSamples, minSamples);
+    atomicMax(accumStats.s.maxSamples, maxSamples);
   }
 }
