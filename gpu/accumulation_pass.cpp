@@ -231,14 +231,11 @@ std::uint64_t Renderer::Impl::resetMovedTargets(Accumulator& accumulator, const 
   const VkDeviceSize listBytes = (FrameReuseState::kListFirst + 2 * targets) * sizeof(std::uint32_t);
   if (st.dirty.size() < listBytes) st.dirty = DeviceBuffer(vk, listBytes, MemoryPlace::HostReadback);
   auto* list = static_cast<std::uint32_t*>(st.dirty.mapped());
-  const gpu_shared::uvec2 cells = gpu_shared::ht_grid_bounds_mask(moved.lo, moved.hi, reuse.grid());
-  std::memset(list, 0, FrameReuseState::kListFirst * sizeof(std::uint32_t));
-  list[0] = cells.x;
-  list[1] = cells.y;
+  const gpu_shared::uvec2 cellMask = gpu_shared::ht_grid_bounds_mask(moved.lo, moved.hi, reuse.grid());
+  const std::uint32_t cells[2] = {cellMask.x, cellMask.y};
   const Bounds3 padded = paddedMovedBounds(moved, reuse.grid());
-  std::memcpy(list + 4, &padded.lo, sizeof(glm::vec3));
-  std::memcpy(list + 8, &padded.hi, sizeof(glm::vec3));
-  list[11] = static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets);
+  FrameReuseState::writeListHeader(list, cells, padded.lo, padded.hi,
+                                   static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets));
   FrameBlock& f = frameBlock();
   f.segmentMasks = st.masks.address();
   f.grid = reuse.grid();

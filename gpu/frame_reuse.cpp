@@ -59,17 +59,14 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
     p.mode = FrameReuse::CachedPrimaryHits;  // light values edited, or nothing at all
   } else if (sameView && moved_ && !lightsEdited_ && masksValid_ && (hitsValid_ || !p.primaryCached)) {
     p.mode = FrameReuse::PartialRetrace;
-    if (!movedBounds_.empty()) {
+    if (!movedBounds_.empty()) {  // else no cells, and an empty box no segment meets
       const gpu_shared::uvec2 cells = gpu_shared::ht_grid_bounds_mask(movedBounds_.lo, movedBounds_.hi, grid_);
       p.gridCells[0] = cells.x;
       p.gridCells[1] = cells.y;
-      const Bounds3 padded = paddedMovedBounds(movedBounds_, grid_);
-      p.movedLo = padded.lo;
-      p.movedHi = padded.hi;
-    } else {  // nothing moved: an empty box no segment meets
-      p.movedLo = glm::vec3(1.0f);
-      p.movedHi = glm::vec3(-1.0f);
     }
+    const Bounds3 padded = paddedMovedBounds(movedBounds_, grid_);
+    p.movedLo = padded.lo;
+    p.movedHi = padded.hi;
   }
   p.recordHits = p.mode == FrameReuse::None && p.primaryCached;
   const std::uint64_t secondaryBytes = paths * kSecondaryBytesPerPath * secondaryDepths;
@@ -195,6 +192,16 @@ std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks
     if (hit) dirty.push_back(static_cast<std::uint32_t>(t));
   }
   return dirty;
+}
+
+void FrameReuseState::writeListHeader(std::uint32_t* list, const std::uint32_t cells[2], const glm::vec3& paddedLo,
+                                      const glm::vec3& paddedHi, std::uint32_t candidatesFirst) {
+  std::memset(list, 0, kListFirst * sizeof(std::uint32_t));
+  list[0] = cells[0];
+  list[1] = cells[1];
+  std::memcpy(list + 4, &paddedLo, sizeof(glm::vec3));
+  std::memcpy(list + 8, &paddedHi, sizeof(glm::vec3));
+  list[11] = candidatesFirst;
 }
 
 Bounds3 paddedMovedBounds(const Bounds3& moved, const gpu_shared::SegmentGrid& grid) {

@@ -119,6 +119,10 @@ class FrameReuseState {
   // value, 0: none), padded moved bounds lo (4-6) and hi (8-10) as float bits, and with ReusePlan::secondaryExact
   // the secondary cache's address (12-13).
   static constexpr std::uint32_t kListFirst = 16;
+  // Writes the header of a marking pass's list (the other words zero): the moved cells, the padded moved bounds,
+  // and where the candidates' entries start (0: no exact tests).
+  static void writeListHeader(std::uint32_t* list, const std::uint32_t cells[2], const glm::vec3& paddedLo,
+                              const glm::vec3& paddedHi, std::uint32_t candidatesFirst);
 
  private:
   void ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPlace place);

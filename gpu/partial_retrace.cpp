@@ -40,13 +40,10 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
                                            std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
                                            const std::function<void(double)>& progress) {
   auto* list = static_cast<std::uint32_t*>(reuse.dirtyList.mapped());
-  list[0] = framePlan.gridCells[0];
-  list[1] = framePlan.gridCells[1];
-  list[2] = 0;  // count
-  std::memcpy(list + 4, &framePlan.movedLo, sizeof(glm::vec3));
-  std::memcpy(list + 8, &framePlan.movedHi, sizeof(glm::vec3));
-  list[3] = 0;  // candidates for the exact tests, from word 11's value on (none without the primary cache)
-  list[11] = framePlan.primaryCached ? static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets) : 0u;
+  // The candidates of the exact tests follow the dirty entries (none without the primary cache).
+  FrameReuseState::writeListHeader(
+      list, framePlan.gridCells, framePlan.movedLo, framePlan.movedHi,
+      framePlan.primaryCached ? static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets) : 0u);
   std::vector<FrameReuseState::SecondaryQueue> secondary;
   if (framePlan.secondaryExact) {
     secondary = reuse.secondaryQueues();

@@ -74,8 +74,8 @@ struct ht::gpu::Accumulator::State {
   std::string key;               // accumulationKey() of the frames summed; "" = nothing summed yet
   std::uint64_t generation = 0;  // the renderer's scene generation the sums belong to
   // Partial restart after node moves (docs/REUSE.md §4 in streams): every frame of the accumulation ORs the grid
-  // cells of its samples' segments into `masks` (kMaskWords per target, segment_cells.h, then a reach word per
-  // target: common.glsl accum_reach_word); after moves, only the
+  // cells of its samples' segments into `masks` (kMaskWords per target, segment_cells.h, then the bounds of each
+  // target's primary segments and hits: common.glsl accum_reach_word); after moves, only the
   // targets whose cells meet the moved bounds start over. Kept only for accumulations of one chunk covering the whole
   // frame (target index == frame-global index); `masksValid` false = the next scene change restarts everything.
   DeviceBuffer masks;
@@ -274,9 +274,9 @@ struct Renderer::Impl {
   void runMarkingPass(std::uint64_t targets, bool resetAccumulation, const std::uint32_t* list, StageTimes& stageMs,
                       std::span<const FrameReuseState::SecondaryQueue> secondary = {},
                       const ComputePipeline* accumulatedCandidates = nullptr);
-  // After node moves: lists the targets whose recorded cells meet the moved bounds (their primary segments: the
-  // regenerated rays of their samples, up to their reach) and zeroes their sums and masks (mark_dirty.comp,
-  // RESET_ACCUMULATION, then mark_accumulated.comp); returns how many.
+  // After node moves: lists the targets whose recorded cells meet the moved bounds (their primary segments and the
+  // shadow rays from their hits: tested exactly on their samples' regenerated rays) and zeroes their sums and masks
+  // (mark_dirty.comp, RESET_ACCUMULATION, then mark_accumulated.comp); returns how many.
   std::uint64_t resetMovedTargets(Accumulator& accumulator, const Bounds3& moved, const FrameCamera& camera,
                                   const FrameShape& shape, std::uint64_t targets, StageTimes& stageMs);
   // Ray batches without a frame (ray_batches.cpp).
