@@ -46,7 +46,9 @@ bool recordsWholeFrame(const FrameShape& frame, const RenderSettings& settings) 
 
 Accumulator::Accumulator(const AccumulationPolicy& policy) : policy_(policy), state_(std::make_unique<State>()) {}
 Accumulator::~Accumulator() = default;
-std::uint64_t Accumulator::deviceBytes() const { return state_->targets.size() + state_->masks.size(); }
+std::uint64_t Accumulator::deviceBytes() const {
+  return state_->targets.size() + state_->masks.size() + state_->list.size();
+}
 void Accumulator::restart() { state_->key.clear(); }
 
 std::vector<std::uint32_t> Accumulator::downloadMasks() const {
@@ -95,6 +97,7 @@ std::string accumulationKey(const void* renderer, const FrameCamera& camera, con
 void Renderer::Impl::fillAccumulation(FrameBlock& f, Accumulator& accumulator) const {
   f.accumTargets = accumulator.state().targets.address();
   f.accumStats = accumulator.state().stats.address();
+  f.accumSettledStats = accumulator.state().stats.address() + sizeof(gpu_shared::AccumStats);
   const AccumulationPolicy& p = accumulator.policy();
   f.accum = glm::uvec4(1u, glm::floatBitsToUint(p.targetError), p.minSpp, p.maxSpp);
 }
@@ -129,6 +132,7 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
     if (st.targets.size() != bytes) {
       st.targets = DeviceBuffer();  // the old sums go before the new ones are allocated
       st.masks = DeviceBuffer();
+      st.list = DeviceBuffer();
       st.targets = DeviceBuffer(vk, bytes, MemoryPlace::Device);
       st.masks = DeviceBuffer(vk, maskBytes, MemoryPlace::Device);  // counted in bytesFor whether used or not
     }
@@ -139,11 +143,18 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
     // Recording costs a pass per depth (about 12 % of a progressive frame on lavapipe), so only scenes whose nodes
     // move record: the ones on the two-level BVH (a node move puts a scene there; static scenes stay flattened).
     st.masksValid = recordsWholeFrame(frame, settings) && scene.layout() == bvh::BvhLayout::TwoLevel;
-    if (st.stats.size() == 0) st.stats = DeviceBuffer(vk, sizeof(gpu_shared::AccumStats), MemoryPlace::HostReadback);
+    // the frame's statistics, then the settled targets' (FrameBlock::accumSettledStats)
+    if (st.stats.size() == 0) {
+      st.stats = DeviceBuffer(vk, 2 * sizeof(gpu_shared::AccumStats), MemoryPlace::HostReadback);
+    }
     report = AccumulationReport{};
   }
-  auto& stats = *static_cast<gpu_shared::AccumStats*>(st.stats.mapped());
-  stats = gpu_shared::AccumStats{0u, 0u, std::numeric_limits<std::uint32_t>::max(), 0u};
+  constexpr gpu_shared::AccumStats kNoTargets{0u, 0u, std::numeric_limits<std::uint32_t>::max(), 0u};
+  auto* stats = static_cast<gpu_shared::AccumStats*>(st.stats.mapped());
+  stats[0] = kNoTargets;
+  // The last frame's list stands for the targets that may still need samples, unless targets started over since.
+  if (restart || st.pendingMove) st.listed.reset();
+  if (!st.listed) stats[1] = kNoTargets;  // this frame judges every target
   report.restarted = restart;
   report.tracedTargets = 0;
   report.resetTargets = 0;
@@ -154,18 +165,20 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
   } catch (...) {
     accumulating = nullptr;  // the sums may hold part of a frame: the next frame starts over
     st.key.clear();
+    st.listed.reset();
     throw;
   }
   accumulating = nullptr;
   st.key = key;
   st.generation = sceneGeneration;
   report.targets = std::uint64_t{result.width} * result.height * result.views * frame.targetsPerPixel;
-  report.unconverged = stats.unconverged;
-  report.maxError = glm::uintBitsToFloat(stats.maxErrorBits);
-  report.minSamples = stats.minSamples;
-  report.maxSamples = stats.maxSamples;
+  // The targets the frame showed, and those it did not (settled earlier: their sums did not change since).
+  report.unconverged = stats[0].unconverged + stats[1].unconverged;
+  report.maxError = glm::uintBitsToFloat(std::max(stats[0].maxErrorBits, stats[1].maxErrorBits));
+  report.minSamples = std::min(stats[0].minSamples, stats[1].minSamples);
+  report.maxSamples = std::max(stats[0].maxSamples, stats[1].maxSamples);
   report.frames += 1;
-  report.converged = stats.unconverged == 0;
+  report.converged = report.unconverged == 0;
   result.accumulation = report;
   return result;
 }
@@ -179,7 +192,8 @@ void Renderer::Impl::accumulateChunk(const FrameCamera& camera, const FrameShape
       static_cast<std::uint64_t>(shape.width) * shape.height * viewCount * shape.targetsPerPixel;
   fillAccumulation(frameBlock(), accumulator);
   Accumulator::State& st = accumulator.state();
-  if (st.pendingMove) {
+  const bool reset = st.pendingMove.has_value();
+  if (reset) {
     accumulator.mutableReport().resetTargets =
         resetMovedTargets(accumulator, *st.pendingMove, camera, shape, targets, stageMs);
     st.pendingMove.reset();
@@ -196,31 +210,51 @@ void Renderer::Impl::accumulateChunk(const FrameCamera& camera, const FrameShape
     if (settings.progress) settings.progress(done);
   };
   // The first frame samples every target; later ones, under the adaptive policy, the targets that need samples.
+  std::uint64_t sampled = targets;
   if (!accumulator.policy().adaptive || accumulator.report().frames == 0) {
     tracePaths(camera, shape, spp, targets * spp, perBatch, TracedTargets::All, settings, stageMs, progress);
-    accumulator.mutableReport().tracedTargets += targets;
+    st.listed.reset();
   } else {
-    const std::uint64_t listed = selectRefinedTargets(shape, targets, 0.0f, stageMs, true);
-    accumulator.mutableReport().tracedTargets += listed;
-    if (listed > 0) {
+    if (viewCount == shape.views) {  // one chunk: keep the list for the next frame
+      const VkDeviceSize listBytes = targets * sizeof(std::uint32_t);
+      if (st.list.size() != listBytes) st.list = DeviceBuffer(vk, listBytes, MemoryPlace::Device);
+      frameBlock().accumList = st.list.address();
+    }
+    sampled = selectUnconvergedTargets(shape, targets, st.listed, stageMs);
+    st.listed.reset();
+    if (frameBlock().accumList != 0) st.listed = sampled;
+    if (sampled > 0) {
       frameBlock().refineInfo.w = spp;  // != 0: shade keys the listed targets' paths through the list
-      tracePaths(camera, shape, spp, listed * spp, std::min(perBatch, listed * spp), TracedTargets::Refined, settings,
+      tracePaths(camera, shape, spp, sampled * spp, std::min(perBatch, sampled * spp), TracedTargets::Refined, settings,
                  stageMs, progress);
     }
   }
-  const ComputePipeline& show = pipeline(ShaderId::AccumShow, {shape.model});
+  accumulator.mutableReport().tracedTargets += sampled;
+  // Only the sampled targets' values changed. Show only them while the subpixel buffer still holds this
+  // accumulation's last frame: no other chunk ran since, and no target started over (a reset target is sampled,
+  // unless a stop rule with an unreachable target error leaves it out).
+  const bool showListed =
+      st.listed && !reset && st.shownChunk + 1 == chunksRendered && st.shownOutputs == outputs.generation;
+  showTargets(shape.model, showListed ? sampled : targets, showListed, stageMs);
+  st.shownChunk = chunksRendered;
+  st.shownOutputs = outputs.generation;
+  framePlan.recordSegments = false;  // the renderer's own reuse state recorded nothing (frameDone)
+}
+
+void Renderer::Impl::showTargets(std::uint32_t model, std::uint64_t count, bool listed, StageTimes& stageMs) {
+  if (count == 0) return;
+  const ComputePipeline& show = pipeline(ShaderId::AccumShow, {model, listed ? 1u : 0u});
   constexpr std::uint32_t perInvocation = gpu_shared::HT_ACCUM_SHOW_TARGETS_PER_INVOCATION;
   const std::uint64_t perDispatch = std::uint64_t{kMaxGroupsPerDispatch} * HT_WORKGROUP_SIZE * perInvocation;
   beginCommands();
   PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
-  for (std::uint64_t first = 0; first < targets; first += perDispatch) {
-    const auto count = static_cast<std::uint32_t>(std::min(perDispatch, targets - first));
-    rec.dispatch(show, passConstants(static_cast<std::uint32_t>(first), count, 0, 0),
-                 groupsFor((count + perInvocation - 1) / perInvocation), Stage::Resolve);
+  for (std::uint64_t first = 0; first < count; first += perDispatch) {
+    const auto slice = static_cast<std::uint32_t>(std::min(perDispatch, count - first));
+    rec.dispatch(show, passConstants(static_cast<std::uint32_t>(first), slice, 0, 0),
+                 groupsFor((slice + perInvocation - 1) / perInvocation), Stage::Resolve);
   }
   submitAndWait();
   rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
-  framePlan.recordSegments = false;  // the renderer's own reuse state recorded nothing (frameDone)
 }
 
 std::uint64_t Renderer::Impl::resetMovedTargets(Accumulator& accumulator, const Bounds3& moved,

@@ -47,8 +47,8 @@ class Accumulator {
  public:
   // rgb sum + n, half sum + its count (gpu_shared::AccumTarget, 32 B), the segment-cell mask (16 B) and the bounds
   // of its primary segments (reach, nearest and farthest hit: 12 B) that let a node move restart only the targets
-  // near it.
-  static constexpr std::uint64_t kBytesPerTarget = 60;
+  // near it, and its entry in the adaptive policy's list of the targets still sampled (4 B).
+  static constexpr std::uint64_t kBytesPerTarget = 64;
   // Device memory an accumulation of `shape` holds.
   static std::uint64_t bytesFor(const FrameShape& shape) { return shape.targets() * kBytesPerTarget; }
 

@@ -82,6 +82,16 @@ struct ht::gpu::Accumulator::State {
   DeviceBuffer dirty;  // the marking pass's list (header + entries, FrameReuseState::kListFirst), host visible
   bool masksValid = false;
   std::optional<Bounds3> pendingMove;  // set by accumulate(): the next frame resets the targets near these bounds
+  // The adaptive policy's list (docs/REUSE.md §2): the targets the last frame sampled, a uint per target, kept for
+  // accumulations of one chunk. The next frame selects among these only, since a target left out stays converged
+  // (its sums no longer change), and shows only the ones it samples. `listed`: its entries; none = the next frame
+  // judges every target (after a restart or a move, or when the frame has several chunks).
+  DeviceBuffer list;
+  std::optional<std::uint64_t> listed;
+  // The renderer's chunk count (Impl::chunksRendered) and subpixel-buffer generation when a show pass of this
+  // accumulation last wrote the subpixel buffer: while no other chunk has run since, the buffer still holds the values
+  // of the targets a frame does not sample.
+  std::uint64_t shownChunk = 0, shownOutputs = 0;
 };
 
 namespace ht::gpu {
@@ -123,6 +133,7 @@ struct Renderer::Impl {
   std::deque<SceneChange> sceneChanges;  // the last kSceneChangeLog changes
   static constexpr std::size_t kSceneChangeLog = 64;
   Accumulator* accumulating = nullptr;  // during accumulate(): the accumulation the chunks add to
+  std::uint64_t chunksRendered = 0;     // chunks begun by render(): whose values the subpixel buffer holds
   FrameReuseState reuse;                // what the next frame of the same view may reuse (RenderSettings::reuse)
   ReusePlan framePlan;                  // the plan of the chunk being rendered
 
@@ -255,14 +266,24 @@ struct Renderer::Impl {
   // The interleave of a partial re-render: only the pixels of its listed targets, whose dirty list it names in the
   // frame block (the caller clears FrameBlock::refine once the pass ran).
   void recordDirtyInterleave(PassRecorder& rec, const FrameShape& shape);
-  // Adaptive refinement (refinement_pass.cpp); byError: the targets the accumulation's stop rule says need samples.
+  // Adaptive refinement (refinement_pass.cpp): lists the targets whose contrast reaches `contrast`; returns how many.
   std::uint64_t selectRefinedTargets(const FrameShape& shape, std::uint64_t targets, float contrast,
-                                     StageTimes& stageMs, bool byError = false);
+                                     StageTimes& stageMs);
+  std::uint64_t selectTargets(const FrameShape& shape, std::uint64_t targets, float contrast,
+                              std::optional<std::uint64_t> listed, bool byError, StageTimes& stageMs);
+  // The adaptive policy of progressive accumulation (refinement_pass.cpp): lists the targets the stop rule says need
+  // samples, among all the chunk's targets or, given `listed`, among the first `listed` entries of the
+  // accumulation's list (FrameBlock::accumList); returns how many.
+  std::uint64_t selectUnconvergedTargets(const FrameShape& shape, std::uint64_t targets,
+                                         std::optional<std::uint64_t> listed, StageTimes& stageMs);
   // Progressive accumulation (accumulation_pass.cpp).
   RenderResult accumulate(const FrameCamera& camera, const RenderSettings& settings, Accumulator& accumulator);
   void accumulateChunk(const FrameCamera& camera, const FrameShape& shape, const RowBand& band, std::uint32_t viewFirst,
                        std::uint32_t viewCount, const RenderSettings& settings, std::uint64_t perBatch,
                        StageTimes& stageMs, RenderResult& result);
+  // The show pass of a progressive frame (accum_show.comp): the first `count` targets of the chunk, or, `listed`,
+  // the first `count` entries of the accumulation's list.
+  void showTargets(std::uint32_t model, std::uint64_t count, bool listed, StageTimes& stageMs);
   // The progressive members of the frame block (after fillFrame).
   void fillAccumulation(FrameBlock& f, Accumulator& accumulator) const;
   // The marking pass (mark_dirty.comp) over `targets` targets, with the list header, masks and list set in the frame

@@ -105,6 +105,7 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   perBatch = std::min(perBatch, targets * maxSpp);
   work.ensure(vk, static_cast<std::uint32_t>(perBatch), scene.lightCount());
   outputs.ensure(vk, shape.width, shape.height * viewCount);
+  ++chunksRendered;
   bindState();
   fillFrame(camera, shape, band, viewFirst, viewCount, settings);
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));

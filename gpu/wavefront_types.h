@@ -102,6 +102,12 @@ struct FrameBlock {
   uint64_t accumTargets;
   uint64_t accumStats;  // AccumStats of the frame (device address)
   uvec4 accum;
+  // ... the accumulation's target list (device address, a uint per entry): the targets its last frame sampled, which
+  // the next frame's selection re-judges (a target left out stays converged: its sums no longer change), and which
+  // its show pass shows (accum_show.comp LISTED); and the stop-rule statistics of the targets left out of that list
+  // (AccumStats; gathered by refine_select.comp BY_ERROR as it leaves them out, docs/REUSE.md §2).
+  uint64_t accumList;
+  uint64_t accumSettledStats;
   // Frame reuse (gpu/frame_reuse.h): per-target segment cells, 4 words per target (device address; 0 = the frame
   // records none), the cached primary rays and hits of every path (HtRay / HtHit per path in path order; 0 = none:
   // then the masks hold the primary segments too) and the world grid the cells are counted on (segment_cells.h).
@@ -123,7 +129,8 @@ struct AccumTarget {
   uint halfN;
 };
 
-// Written by accum_show.comp over the targets of a progressive frame (atomics; reset by the host per frame).
+// Written by accum_show.comp over the targets a progressive frame shows (atomics; reset by the host per frame), and
+// by refine_select.comp over the targets its selection leaves out for good ("settled": reset when it judges all).
 struct AccumStats {
   uint unconverged;   // targets the stop rule says need more samples
   uint maxErrorBits;  // largest error estimate (float bits; non-negative floats order as their bits)

@@ -35,7 +35,7 @@ struct Limits {
   double streamStallSeconds = 30.0;                     // a Write held back this long (client not reading): cancelled
   // Progressive StreamFrames (server/progressive_streams.h, docs/SERVICE.md §4.1).
   std::uint64_t maxAccumulatorBytes =
-      1ull << 30;                    // device sums + segment masks of all progressive streams (60 B per target)
+      1ull << 30;                    // device sums + segment masks of all progressive streams (64 B per target)
   double streamTargetError = 0.02;   // default stop rule: per-target error estimate below this ...
   std::uint32_t streamMaxSpp = 256;  // ... or this many accumulated samples per target
 };

@@ -13,12 +13,18 @@
 //           the pixel), count and stage (slot = linear workgroup * gl_NumSubgroups + subgroup; rows of 64-pixel
 //           groups and pixel-major ranks keep the target order). One invocation per pixel rather than per subpixel
 //           target: lavapipe pays a lot per invocation (select stage 228 -> 182 ms on Portrait, docs/BENCHMARKS.md);
-//   MODE 1, one invocation per slot, after the host scan: move the slot's staged targets to list[scan[s] + rank].
+//   MODE 1, one invocation per slot, after the host scan: move the slot's staged targets to list[scan[s] + rank],
+//           and, in a progressive frame that keeps one (FRAME.accumList != 0), to the accumulation's list too;
+//   MODE 2 (BY_ERROR only), one invocation per entry of the accumulation's list, the targets its last frame sampled:
+//           select among them (slot = subgroup, S = subgroup size; the list is in target order, so the result is).
+//           A target not on that list was left out by an earlier frame and stays out: its sums no longer change, so
+//           the stop rule still holds for it (docs/REUSE.md §2).
+// BY_ERROR also folds the targets it leaves out into the accumulation's settled statistics (FRAME.accumSettledStats),
+// which the host combines with the show pass's statistics of the targets it shows.
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "gpu/adaptive_refinement.h"
-#include "gpu/accumulation_error.h"
 
 layout(constant_id = HT_SPEC_MODEL) const uint MODEL = HT_MODEL_LENTICULAR;
 layout(constant_id = 1) const uint MODE = 0u;
@@ -26,6 +32,8 @@ layout(constant_id = 1) const uint MODE = 0u;
 // progressive accumulation on its stored sums (gpu/accumulation_error.h: the adaptive policy lists the targets that
 // still need samples, docs/REUSE.md §1-§2).
 layout(constant_id = 2) const bool BY_ERROR = false;
+
+#include "gpu/shaders/accum_stats.glsl"
 
 // Texel fetches, not image loads: lavapipe gathers all lanes of a fetch at once (gpu/shaders/bvh_access.glsl).
 float channel(uint pixel, uint c) { return texelFetch(subpixelTexels, int(3u * pixel + c)).x; }
@@ -51,54 +59,74 @@ float target_contrast(uint x, uint c, uint y, uint view) {
   return contrast;
 }
 
-// Whether chunk target `target` still needs samples under the stop rule (progressive accumulation).
-bool target_needs_samples(uint target) {
+// Whether chunk target `target` still needs samples under the stop rule (progressive accumulation); if not, it is
+// folded into `settled`.
+bool target_needs_samples(uint target, inout TargetStats settled) {
   AccumTarget a = AccumRef(FRAME.accumTargets).t[frame_global_target(target)];
-  vec3 mean = a.n > 0u ? a.sum / float(a.n) : vec3(0.0f);
-  vec3 halfMean = a.halfN > 0u ? a.halfSum / float(a.halfN) : vec3(0.0f);
-  uint c = target % 3u;
-  vec3 mask = ht_model_has_subpixel_targets(MODEL)
-                  ? vec3(c == 0u ? 1.0f : 0.0f, c == 1u ? 1.0f : 0.0f, c == 2u ? 1.0f : 0.0f)
-                  : vec3(1.0f);
-  float error = ht_accum_error(mean, halfMean, a.halfN, mask);
-  return ht_accum_needs_samples(a.n, error, FRAME.accum.z, FRAME.accum.w, uintBitsToFloat(FRAME.accum.y));
+  float error = accum_target_error(a, target);
+  bool needs = accum_needs_samples(a.n, error);
+  if (!needs) fold_target_stats(settled, a.n, error, false);
+  return needs;
+}
+
+// Stages the `count` targets of `selected` (bit c: target first + c) at this invocation's rank in slot `slot`, and
+// stores the slot's count.
+void stage_selected(uint slot, uint slots, uint first, uint selected) {
+  UintRef refine = UintRef(FRAME.refine);
+  uint count = bitCount(selected);
+  uint at = slots + 1u + slot * FRAME.refineInfo.z + subgroupExclusiveAdd(count);
+  for (uint c = 0u; c < 3u; ++c) {
+    if ((selected & (1u << c)) != 0u) refine.v[at++] = first + c;
+  }
+  uint total = subgroupAdd(count);
+  if (subgroupElect()) refine.v[slot] = total;
 }
 
 void main() {
   UintRef refine = UintRef(FRAME.refine);
-  uint stride = FRAME.refineInfo.z;
+  uint group = (gl_WorkGroupID.z * gl_NumWorkGroups.y + gl_WorkGroupID.y) * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  uint slots = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z * gl_NumSubgroups;
+  uint slot = group * gl_NumSubgroups + gl_SubgroupID;
+  TargetStats settled = no_target_stats();
   if (MODE == 0u) {
     uint perPixel = ht_model_has_subpixel_targets(MODEL) ? 3u : 1u;
     uint x = gl_GlobalInvocationID.x;
     uint row = gl_GlobalInvocationID.z * FRAME.dims.y + gl_GlobalInvocationID.y;
-    uint group = (gl_WorkGroupID.z * gl_NumWorkGroups.y + gl_WorkGroupID.y) * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-    uint slots = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_NumWorkGroups.z * gl_NumSubgroups;
-    uint slot = group * gl_NumSubgroups + gl_SubgroupID;
     float threshold = uintBitsToFloat(FRAME.refineInfo.x);
     uint selected = 0u;  // bit c: target c of the pixel
     uint first = (row * FRAME.dims.x + x) * perPixel;
     if (x < FRAME.dims.x) {
       for (uint c = 0u; c < perPixel; ++c) {
-        bool pick = BY_ERROR ? target_needs_samples(first + c)
+        bool pick = BY_ERROR ? target_needs_samples(first + c, settled)
                              : target_contrast(x, c, gl_GlobalInvocationID.y, gl_GlobalInvocationID.z) >= threshold;
         if (pick) selected |= 1u << c;
       }
     }
-    uint count = bitCount(selected);
-    uint at = slots + 1u + slot * stride + subgroupExclusiveAdd(count);
-    for (uint c = 0u; c < perPixel; ++c) {
-      if ((selected & (1u << c)) != 0u) refine.v[at++] = first + c;
+    stage_selected(slot, slots, first, selected);
+  } else if (MODE == 2u) {
+    uint entry = gl_GlobalInvocationID.x;
+    uint target = 0u;
+    bool pick = false;
+    if (entry < pc.batchCount) {
+      target = UintRef(FRAME.accumList).v[entry];
+      pick = target_needs_samples(target, settled);
     }
-    uint total = subgroupAdd(count);
-    if (subgroupElect()) refine.v[slot] = total;
-    if (group == 0u && gl_LocalInvocationIndex == 0u) COUNTERS.subgroupSize = gl_SubgroupSize;  // checked by the host
+    stage_selected(slot, slots, target, pick ? 1u : 0u);
   } else {
-    uint slot = gl_GlobalInvocationID.x;
-    uint slots = pc.batchCount;
+    slot = gl_GlobalInvocationID.x;
+    slots = pc.batchCount;
     if (slot >= slots) return;
     uint first = refine.v[slot];
     uint count = refine.v[slot + 1u] - first;
-    uint staging = slots + 1u + slot * stride;
-    for (uint k = 0u; k < count; ++k) refine.v[FRAME.refineInfo.y + first + k] = refine.v[staging + k];
+    uint staging = slots + 1u + slot * FRAME.refineInfo.z;
+    bool keep = FRAME.accumList != 0ul;
+    for (uint k = 0u; k < count; ++k) {
+      uint target = refine.v[staging + k];
+      refine.v[FRAME.refineInfo.y + first + k] = target;
+      if (keep) UintRef(FRAME.accumList).v[first + k] = target;
+    }
+    return;
   }
+  if (BY_ERROR) add_target_stats(settled, FRAME.accumSettledStats);
+  if (group == 0u && gl_LocalInvocationIndex == 0u) COUNTERS.subgroupSize = gl_SubgroupSize;  // checked by the host
 }

@@ -397,6 +397,70 @@ TEST(Accumulation, AdaptivePolicyConvergesAndThenTracesNothing) {
   EXPECT_TRUE(sameBits(after, frame));
 }
 
+// What a progressive frame reports and shows, recomputed on the CPU from the downloaded sums of every target of a
+// 20 x 14 pinhole frame (pixel targets): its shown rgb is the target's sum / n, and the count of targets that need
+// samples, the largest error and the fewest and most samples are those of all targets.
+void expectFrameIsItsSums(const gpu::RenderResult& frame, const gpu::Accumulator& accumulator,
+                          const gpu::AccumulationPolicy& policy) {
+  const std::vector<float> sums = accumulator.downloadSums();
+  ASSERT_EQ(sums.size(), std::size_t(20 * 14 * 8));
+  std::uint64_t unconverged = 0;
+  float maxError = 0.0f;
+  std::uint32_t fewest = ~0u, most = 0;
+  for (std::size_t t = 0; t < sums.size() / 8; ++t) {
+    const float* s = &sums[t * 8];
+    const auto n = static_cast<std::uint32_t>(s[3]);
+    const auto halfN = static_cast<std::uint32_t>(s[7]);
+    const glm::vec3 mean = n > 0 ? glm::vec3(s[0], s[1], s[2]) / s[3] : glm::vec3(0.0f);
+    const glm::vec3 halfMean = halfN > 0 ? glm::vec3(s[4], s[5], s[6]) / s[7] : glm::vec3(0.0f);
+    const float error = gpu_shared::ht_accum_error(mean, halfMean, halfN, glm::vec3(1.0f));
+    maxError = std::max(maxError, std::min(error, gpu_shared::HT_ACCUM_UNKNOWN_ERROR));
+    if (gpu_shared::ht_accum_needs_samples(n, error, policy.minSpp, policy.maxSpp, policy.targetError)) ++unconverged;
+    fewest = std::min(fewest, n);
+    most = std::max(most, n);
+    const std::size_t x = t % 20, y = t / 20, pixel = (13 - y) * 20 + x;  // rows of targets count from the bottom
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(frame.rgba[pixel * 4 + c], mean[c]) << "target " << t << " channel " << c;
+  }
+  EXPECT_EQ(frame.accumulation.unconverged, unconverged);
+  EXPECT_NEAR(frame.accumulation.maxError, maxError, 1e-5f * maxError);
+  EXPECT_EQ(frame.accumulation.minSamples, fewest);
+  EXPECT_EQ(frame.accumulation.maxSamples, most);
+}
+
+// Under the adaptive policy a frame judges only the targets the last frame sampled and shows only the ones it samples
+// (accumulation_pass.cpp; a target left out stays converged, and the subpixel buffer keeps its value). Every frame
+// must still show and report what the sums of all targets say, also after the renderer drew something else in
+// between: a single frame of another scene view, and a frame of a second accumulation.
+TEST(Accumulation, AdaptiveFramesShowAndReportEveryTargetAsItsSumsSay) {
+  const Scene scene = accumulationScene();
+  gpu::Renderer renderer(sharedContext(), scene);
+  const FrameCamera camera = lookAt(glm::vec3(0.0f, 0.2f, 2.0f), glm::vec3(0.0f), 40.0f, 20, 14);
+  const FrameCamera other = lookAt(glm::vec3(0.4f, 0.6f, 1.5f), glm::vec3(0.0f), 50.0f, 20, 14);
+  gpu::AccumulationPolicy policy;
+  policy.targetError = 0.05f;
+  policy.minSpp = 4;
+  policy.maxSpp = 48;
+  gpu::Accumulator accumulator(policy), second(policy);
+  gpu::RenderSettings settings;
+  settings.spp = 2;
+  gpu::RenderResult frame;
+  int frames = 0;
+  std::uint64_t sampled = 0;
+  for (; frames < 40 && !frame.accumulation.converged; ++frames) {
+    SCOPED_TRACE("frame " + std::to_string(frames));
+    if (frames == 4) renderer.render(other, settings);               // another image in the subpixel buffer
+    if (frames == 6) renderer.accumulate(other, settings, second);   // another accumulation's show pass
+    if (frames == 8) renderer.accumulate(camera, settings, second);  // ... of the same view
+    frame = renderer.accumulate(camera, settings, accumulator);
+    expectFrameIsItsSums(frame, accumulator, policy);
+    if (frames > 0) sampled += frame.accumulation.tracedTargets;
+  }
+  ASSERT_TRUE(frame.accumulation.converged);
+  EXPECT_GT(frames, 10);
+  EXPECT_LT(sampled, std::uint64_t{20 * 14} * (frames - 1)) << "every frame sampled every target";
+  EXPECT_LT(frame.accumulation.minSamples, frame.accumulation.maxSamples) << "no target was refined adaptively";
+}
+
 // CPU reference of the error estimate and the stop rule (gpu/accumulation_error.h, the same source): recomputed on
 // the CPU from the downloaded sums of every target, the count of targets that need samples and the largest error
 // equal what accum_show.comp reported; the sample and half counts are those of the sequence (n, and the indices

@@ -273,7 +273,7 @@ TEST_F(ProgressiveStreamTest, AReusingStreamMovesTheSessionsFlattenedRendererToT
 TEST(ProgressiveStreamLimit, OverTheAccumulatorLimitIsResourceExhaustedNamingTheLimit) {
   DaemonFiles files;
   DaemonConfig config = files.config();
-  config.limits.maxAccumulatorBytes = 100'000;  // the tiny display needs 96 x 64 x 3 targets x 60 B = 1,105,920
+  config.limits.maxAccumulatorBytes = 100'000;  // the tiny display needs 96 x 64 x 3 targets x 64 B = 1,179,648
   Daemon daemon(config, std::cerr);
   daemon.start();
   auto stub = connect(files.socketAddress());
@@ -290,7 +290,7 @@ TEST(ProgressiveStreamLimit, OverTheAccumulatorLimitIsResourceExhaustedNamingThe
   EXPECT_EQ(refused.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_NE(refused.error_message().find("limits.max_accumulator_bytes = 100000"), std::string::npos)
       << refused.error_message();
-  EXPECT_NE(refused.error_message().find("1105920"), std::string::npos) << refused.error_message();
+  EXPECT_NE(refused.error_message().find("1179648"), std::string::npos) << refused.error_message();
   // Independent frames need no accumulator.
   request.set_mode(v1::STREAM_MODE_INDEPENDENT);
   grpc::ClientContext independent;
