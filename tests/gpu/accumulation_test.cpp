@@ -456,6 +456,8 @@ TEST(Accumulation, AdaptiveFramesShowAndReportEveryTargetAsItsSumsSay) {
     if (frames > 0) sampled += frame.accumulation.tracedTargets;
   }
   ASSERT_TRUE(frame.accumulation.converged);
+  EXPECT_EQ(accumulator.deviceBytes(), gpu::Accumulator::bytesFor(frameShape(camera)))
+      << "the memory limit counts what an accumulation holds";
   EXPECT_GT(frames, 10);
   EXPECT_LT(sampled, std::uint64_t{20 * 14} * (frames - 1)) << "every frame sampled every target";
   EXPECT_LT(frame.accumulation.minSamples, frame.accumulation.maxSamples) << "no target was refined adaptively";
