@@ -125,6 +125,7 @@ struct DisplayEdits {
   double coverage = 0.0;  // fraction of primary samples that hit the moved node (the first recorded frame)
   TimingSeries full, recording, light, move, rebuild;
   std::vector<double> lightRatio, moveRatio, recordRatio, traced, changed;
+  std::vector<double> movedRays;  // rays the move traced (closest + any) / rays of the full frame
   std::vector<double> lightVsRecording, moveVsRecording;  // the same edits against the reusing Renderer's full frame
   std::vector<gpu::StageTiming> fullStages, lightStages, moveStages;  // medians over the runs (appendStages)
 };
@@ -208,6 +209,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     e.lightVsRecording.push_back(light / recorded.totalMs);
     e.moveVsRecording.push_back(move / recorded.totalMs);
     e.traced.push_back(double(moved.tracedTargets) / double(e.targets));
+    e.movedRays.push_back(double(moved.raysTraced) / double(std::max<std::uint64_t>(fullFrame.raysTraced, 1)));
     e.changed.push_back(changedValueFraction(lit.rgba, moved.rgba));
     appendStages(stageRuns[0], fullFrame.stages);
     appendStages(stageRuns[1], lit.stages);
@@ -228,7 +230,8 @@ void print(const DisplayEdits& e) {
               median(e.lightRatio), median(e.lightVsRecording));
   std::printf("  node move (update + frame):   %9.1f ms   ratio %.3f (vs recording %.3f)   (BVH update %.1f ms)\n",
               e.move.medianMs(), median(e.moveRatio), median(e.moveVsRecording), e.rebuild.medianMs());
-  std::printf("  re-traced targets %.4f, changed output values %.4f\n", median(e.traced), median(e.changed));
+  std::printf("  re-traced targets %.4f, changed output values %.4f, rays traced %.4f of the full frame's\n",
+              median(e.traced), median(e.changed), median(e.movedRays));
   std::printf("  stages, medians of the runs (GPU ms; readback: host):");
   for (const auto* stages : {&e.fullStages, &e.lightStages, &e.moveStages}) {
     std::printf("\n   %s", stages == &e.fullStages ? "full " : stages == &e.lightStages ? "light" : "move ");
@@ -251,6 +254,7 @@ std::string csvRows(const DisplayEdits& e) {
                                                  {"ratio_node_move_vs_recording", median(e.moveVsRecording)},
                                                  {"node_coverage", e.coverage},
                                                  {"retraced_fraction", median(e.traced)},
+                                                 {"move_rays_fraction", median(e.movedRays)},
                                                  {"changed_fraction", median(e.changed)}};
   for (const auto& [name, value] : rows) csv << e.display << "," << name << "," << value << "\n";
   return csv.str();
