@@ -69,17 +69,25 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
     p.movedHi = padded.hi;
   }
   p.recordHits = p.mode == FrameReuse::None && p.primaryCached;
-  const std::uint64_t secondaryBytes = paths * kSecondaryBytesPerPath * secondaryDepths;
-  const bool secondaryFits = p.primaryCached && secondaryDepths > 0 && secondaryBytes <= kSecondaryHitCacheBudget;
+  // The secondary cache takes at most the budget; whether the frame's bounce queues fit is known as they are traced.
+  // It starts at a quarter of the paths (the showcase's bounces take 5-7 % of paths x depths) and grows by doubling.
+  const std::uint64_t entries = std::min(paths * secondaryDepths, secondaryBudget_ / kSecondaryBytesPerPath);
+  if (!sameView) secondaryTooLarge_ = false;
+  const bool secondaryFits = p.primaryCached && secondaryDepths > 0 && entries > 0 && !secondaryTooLarge_;
   p.recordSecondary =
       secondaryFits && (p.mode == FrameReuse::None || (p.mode == FrameReuse::CachedPrimaryHits && !secondaryValid_));
   p.loadSecondary = p.mode == FrameReuse::CachedPrimaryHits && secondaryFits && secondaryValid_;
   p.secondaryExact = p.mode == FrameReuse::PartialRetrace && secondaryMarkable_ && cachedPaths_ == paths;
   if (p.recordSecondary) {
-    ensure(secondaryCache, secondaryBytes, MemoryPlace::Device);
+    const std::uint64_t held = secondaryCache.size() / kSecondaryBytesPerPath;  // a buffer kept from earlier frames
+    secondaryEntries_ = std::min(entries, std::max({paths / 4, std::uint64_t{1024}, held}));
+    ensure(secondaryCache, secondaryEntries_ * kSecondaryBytesPerPath, MemoryPlace::Device);
+    secondaryUsed_ = 0;
+    secondaryOverflow_ = false;
     countsPerBatch_ = perBatch;
     countsDepths_ = secondaryDepths + 1;
     const std::uint64_t batches = (paths + perBatch - 1) / perBatch;
+    secondaryBases_.assign(batches * countsDepths_, 0u);
     const std::uint64_t countBytes = batches * countsDepths_ * sizeof(std::uint32_t);
     ensure(secondaryCounts, countBytes, MemoryPlace::HostReadback);
     std::memset(secondaryCounts.mapped(), 0, countBytes);  // depths a batch never reached hold no entries
@@ -117,6 +125,12 @@ void FrameReuseState::frameDone(const ReuseKey& key, const ReusePlan& plan) {
   secondaryValid_ = plan.recordSecondary || plan.loadSecondary;  // a partial re-render leaves them stale
   // ... for its re-traced targets only: those get coarse cells in mask words 0-1, the others' entries stay current.
   secondaryMarkable_ = plan.recordSecondary || plan.loadSecondary || plan.secondaryExact;
+  if (plan.recordSecondary && secondaryOverflow_) {
+    // Bounce queues that did not fit recorded neither entries nor cells (their segments were meant for the cache):
+    // nothing after this frame may reuse it, and the next frame of this view records without the cache.
+    invalidate();
+    secondaryTooLarge_ = true;
+  }
 }
 
 VkDeviceSize FrameReuseState::secondaryCountOffset(std::uint64_t batchFirst, std::uint32_t depth) const {
@@ -135,16 +149,53 @@ std::vector<FrameReuseState::SecondaryQueue> FrameReuseState::secondaryQueues() 
   for (std::uint64_t first = 0; first < cachedPaths_; first += countsPerBatch_) {
     for (std::uint32_t depth = 1; depth < countsDepths_; ++depth) {
       const std::uint32_t count = secondaryCount(first, depth);
-      if (count > 0) queues.push_back({static_cast<std::uint32_t>(first), depth, count});
+      if (count > 0) queues.push_back({static_cast<std::uint32_t>(first), depth, count, secondaryBase(first, depth)});
     }
   }
   return queues;
 }
 
-FrameReuseState::SecondaryRegion FrameReuseState::secondaryRegion(std::uint32_t depth) const {
-  const VkDeviceSize base = (depth - 1) * cachedPaths_ * kSecondaryBytesPerPath;
-  const VkDeviceSize rays = cachedPaths_ * sizeof(gpu_shared::HtRay);
-  return {base, base + rays, base + rays + cachedPaths_ * sizeof(std::uint32_t)};
+FrameReuseState::SecondaryRegion FrameReuseState::secondaryRegion() const {
+  const VkDeviceSize rays = secondaryEntries_ * sizeof(gpu_shared::HtRay);
+  return {0, rays, rays + secondaryEntries_ * sizeof(std::uint32_t)};
+}
+
+void FrameReuseState::growSecondary(std::uint64_t entries) {
+  DeviceBuffer grown(vk_, entries * kSecondaryBytesPerPath, MemoryPlace::Device);
+  if (secondaryUsed_ > 0) {  // the entries so far, each array to its place in the larger layout
+    const SecondaryRegion from = secondaryRegion();
+    const VkDeviceSize rays = entries * sizeof(gpu_shared::HtRay);
+    const SecondaryRegion to{0, rays, rays + entries * sizeof(std::uint32_t)};
+    const VkBufferCopy parts[] = {{from.rays, to.rays, secondaryUsed_ * sizeof(gpu_shared::HtRay)},
+                                  {from.paths, to.paths, secondaryUsed_ * sizeof(std::uint32_t)},
+                                  {from.hits, to.hits, secondaryUsed_ * sizeof(gpu_shared::HtHit)}};
+    OneShotCommands copy(vk_);
+    vkCmdCopyBuffer(copy.cmd(), secondaryCache.handle(), grown.handle(), 3, parts);
+    copy.submitAndWait();
+  }
+  secondaryCache = std::move(grown);
+  secondaryEntries_ = entries;
+}
+
+std::optional<std::uint32_t> FrameReuseState::reserveSecondary(std::uint64_t batchFirst, std::uint32_t depth,
+                                                               std::uint32_t count) {
+  const std::uint64_t limit = secondaryBudget_ / kSecondaryBytesPerPath;
+  if (secondaryOverflow_ || secondaryUsed_ + count > limit) {
+    secondaryOverflow_ = true;
+    return std::nullopt;
+  }
+  if (secondaryUsed_ + count > secondaryEntries_) {
+    growSecondary(std::min(limit, std::max(2 * secondaryEntries_, secondaryUsed_ + count)));
+  }
+  const auto base = static_cast<std::uint32_t>(secondaryUsed_);
+  secondaryBases_[secondaryCountOffset(batchFirst, depth) / sizeof(std::uint32_t)] = base;
+  secondaryUsed_ += count;
+  return base;
+}
+
+std::uint32_t FrameReuseState::secondaryBase(std::uint64_t batchFirst, std::uint32_t depth) const {
+  const std::size_t at = secondaryCountOffset(batchFirst, depth) / sizeof(std::uint32_t);
+  return at < secondaryBases_.size() ? secondaryBases_[at] : 0u;
 }
 
 namespace {

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -21,7 +22,9 @@ namespace ht::gpu {
 inline constexpr std::uint64_t kPrimaryHitCacheBudget = 1ull << 30;
 inline constexpr std::uint64_t kPrimaryHitBytesPerPath = sizeof(gpu_shared::HtRay) + sizeof(gpu_shared::HtHit);
 // The closest-hit queues of the later depths (mirror and glass bounces), which do not depend on the lights either:
-// per depth and path a ray, a queue entry's path index and a hit (52 B); the same kind of budget.
+// per entry a ray, its path index and its hit (52 B); the same kind of budget. The queues are packed one after the
+// other, so the cache holds the entries the frame traced, not a batch's worth per depth: a full Portrait frame
+// (9.4 M paths, 3 bounce depths) needs 1.47 GB for the worst case and about 0.2 GB for the showcase's bounces.
 inline constexpr std::uint64_t kSecondaryHitCacheBudget = 1ull << 30;
 inline constexpr std::uint64_t kSecondaryBytesPerPath =
     sizeof(gpu_shared::HtRay) + sizeof(std::uint32_t) + sizeof(gpu_shared::HtHit);
@@ -94,22 +97,30 @@ class FrameReuseState {
   // Sized by plan(): primary rays and hits of every path of the frame (path order), segment masks (kMaskWords per
   // target), and the dirty-target list (header: moved cells in words 0-1, the count in 2, the padded moved bounds'
   // lo in 4-6 and hi in 8-10 as float bits; entries from kListFirst).
-  // The secondary cache holds, for depth d >= 1, rays at region (d - 1) * paths * 52 B, then the queue entries' path
-  // indices and hits (secondaryRegion); entries of a batch start at its first path.
+  // The secondary cache holds secondaryEntries() entries: their rays, then their path indices, then their hits
+  // (secondaryRegion). The queue of each batch and depth >= 1 takes the next `count` entries (secondaryBase), in
+  // the order the frame traced them; a frame whose queues overflow the cache keeps no state (frameDone).
   // secondaryCounts: the entries of each batch's queue of each depth (batch * (secondaryDepths + 1) + depth), copied
   // from the queue counters by the frame that fills the secondary cache; host visible.
   // shadowOcclusion: with the primary hits, a word per path and depth (depth-major: word depth * paths + path), for
   // depth 0 and, with the secondary cache, every later depth (ReusePlan::occlusionDepths).
   DeviceBuffer primaryRays, primaryHits, segmentMasks, dirtyList, secondaryCache, secondaryCounts, shadowOcclusion;
   struct SecondaryRegion {
-    VkDeviceSize rays, paths, hits;  // byte offsets of entry 0 of the depth's rays, path indices, hits
+    VkDeviceSize rays, paths, hits;  // byte offsets of entry 0's ray, path index and hit
   };
-  SecondaryRegion secondaryRegion(std::uint32_t depth) const;
+  SecondaryRegion secondaryRegion() const;
+  std::uint64_t secondaryEntries() const { return secondaryEntries_; }
+  void setSecondaryBudget(std::uint64_t bytes) { secondaryBudget_ = bytes; }
   VkDeviceSize secondaryCountOffset(std::uint64_t batchFirst, std::uint32_t depth) const;
+  // While a frame fills the cache: the first entry of the queue of (batch, depth), `count` entries, taken from the
+  // cache's free space; none when they do not fit (the cache overflowed: the frame then keeps no state).
+  std::optional<std::uint32_t> reserveSecondary(std::uint64_t batchFirst, std::uint32_t depth, std::uint32_t count);
+  std::uint32_t secondaryBase(std::uint64_t batchFirst, std::uint32_t depth) const;
   // The cached queues of depths >= 1 (what the frame that filled the cache traced), for the marking pass of a frame
   // whose plan says secondaryExact; between frames, while secondaryMarkable().
   struct SecondaryQueue {
     std::uint32_t batchFirst, depth, count;
+    std::uint32_t base;  // its first entry in the cache
   };
   std::vector<SecondaryQueue> secondaryQueues() const;
   std::uint32_t secondaryCount(std::uint64_t batchFirst, std::uint32_t depth) const;  // entries of one cached queue
@@ -117,7 +128,7 @@ class FrameReuseState {
   bool secondaryMarkable() const { return secondaryMarkable_; }
   // List header: moved cells (words 0-1), count (2), candidates for the exact tests (3; their entries from word 11's
   // value, 0: none), padded moved bounds lo (4-6) and hi (8-10) as float bits, and with ReusePlan::secondaryExact
-  // the secondary cache's address (12-13).
+  // the secondary cache's address (12-13) and its entries (14).
   static constexpr std::uint32_t kListFirst = 16;
   // Writes the header of a marking pass's list (the other words zero): the moved cells, the padded moved bounds,
   // and where the candidates' entries start (0: no exact tests).
@@ -126,6 +137,8 @@ class FrameReuseState {
 
  private:
   void ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPlace place);
+  // Moves the secondary cache to a buffer of `entries` entries, with the entries used so far (between submits).
+  void growSecondary(std::uint64_t entries);
   VulkanContext::Impl& vk_;
   gpu_shared::SegmentGrid grid_{};
   ReuseKey key_;
@@ -134,6 +147,12 @@ class FrameReuseState {
   bool secondaryMarkable_ = false;  // the invariant of ReusePlan::secondaryExact holds
   std::uint64_t countsPerBatch_ = 0;
   std::uint32_t countsDepths_ = 0;
+  std::uint64_t secondaryBudget_ = kSecondaryHitCacheBudget;
+  std::uint64_t secondaryEntries_ = 0;         // the secondary cache's capacity
+  std::uint64_t secondaryUsed_ = 0;            // entries its queues took so far
+  bool secondaryOverflow_ = false;             // a queue of the frame filling it did not fit
+  bool secondaryTooLarge_ = false;             // ... so this view's frames record without the cache
+  std::vector<std::uint32_t> secondaryBases_;  // per (batch, depth), as secondaryCounts
   std::uint64_t maskedTargets_ = 0;
   bool lightsEdited_ = false, moved_ = false;
   std::uint32_t lightRaysChanged_ = 0;  // since the last frame

@@ -50,6 +50,7 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
     const std::uint64_t address = reuse.secondaryCache.address();
     list[12] = static_cast<std::uint32_t>(address);
     list[13] = static_cast<std::uint32_t>(address >> 32);
+    list[14] = static_cast<std::uint32_t>(reuse.secondaryEntries());
   }
   FrameBlock& f = frameBlock();
   f.refine = reuse.dirtyList.address();
@@ -78,7 +79,7 @@ void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulatio
   beginCommands();
   PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
   for (const FrameReuseState::SecondaryQueue& q : secondary) {  // first: they mark their targets' words 0-1
-    rec.dispatch(markPipeline(kMarkSecondaryEntries), passConstants(q.batchFirst, q.count, q.depth, 0),
+    rec.dispatch(markPipeline(kMarkSecondaryEntries), passConstants(q.batchFirst, q.count, q.depth, q.base),
                  groupsFor(q.count), Stage::Mark);
   }
   for (std::uint64_t first = 0; first < targets; first += kMarkTargetsPerDispatch) {
@@ -121,13 +122,16 @@ void Renderer::Impl::recordDirtyInterleave(PassRecorder& rec, const FrameShape& 
   }
 }
 
-void Renderer::Impl::copySecondary(std::uint32_t depth, std::uint32_t batchFirst, std::uint32_t count, bool load) {
-  // Loading, the queue's size is known here (the frame that filled the cache copied it to secondaryCounts): only
+void Renderer::Impl::copySecondary(std::uint32_t depth, std::uint32_t batchFirst, bool load) {
+  // The queue's size is known here (the frame that fills the cache copied it to secondaryCounts before this): only
   // its entries are copied, not the batch's worth (the later depths' queues are a fraction of the batch, and
   // lavapipe copies at memcpy speed on one thread: 4 x 26 MB took about 15 ms on the HPO wall).
-  if (load) count = reuse.secondaryCount(batchFirst, depth);
+  const std::uint32_t count = reuse.secondaryCount(batchFirst, depth);
   if (count == 0) return;
-  const FrameReuseState::SecondaryRegion r = reuse.secondaryRegion(depth);
+  const std::optional<std::uint32_t> base =
+      load ? reuse.secondaryBase(batchFirst, depth) : reuse.reserveSecondary(batchFirst, depth, count);
+  if (!base) return;  // the cache overflowed: the frame keeps no state (FrameReuseState::frameDone)
+  const FrameReuseState::SecondaryRegion r = reuse.secondaryRegion();
   const std::uint32_t q = depth % 2;
   const struct {
     const DeviceBuffer& work;
@@ -136,7 +140,7 @@ void Renderer::Impl::copySecondary(std::uint32_t depth, std::uint32_t batchFirst
                {work.queuePath[q], r.paths, sizeof(std::uint32_t)},
                {work.hits, r.hits, sizeof(gpu_shared::HtHit)}};
   for (const auto& part : parts) {
-    const VkDeviceSize at = part.cacheOffset + VkDeviceSize{batchFirst} * part.entryBytes;
+    const VkDeviceSize at = part.cacheOffset + VkDeviceSize{*base} * part.entryBytes;
     const VkDeviceSize bytes = VkDeviceSize{count} * part.entryBytes;
     if (load) {
       recordComputeCopy(cmd, reuse.secondaryCache, at, part.work, 0, bytes);
@@ -145,6 +149,8 @@ void Renderer::Impl::copySecondary(std::uint32_t depth, std::uint32_t batchFirst
     }
   }
 }
+
+void Renderer::setBounceCacheBudget(std::uint64_t bytes) { impl_->reuse.setSecondaryBudget(bytes); }
 
 Renderer::ReuseSnapshot Renderer::reuseSnapshot() const {
   ReuseSnapshot snap;
@@ -170,9 +176,9 @@ Renderer::ReuseSnapshot Renderer::reuseSnapshot() const {
     std::vector<std::byte> cache(reuse.secondaryCache.size());
     reuse.secondaryCache.download(cache.data(), cache.size());
     const std::uint64_t spp = reuse.cachedPaths() / std::max<std::uint64_t>(reuse.maskedTargets(), 1);
+    const FrameReuseState::SecondaryRegion r = reuse.secondaryRegion();
     for (const FrameReuseState::SecondaryQueue& q : queues) {
-      const FrameReuseState::SecondaryRegion r = reuse.secondaryRegion(q.depth);
-      for (std::uint64_t e = q.batchFirst; e < std::uint64_t{q.batchFirst} + q.count; ++e) {
+      for (std::uint64_t e = q.base; e < std::uint64_t{q.base} + q.count; ++e) {
         SecondarySegment s{};
         std::uint32_t path = 0;
         std::memcpy(&s.ray, cache.data() + r.rays + e * sizeof(gpu_shared::HtRay), sizeof(s.ray));

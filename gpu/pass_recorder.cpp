@@ -24,9 +24,15 @@ const char* stageName(Stage stage) {
 
 PassRecorder::PassRecorder(VkCommandBuffer cmd, VkPipelineLayout layout, VkDescriptorSet bvhSet, VkQueryPool pool,
                            std::uint32_t queryCapacity)
-    : cmd_(cmd), layout_(layout), pool_(pool), capacity_(queryCapacity) {
+    : cmd_(cmd), layout_(layout), bvhSet_(bvhSet), pool_(pool), capacity_(queryCapacity) {
+  restart();
+}
+
+void PassRecorder::restart() {
+  next_ = 0;
+  stages_.clear();
   vkCmdResetQueryPool(cmd_, pool_, 0, capacity_);
-  vkCmdBindDescriptorSets(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &bvhSet, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &bvhSet_, 0, nullptr);
 }
 
 void PassRecorder::begin(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, Stage stage) {

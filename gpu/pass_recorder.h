@@ -42,12 +42,15 @@ class PassRecorder {
   // Adds the elapsed GPU time of every recorded pass to `ms` (by stage); call after the submit finished.
   void collect(VkDevice device, float timestampPeriodNs,
                std::array<double, static_cast<size_t>(Stage::Count)>& ms) const;
+  // After collect(), with the command buffer begun again: records into it from the first query.
+  void restart();
 
  private:
   void begin(const ComputePipeline& pipeline, const gpu_shared::PassConstants& pc, Stage stage);
   void end();
   VkCommandBuffer cmd_;
   VkPipelineLayout layout_;
+  VkDescriptorSet bvhSet_;
   VkQueryPool pool_;
   std::uint32_t capacity_;
   std::uint32_t next_ = 0;

@@ -200,6 +200,10 @@ class Renderer {
     glm::vec3 movedLo{0.0f}, movedHi{0.0f};
   };
   ReuseSnapshot reuseSnapshot() const;
+  // Device memory the frame-reuse state may give its cache of mirror and glass bounces (default
+  // kSecondaryHitCacheBudget, gpu/frame_reuse.h); from the next frame that records it on. A frame whose bounces do not
+  // fit keeps no state, and the frames of its view after it record without that cache.
+  void setBounceCacheBudget(std::uint64_t bytes);
 
   struct Impl;
 

@@ -254,9 +254,9 @@ struct Renderer::Impl {
     return bounces ? settings.maxDepth + 1 : 1;
   }
   // Frame reuse: copies the queue `depth % 2`, its path indices and the hits of `depth` (>= 1) of the batch from
-  // (load: the cached queue's own entries) or into (`count` entries) the secondary cache (frame_reuse.h), between
-  // the passes recorded into `cmd`.
-  void copySecondary(std::uint32_t depth, std::uint32_t batchFirst, std::uint32_t count, bool load);
+  // (load) or into the secondary cache (frame_reuse.h), between the passes recorded into `cmd`: the queue's own
+  // entries, whose count the frame that fills the cache has read back (secondaryCounts) before this.
+  void copySecondary(std::uint32_t depth, std::uint32_t batchFirst, bool load);
   // Frame reuse (partial_retrace.cpp): the key of the frame fillFrame wrote; the marking pass and the re-trace of
   // the dirty targets of a partial re-render (returns how many).
   ReuseKey reuseKey(const RenderSettings& settings) const;

@@ -309,10 +309,18 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
         recordComputeCopy(cmd, work.rays[0], 0, reuse.primaryRays, batchFirst * sizeof(gpu_shared::HtRay), rayBytes);
         recordComputeCopy(cmd, work.hits, 0, reuse.primaryHits, batchFirst * sizeof(gpu_shared::HtHit), hitBytes);
       }
-      if (depth > 0 && secondaryCached) copySecondary(depth, batchFirst, count, loadSecondary);
-      if (depth > 0 && saveSecondary) {  // the queue's size, for the marking pass's secondary entries
+      if (depth > 0 && loadSecondary) copySecondary(depth, batchFirst, true);
+      if (depth > 0 && saveSecondary) {
+        // The queue's size (for its place in the cache, and the marking pass's secondary entries): the commands so
+        // far run before the queue is copied to the next free entries of the cache.
         recordComputeCopy(cmd, counters, offsetof(GpuCounters, queueCount) + q * sizeof(std::uint32_t),
                           reuse.secondaryCounts, reuse.secondaryCountOffset(batchFirst, depth), sizeof(std::uint32_t));
+        submitAndWait();
+        rec.collect(vk.device, vk.info.timestampPeriodNs, stageMs);
+        checkCounters("render");
+        beginCommands();
+        rec.restart();
+        copySecondary(depth, batchFirst, false);
       }
       overQueue(shade, Stage::Shade);
       rec.dispatch(afterShade, pc, 1, Stage::Queues);

@@ -3,9 +3,10 @@
 // mark_dirty: the marking pass of a partial re-render (gpu/frame_reuse.h, docs/REUSE.md §4). Three modes, dispatched
 // in this order by Renderer::Impl::runMarkingPass:
 // - MARK_SECONDARY_ENTRIES (ReusePlan::secondaryExact): one invocation per entry of one cached queue of depth
-//   pc.depth >= 1 (pc.batchCount entries of the batch starting at path pc.batchFirst). An entry whose segment, or a
-//   shadow ray from its hit, meets the padded moved bounds sets mask words 0-1 of its target to all ones; targets
-//   whose words 0-1 already hold cells (re-traced after the cache was filled) are left to those cells.
+//   pc.depth >= 1 (pc.batchCount entries from entry pc.queue of the cache, of the batch starting at path
+//   pc.batchFirst). An entry whose segment, or a shadow ray from its hit, meets the padded moved bounds sets mask
+//   words 0-1 of its target to all ones; targets whose words 0-1 already hold cells (re-traced after the cache was
+//   filled) are left to those cells.
 // - MARK_TARGETS: one invocation per HT_MARK_TARGETS_PER_INVOCATION (4) targets of the frame. A target whose mask
 //   words 0-1 meet the moved bounds' cells (FRAME.refine words 0-1) is appended to the dirty list (count in word 2,
 //   entries from word FRAME.refineInfo.y) and its mask cleared for the re-trace to record again. With the primary
@@ -69,11 +70,13 @@ bool primary_meets_moved(uint target) {
 void mark_secondary_entry() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.batchCount) return;
-  uint targets = FRAME.dims.w, paths = targets * FRAME.dims.z;  // a reusable frame is one chunk: all of its targets
+  uint targets = FRAME.dims.w;  // a reusable frame is one chunk: all of its targets
+  // FrameReuseState::secondaryRegion: the cache's `entries` rays, then their path indices, then their hits; this
+  // queue's entries from pc.queue on (its base in the cache).
   uint64_t cache = packUint2x32(uvec2(reuse_header_word(12u), reuse_header_word(13u)));
-  uint64_t rays = cache + uint64_t(pc.depth - 1u) * uint64_t(paths) * 52ul;  // FrameReuseState::secondaryRegion
-  uint64_t pathIds = rays + uint64_t(paths) * 32ul, hits = pathIds + uint64_t(paths) * 4ul;
-  uint e = pc.batchFirst + i;
+  uint64_t entries = uint64_t(reuse_header_word(14u));
+  uint64_t rays = cache, pathIds = rays + entries * 32ul, hits = pathIds + entries * 4ul;
+  uint e = pc.queue + i;
   uint target = (pc.batchFirst + WordsRef(pathIds).w[e]) / FRAME.dims.z;
   if (target >= targets) return;
   if ((UintRef(FRAME.segmentMasks).v[4u * target] | UintRef(FRAME.segmentMasks).v[4u * target + 1u]) != 0u) return;

@@ -304,6 +304,47 @@ TEST(FrameReuse, PartialRerenderOverManyBatchesEqualsAFullRender) {
   EXPECT_TRUE(sameBits(lit, fullRender(edited, camera)));
 }
 
+// The bounce cache packs the queues of every batch and depth one after the other (gpu/frame_reuse.h): a budget of
+// exactly the entries a frame traces holds them all (a batch's worth per depth would need several times more), and
+// the edits after it reuse them. One entry less overflows: that frame keeps no state, the next one of the view
+// records without the cache (bounces by their cells), and every frame still equals a full render.
+TEST(FrameReuse, TheBounceCacheHoldsTheQueuesPackedAndAnOverflowKeepsNoState) {
+  const Scene scene = loadScene("builtin:showcase");
+  const gpu::FrameCamera camera = cameras(scene)[0].second;
+  gpu::RenderSettings batched = reuseSettings();
+  batched.maxPathsPerBatch = 1024;  // queues of many batches
+  std::uint64_t entries = 0;
+  {
+    gpu::Renderer probe(sharedContext(), scene);
+    probe.render(camera, batched);
+    entries = probe.reuseSnapshot().secondarySegments.size();
+  }
+  const std::uint64_t paths = frameShape(camera).targets() * batched.spp;
+  ASSERT_GT(entries, 0u);
+  ASSERT_LT(entries * 2, paths * batched.maxDepth) << "the bounce queues should be a fraction of a batch's worth";
+  EXPECT_GT(entries, paths / 4) << "the cache should grow while the frame fills it (it starts at paths / 4)";
+  constexpr std::uint64_t kEntryBytes = gpu::kSecondaryBytesPerPath;
+  for (const std::uint64_t budget : {entries * kEntryBytes, (entries - 1) * kEntryBytes}) {
+    const bool fits = budget == entries * kEntryBytes;
+    SCOPED_TRACE(fits ? "a budget of exactly the frame's entries" : "one entry less");
+    gpu::Renderer renderer(sharedContext(), scene);
+    renderer.setBounceCacheBudget(budget);
+    Scene edited = scene;
+    ASSERT_EQ(renderer.render(camera, batched).reuse, FrameReuse::None);
+    EXPECT_EQ(renderer.reuseSnapshot().secondarySegments.size(), fits ? entries : 0u);
+    moveNode(edited, "glow-sphere", glm::dvec3(-0.15, 0.05, 0.1), renderer);
+    const gpu::RenderResult first = renderer.render(camera, batched);
+    EXPECT_EQ(first.reuse, fits ? FrameReuse::PartialRetrace : FrameReuse::None);
+    EXPECT_EQ(renderer.reuseSnapshot().secondaryExact, fits);
+    EXPECT_TRUE(sameBits(first, fullRender(edited, camera)));
+    moveNode(edited, "mirror-sphere", glm::dvec3(0.1, 0.0, -0.1), renderer);
+    const gpu::RenderResult second = renderer.render(camera, batched);
+    EXPECT_EQ(second.reuse, FrameReuse::PartialRetrace);
+    EXPECT_EQ(renderer.reuseSnapshot().secondaryExact, fits) << "after an overflow, bounces go by their cells";
+    EXPECT_TRUE(sameBits(second, fullRender(edited, camera)));
+  }
+}
+
 // The GPU marking pass lists exactly the targets the C++ reference picks from the masks the previous frame recorded.
 // Once in one batch and once in many (the secondary cache's queues are kept per batch).
 void checkMarkingPassAgainstItsCpuReference(std::uint32_t maxPathsPerBatch) {
