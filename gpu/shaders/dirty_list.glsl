@@ -1,5 +1,6 @@
 // dirty_list.glsl - how the marking passes (mark_dirty.comp, mark_accumulated.comp) list a dirty target
-// (gpu/frame_reuse.h, docs/REUSE.md §4). Included after common.glsl with GL_KHR_shader_subgroup_ballot enabled.
+// (gpu/frame_reuse.h, docs/REUSE.md §4). Included after common.glsl with GL_KHR_shader_subgroup_ballot and
+// GL_KHR_shader_subgroup_arithmetic enabled.
 
 // Appends `value` where `want`, to the list whose count is header word `countWord` and whose entries start at word
 // `first` (one atomic per subgroup). Called by every invocation (subgroup operations).
@@ -12,17 +13,33 @@ void append_where(bool want, uint countWord, uint first, uint value) {
   if (want) UintRef(FRAME.refine).v[first + base + subgroupBallotExclusiveBitCount(ballot)] = value;
 }
 
-// A dirty target: listed, its mask cleared for the re-trace to record again; in an accumulation
-// (`resetAccumulation`) its sums and what bounds its primary segments start over too. Called by every invocation.
+// Appends target `first + k` for every bit k of `bits`, to the list of append_where, with one subgroup scan and one
+// atomic per subgroup for all of them. Called by every invocation.
+void append_bits(uint bits, uint countWord, uint first, uint firstTarget) {
+  uint count = bitCount(bits);
+  uint total = subgroupAdd(count);
+  if (total == 0u) return;  // uniform: the whole subgroup leaves
+  uint at = subgroupExclusiveAdd(count);
+  uint base = 0u;
+  if (subgroupElect()) base = atomicAdd(UintRef(FRAME.refine).v[countWord], total);
+  at += subgroupBroadcastFirst(base);
+  for (; bits != 0u; bits &= bits - 1u) UintRef(FRAME.refine).v[first + at++] = firstTarget + uint(findLSB(bits));
+}
+
+// What starts over for a dirty target: its mask, cleared for the re-trace to record again; in an accumulation
+// (`resetAccumulation`) its sums and what bounds its primary segments too.
+void clear_dirty_target(uint target, bool resetAccumulation) {
+  for (uint w = 0u; w < 4u; ++w) UintRef(FRAME.segmentMasks).v[4u * target + w] = 0u;
+  if (resetAccumulation) {
+    AccumRef(FRAME.accumTargets).t[frame_global_target(target)] = AccumTarget(vec3(0.0f), 0u, vec3(0.0f), 0u);
+    UintRef(FRAME.segmentMasks).v[accum_reach_word(target)] = 0u;
+    UintRef(FRAME.segmentMasks).v[accum_near_hit_word(target)] = 0u;
+    UintRef(FRAME.segmentMasks).v[accum_far_hit_word(target)] = 0u;
+  }
+}
+
+// A dirty target: listed, and what starts over cleared. Called by every invocation.
 void mark_dirty(bool dirty, uint target, bool resetAccumulation) {
   append_where(dirty, 2u, FRAME.refineInfo.y, target);
-  if (dirty) {
-    for (uint w = 0u; w < 4u; ++w) UintRef(FRAME.segmentMasks).v[4u * target + w] = 0u;
-    if (resetAccumulation) {
-      AccumRef(FRAME.accumTargets).t[frame_global_target(target)] = AccumTarget(vec3(0.0f), 0u, vec3(0.0f), 0u);
-      UintRef(FRAME.segmentMasks).v[accum_reach_word(target)] = 0u;
-      UintRef(FRAME.segmentMasks).v[accum_near_hit_word(target)] = 0u;
-      UintRef(FRAME.segmentMasks).v[accum_far_hit_word(target)] = 0u;
-    }
-  }
+  if (dirty) clear_dirty_target(target, resetAccumulation);
 }

@@ -19,6 +19,7 @@
 // CPU reference: gpu::markAccumulatedTargets (gpu/frame_reuse.h).
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "gpu/shaders/primary_ray.glsl"  // constants 0-2: raygen's
 #include "gpu/segment_cells.h"
 #include "gpu/shaders/reuse_cache.glsl"

@@ -23,6 +23,7 @@
 // CPU reference: gpu::markDirtyTargets (gpu/frame_reuse.h).
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #include "gpu/segment_cells.h"
 #include "gpu/shaders/reuse_cache.glsl"
 #include "gpu/shaders/dirty_list.glsl"
@@ -93,20 +94,24 @@ void mark_secondary_entry() {
 
 void mark_target() {
   // Dispatched in slices of targets (pc.batchFirst: the slice's first; batchCount: all targets), each invocation
-  // comparing HT_MARK_TARGETS_PER_INVOCATION consecutive targets.
+  // comparing HT_MARK_TARGETS_PER_INVOCATION consecutive targets and listing them with one subgroup scan per list.
   uint first = pc.batchFirst + HT_MARK_TARGETS_PER_INVOCATION * gl_GlobalInvocationID.x;
   uvec2 moved = uvec2(reuse_header_word(0u), reuse_header_word(1u));
   uint candidates = reuse_header_word(11u);
+  uint dirtyBits = 0u, candidateBits = 0u;  // bit k: target first + k
   for (uint k = 0u; k < HT_MARK_TARGETS_PER_INVOCATION; ++k) {
-    uint target = first + k;
-    bool dirty = false, candidate = false;
-    if (target < pc.batchCount) {
-      uvec4 mask = MaskRef(FRAME.segmentMasks).m[target];
-      dirty = ((mask.x & moved.x) | (mask.y & moved.y)) != 0u;
-      candidate = !dirty && ((mask.z & moved.x) | (mask.w & moved.y)) != 0u && candidates != 0u;
+    if (first + k >= pc.batchCount) break;
+    uvec4 mask = MaskRef(FRAME.segmentMasks).m[first + k];
+    if (((mask.x & moved.x) | (mask.y & moved.y)) != 0u) {
+      dirtyBits |= 1u << k;
+    } else if (((mask.z & moved.x) | (mask.w & moved.y)) != 0u && candidates != 0u) {
+      candidateBits |= 1u << k;
     }
-    mark_dirty(dirty, target, RESET_ACCUMULATION);
-    append_where(candidate, 3u, candidates, target);
+  }
+  append_bits(dirtyBits, 2u, FRAME.refineInfo.y, first);
+  append_bits(candidateBits, 3u, candidates, first);
+  for (uint bits = dirtyBits; bits != 0u; bits &= bits - 1u) {
+    clear_dirty_target(first + uint(findLSB(bits)), RESET_ACCUMULATION);
   }
 }
 
