@@ -98,10 +98,14 @@ void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulatio
   if (candidates == 0) return;
   beginCommands();
   PassRecorder exact(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+  // mark_accumulated.comp tests one candidate per invocation (its samples' rays are generated again), mark_dirty.comp
+  // HT_MARK_TARGETS_PER_INVOCATION (cached rays: lavapipe's cost per invocation dominates).
   const ComputePipeline& test = accumulatedCandidates ? *accumulatedCandidates : markPipeline(kMarkCandidates);
+  const std::uint32_t perInvocation = accumulatedCandidates ? 1u : gpu_shared::HT_MARK_TARGETS_PER_INVOCATION;
   for (std::uint32_t first = 0; first < candidates; first += kMarkTargetsPerDispatch) {
-    exact.dispatch(test, passConstants(first, candidates, 0, 0),
-                   groupsFor(std::min<std::uint64_t>(kMarkTargetsPerDispatch, candidates - first)), Stage::Mark);
+    const std::uint64_t n = std::min<std::uint64_t>(kMarkTargetsPerDispatch, candidates - first);
+    exact.dispatch(test, passConstants(first, candidates, 0, 0), groupsFor((n + perInvocation - 1) / perInvocation),
+                   Stage::Mark);
   }
   submitAndWait();
   exact.collect(vk.device, vk.info.timestampPeriodNs, stageMs);

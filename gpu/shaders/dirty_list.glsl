@@ -26,6 +26,17 @@ void append_bits(uint bits, uint countWord, uint first, uint firstTarget) {
   for (; bits != 0u; bits &= bits - 1u) UintRef(FRAME.refine).v[first + at++] = firstTarget + uint(findLSB(bits));
 }
 
+// Appends values[0, n), as append_bits does (one subgroup scan, one atomic per subgroup). Called by every invocation.
+void append_values(uint n, uint values[HT_MARK_TARGETS_PER_INVOCATION], uint countWord, uint first) {
+  uint total = subgroupAdd(n);
+  if (total == 0u) return;  // uniform: the whole subgroup leaves
+  uint at = subgroupExclusiveAdd(n);
+  uint base = 0u;
+  if (subgroupElect()) base = atomicAdd(UintRef(FRAME.refine).v[countWord], total);
+  at += subgroupBroadcastFirst(base);
+  for (uint k = 0u; k < n; ++k) UintRef(FRAME.refine).v[first + at + k] = values[k];
+}
+
 // What starts over for a dirty target: its mask, cleared for the re-trace to record again; in an accumulation
 // (`resetAccumulation`) its sums and what bounds its primary segments too.
 void clear_dirty_target(uint target, bool resetAccumulation) {

@@ -14,11 +14,13 @@
 //   their shadow rays) meet those cells is a candidate: appended to the candidate list (count in word 3, entries
 //   from word 11's value). So is one of a progressive accumulation (RESET_ACCUMULATION), whose words 2-3 hold the
 //   cells of its primary segments alone; mark_accumulated.comp tests those candidates.
-// - MARK_CANDIDATES: one invocation per candidate: dirty when the cached primary segment of one of its samples, or a
-//   shadow ray from that hit to a light (ht_shadow_meets_box), meets the padded moved bounds (words 4-6 and 8-10,
-//   float bits). A separate pass over a compact list, so that no subgroup runs the exact tests for lanes that do not
-//   need them (a glow-sphere move on Portrait x0.5, 2.4 M targets: 26 % candidates; MARK_TARGETS 48 ms, the
-//   candidates 44 ms, the secondary entries 31 ms on lavapipe, 2 vCPUs).
+// - MARK_CANDIDATES: one invocation per HT_MARK_TARGETS_PER_INVOCATION candidates; a candidate is dirty when the
+//   cached primary segment of one of its samples, or a shadow ray from that hit to a light (ht_shadow_meets_box),
+//   meets the padded moved bounds (words 4-6 and 8-10, float bits). A separate pass over a compact list, so that no
+//   subgroup runs the exact tests for lanes that do not need them (a glow-sphere move on Portrait x0.5, 2.4 M
+//   targets: 26 % candidates; MARK_TARGETS 48 ms, the candidates 44 ms, the secondary entries 31 ms on lavapipe, 2
+//   vCPUs, 2026-12-03). Both MARK_TARGETS and MARK_CANDIDATES list their dirty targets with one subgroup scan per
+//   invocation: the marking pass 224-227 -> 179-181 ms on that move (2026-12-04, AVX2 machine).
 // List order varies with scheduling; a target's samples do not depend on it.
 // CPU reference: gpu::markDirtyTargets (gpu/frame_reuse.h).
 #include "gpu/shaders/common.glsl"
@@ -116,14 +118,19 @@ void mark_target() {
 }
 
 void mark_candidate() {
-  uint i = pc.batchFirst + gl_GlobalInvocationID.x;  // dispatched in slices of candidates; batchCount: all
-  bool dirty = false;
-  uint target = 0u;
-  if (i < pc.batchCount) {
-    target = reuse_header_word(reuse_header_word(11u) + i);
-    dirty = primary_meets_moved(target);
+  // Dispatched in slices of candidates (pc.batchFirst: the slice's first; batchCount: all), each invocation testing
+  // HT_MARK_TARGETS_PER_INVOCATION consecutive ones and listing the dirty ones with one subgroup scan.
+  uint first = pc.batchFirst + HT_MARK_TARGETS_PER_INVOCATION * gl_GlobalInvocationID.x;
+  uint candidates = reuse_header_word(11u);
+  uint dirty[HT_MARK_TARGETS_PER_INVOCATION];
+  uint n = 0u;
+  for (uint k = 0u; k < HT_MARK_TARGETS_PER_INVOCATION; ++k) {
+    if (first + k >= pc.batchCount) break;
+    uint target = reuse_header_word(candidates + first + k);
+    if (primary_meets_moved(target)) dirty[n++] = target;
   }
-  mark_dirty(dirty, target, RESET_ACCUMULATION);
+  append_values(n, dirty, 2u, FRAME.refineInfo.y);
+  for (uint k = 0u; k < n; ++k) clear_dirty_target(dirty[k], RESET_ACCUMULATION);
 }
 
 void main() {
