@@ -13,20 +13,8 @@ void append_where(bool want, uint countWord, uint first, uint value) {
   if (want) UintRef(FRAME.refine).v[first + base + subgroupBallotExclusiveBitCount(ballot)] = value;
 }
 
-// Appends target `first + k` for every bit k of `bits`, to the list of append_where, with one subgroup scan and one
-// atomic per subgroup for all of them. Called by every invocation.
-void append_bits(uint bits, uint countWord, uint first, uint firstTarget) {
-  uint count = bitCount(bits);
-  uint total = subgroupAdd(count);
-  if (total == 0u) return;  // uniform: the whole subgroup leaves
-  uint at = subgroupExclusiveAdd(count);
-  uint base = 0u;
-  if (subgroupElect()) base = atomicAdd(UintRef(FRAME.refine).v[countWord], total);
-  at += subgroupBroadcastFirst(base);
-  for (; bits != 0u; bits &= bits - 1u) UintRef(FRAME.refine).v[first + at++] = firstTarget + uint(findLSB(bits));
-}
-
-// Appends values[0, n), as append_bits does (one subgroup scan, one atomic per subgroup). Called by every invocation.
+// Appends values[0, n) to the list of append_where, with one subgroup scan and one atomic per subgroup for all of
+// them. Called by every invocation.
 void append_values(uint n, uint values[HT_MARK_TARGETS_PER_INVOCATION], uint countWord, uint first) {
   uint total = subgroupAdd(n);
   if (total == 0u) return;  // uniform: the whole subgroup leaves
@@ -35,6 +23,14 @@ void append_values(uint n, uint values[HT_MARK_TARGETS_PER_INVOCATION], uint cou
   if (subgroupElect()) base = atomicAdd(UintRef(FRAME.refine).v[countWord], total);
   at += subgroupBroadcastFirst(base);
   for (uint k = 0u; k < n; ++k) UintRef(FRAME.refine).v[first + at + k] = values[k];
+}
+
+// Appends target `firstTarget + k` for every bit k of `bits` (k < HT_MARK_TARGETS_PER_INVOCATION), as append_values.
+void append_bits(uint bits, uint countWord, uint first, uint firstTarget) {
+  uint values[HT_MARK_TARGETS_PER_INVOCATION];
+  uint n = 0u;
+  for (; bits != 0u; bits &= bits - 1u) values[n++] = firstTarget + uint(findLSB(bits));
+  append_values(n, values, countWord, first);
 }
 
 // What starts over for a dirty target: its mask, cleared for the re-trace to record again; in an accumulation
