@@ -18,7 +18,7 @@
 namespace ht::bvh::test {
 
 // Sanitizer / debug builds run fewer rays; release figures are what the brief asks to report.
-#if defined(__SANITIZE_ADDRESS__) || !defined(NDEBUG)
+#if defined(HT_SANITIZED_BUILD) || !defined(NDEBUG)
 inline constexpr bool kSlowBuild = true;
 #else
 inline constexpr bool kSlowBuild = false;
