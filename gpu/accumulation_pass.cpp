@@ -220,7 +220,14 @@ void Renderer::Impl::accumulateChunk(const FrameCamera& camera, const FrameShape
       if (st.list.size() != listBytes) st.list = DeviceBuffer(vk, listBytes, MemoryPlace::Device);
       frameBlock().accumList = st.list.address();
     }
-    sampled = selectUnconvergedTargets(shape, targets, st.listed, stageMs);
+    // Among the last list's entries (an invocation each) while they are fewer than the chunk's pixels (an
+    // invocation each, over all targets). Judging every target is always right: the targets left out before are
+    // left out again, and their statistics fold into the settled ones a second time, which changes no maximum,
+    // minimum or count of targets that need samples (none of them do).
+    const std::uint64_t pixels = targets / shape.targetsPerPixel;
+    std::optional<std::uint64_t> among = st.listed;
+    if (among && *among >= pixels) among.reset();
+    sampled = selectUnconvergedTargets(shape, targets, among, stageMs);
     st.listed.reset();
     if (frameBlock().accumList != 0) st.listed = sampled;
     if (sampled > 0) {
