@@ -155,17 +155,22 @@ std::vector<FrameReuseState::SecondaryQueue> FrameReuseState::secondaryQueues() 
   return queues;
 }
 
-FrameReuseState::SecondaryRegion FrameReuseState::secondaryRegion() const {
-  const VkDeviceSize rays = secondaryEntries_ * sizeof(gpu_shared::HtRay);
-  return {0, rays, rays + secondaryEntries_ * sizeof(std::uint32_t)};
+namespace {
+
+// Where a secondary cache of `entries` entries keeps its rays, path indices and hits.
+FrameReuseState::SecondaryRegion secondaryLayout(std::uint64_t entries) {
+  const VkDeviceSize rays = entries * sizeof(gpu_shared::HtRay);
+  return {0, rays, rays + entries * sizeof(std::uint32_t)};
 }
+
+}  // namespace
+
+FrameReuseState::SecondaryRegion FrameReuseState::secondaryRegion() const { return secondaryLayout(secondaryEntries_); }
 
 void FrameReuseState::growSecondary(std::uint64_t entries) {
   DeviceBuffer grown(vk_, entries * kSecondaryBytesPerPath, MemoryPlace::Device);
   if (secondaryUsed_ > 0) {  // the entries so far, each array to its place in the larger layout
-    const SecondaryRegion from = secondaryRegion();
-    const VkDeviceSize rays = entries * sizeof(gpu_shared::HtRay);
-    const SecondaryRegion to{0, rays, rays + entries * sizeof(std::uint32_t)};
+    const SecondaryRegion from = secondaryRegion(), to = secondaryLayout(entries);
     const VkBufferCopy parts[] = {{from.rays, to.rays, secondaryUsed_ * sizeof(gpu_shared::HtRay)},
                                   {from.paths, to.paths, secondaryUsed_ * sizeof(std::uint32_t)},
                                   {from.hits, to.hits, secondaryUsed_ * sizeof(gpu_shared::HtHit)}};
