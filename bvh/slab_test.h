@@ -19,6 +19,7 @@
 #include "common/glsl_cpp.h"
 #include "bvh/float_bounds.h"
 #include "bvh/gpu_node.h"
+#include "common/exact_division.h"
 
 HT_SHARED_BEGIN
 
@@ -33,7 +34,7 @@ HT_INLINE float ht_max_nan(float a, float b) { return a > b ? a : b; }
 HT_INLINE float ht_safe_rcp(float x) {
   uint signBit = floatBitsToUint(x) & 0x80000000u;
   float clamped = abs(x) < HT_MIN_RCP_INPUT ? uintBitsToFloat(signBit | floatBitsToUint(HT_MIN_RCP_INPUT)) : x;
-  return 1.0f / clamped;
+  return ht_div(1.0f, clamped);
 }
 
 // Per-ray data of the slab test, computed once per ray.

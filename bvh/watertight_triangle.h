@@ -20,6 +20,7 @@
 #define HT_WATERTIGHT_TRIANGLE_H
 #include "common/glsl_cpp.h"
 #include "bvh/float_bounds.h"
+#include "common/exact_division.h"
 
 HT_SHARED_BEGIN
 
@@ -38,9 +39,9 @@ HT_INLINE HtWatertightRay ht_make_watertight_ray(vec3 origin, vec3 dir, float tm
   r.kx = r.kz == 2u ? 0u : r.kz + 1u;
   r.ky = r.kx == 2u ? 0u : r.kx + 1u;
   float dz = dir[r.kz];
-  r.Sx = dir[r.kx] / dz;
-  r.Sy = dir[r.ky] / dz;
-  r.Sz = 1.0f / dz;
+  r.Sx = ht_div(dir[r.kx], dz);
+  r.Sy = ht_div(dir[r.ky], dz);
+  r.Sz = ht_div(1.0f, dz);
   r.ox = origin[r.kx];
   r.oy = origin[r.ky];
   r.oz = origin[r.kz];
@@ -132,7 +133,7 @@ HT_INLINE bool ht_intersect_triangle(HT_IN(HtWatertightRay) r, vec3 a, vec3 b, v
   HT_PRECISE float TAbs = T * sgn;
   if (!(TAbs > 0.0f) || TAbs < r.tmin * detAbs || TAbs > tmax * detAbs) return false;
 
-  HT_PRECISE float invDet = 1.0f / det;
+  HT_PRECISE float invDet = ht_div(1.0f, det);
   HT_PRECISE float tHit = T * invDet;
   // pbrt-v3 triangle.cpp: conservative error bound deltaT on t (pbr-book 3rd ed. §3.9.6).
   // Units: maxZt is a scaled z (t units, z * Sz); the shear error of x and y (deltaX, deltaY) is in coordinate

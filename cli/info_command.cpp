@@ -45,6 +45,7 @@ void printDeviceInfo(std::ostream& out, const gpu::DeviceInfo& d, bool chosen) {
       << "      timestamp period          " << d.timestampPeriodNs << " ns\n"
       << "      shaderFloat64             " << yesNo(d.shaderFloat64) << "\n"
       << "      bufferDeviceAddress       " << yesNo(d.bufferDeviceAddress) << "\n"
+      << "      denormals kept (fp32)     " << yesNo(d.denormPreserveFloat32) << "\n"
       << "      usable                    " << (d.usable ? "yes" : "no: " + d.unusableReason) << "\n";
 }
 

@@ -13,6 +13,7 @@
 #ifndef HT_ACCUMULATION_ERROR_H
 #define HT_ACCUMULATION_ERROR_H
 #include "common/glsl_cpp.h"
+#include "common/exact_division.h"
 
 HT_SHARED_BEGIN
 
@@ -35,8 +36,8 @@ HT_INLINE float ht_accum_error(vec3 mean, vec3 halfMean, uint halfCount, vec3 ma
   if (halfCount == 0u) return HT_ACCUM_UNKNOWN_ERROR;
   vec3 d = abs(mean - halfMean) * mask;
   float channels = mask.x + mask.y + mask.z;
-  float l = max((mean.x * mask.x + mean.y * mask.y + mean.z * mask.z) / channels, 0.0f);
-  return (d.x + d.y + d.z) / (1e-4f + (l < 1.0f ? sqrt(l) : l));
+  float l = max(ht_div(mean.x * mask.x + mean.y * mask.y + mean.z * mask.z, channels), 0.0f);
+  return ht_div(d.x + d.y + d.z, 1e-4f + (l < 1.0f ? ht_sqrt(l) : l));
 }
 
 // The stop rule per target: it needs more samples below minSpp, and up to maxSpp while its error is not below the

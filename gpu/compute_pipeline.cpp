@@ -32,9 +32,9 @@ PipelineLayout::~PipelineLayout() {
 ComputePipeline::ComputePipeline(VulkanContext::Impl& vk, const PipelineLayout& layout, ShaderId shader,
                                  const std::vector<std::uint32_t>& specialization)
     : vk_(vk) {
-  std::span<const std::uint32_t> code = embeddedSpirv(shader);
+  const std::vector<std::uint32_t> code = makeFloatExact(embeddedSpirv(shader), vk.exactFloat);
   VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  mci.codeSize = code.size_bytes();
+  mci.codeSize = code.size() * sizeof(std::uint32_t);
   mci.pCode = code.data();
   VkShaderModule module = VK_NULL_HANDLE;
   HT_VK(vkCreateShaderModule(vk.device, &mci, nullptr, &module));

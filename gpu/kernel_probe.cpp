@@ -36,9 +36,11 @@ class ProbePipeline {
     li.pushConstantRangeCount = 1;
     li.pPushConstantRanges = &range;
     HT_VK(vkCreatePipelineLayout(vk.device, &li, nullptr, &layout_));
+    const std::vector<std::uint32_t> exact =
+        makeFloatExact(std::span<const std::uint32_t>(code, codeBytes / sizeof(std::uint32_t)), vk.exactFloat);
     VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    mi.codeSize = codeBytes;
-    mi.pCode = code;
+    mi.codeSize = exact.size() * sizeof(std::uint32_t);
+    mi.pCode = exact.data();
     VkShaderModule module = VK_NULL_HANDLE;
     HT_VK(vkCreateShaderModule(vk.device, &mi, nullptr, &module));
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

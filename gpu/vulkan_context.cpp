@@ -169,6 +169,8 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
   VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
   subgroup.pNext = &driver;
+  VkPhysicalDeviceFloatControlsProperties floatControls{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FLOAT_CONTROLS_PROPERTIES};
+  driver.pNext = &floatControls;
   VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   props.pNext = &subgroup;
   vkGetPhysicalDeviceProperties2(physical, &props);
@@ -198,6 +200,7 @@ DeviceInfo describe(VkPhysicalDevice physical, uint32_t index) {
   info.subgroupSize = subgroup.subgroupSize;
   info.timestampPeriodNs = p.limits.timestampPeriod;
   info.shaderFloat64 = features.features.shaderFloat64 == VK_TRUE;
+  info.denormPreserveFloat32 = floatControls.shaderDenormPreserveFloat32 == VK_TRUE;
   info.bufferDeviceAddress = f12.bufferDeviceAddress == VK_TRUE;
   const VkSubgroupFeatureFlags neededSubgroup =
       VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
@@ -285,6 +288,7 @@ std::vector<DeviceInfo> VulkanContext::listDevices() {
 
 VulkanContext::VulkanContext(const Options& options) : impl_(std::make_unique<Impl>()) {
   Impl& v = *impl_;
+  v.exactFloat.noContraction = !options.fusedFloatMath;
   v.instance = createInstance(options.validation, &v, &v.messenger, options.presentation);
   auto devices = physicalDevices(v.instance);
   if (devices.empty())
@@ -308,6 +312,7 @@ VulkanContext::VulkanContext(const Options& options) : impl_(std::make_unique<Im
   }
   v.physical = devices[static_cast<size_t>(chosen)];
   v.info = infos[static_cast<size_t>(chosen)];
+  v.exactFloat.preserveDenormals = v.exactFloat.noContraction && v.info.denormPreserveFloat32;
   v.queueFamily = computeQueueFamily(v.physical);
   vkGetPhysicalDeviceMemoryProperties(v.physical, &v.memoryProperties);
 

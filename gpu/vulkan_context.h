@@ -22,6 +22,7 @@ struct DeviceInfo {
   std::uint32_t subgroupSize = 0;
   float timestampPeriodNs = 0.0f;
   bool shaderFloat64 = false;
+  bool denormPreserveFloat32 = false;  // shaders can keep 32-bit denormals (spirv_exact_float.h)
   bool bufferDeviceAddress = false;
   bool usable = false;  // has everything holotrace needs
   std::string unusableReason;
@@ -35,6 +36,10 @@ class VulkanContext {
     // Also enable presentation: the instance extensions VK_KHR_surface + VK_KHR_xcb_surface and the device extension
     // VK_KHR_swapchain (the display sink, present/). Names only: gpu/ links no window system. GpuError if missing.
     bool presentation = false;
+    // Let the driver fuse float multiplies and adds and flush denormals (spirv_exact_float.h). Off: every pipeline
+    // rounds each operation as the C++ references do, on every driver. On: a few ULP from them where the driver
+    // fuses (NVIDIA, lavapipe), for its speed (docs/DRIVERS.md).
+    bool fusedFloatMath = false;
   };
   explicit VulkanContext(const Options& options);
   ~VulkanContext();

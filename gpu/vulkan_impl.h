@@ -7,6 +7,7 @@
 #include <string>
 
 #include "common/error.h"
+#include "gpu/spirv_exact_float.h"
 #include "gpu/vulkan_context.h"
 
 namespace ht::gpu {
@@ -28,6 +29,7 @@ struct VulkanContext::Impl {
   VkCommandPool commandPool = VK_NULL_HANDLE;
   VkPhysicalDeviceMemoryProperties memoryProperties{};
   DeviceInfo info;
+  ExactFloatOptions exactFloat;  // how shader modules are made exact (Options::fusedFloatMath, DeviceInfo)
   std::atomic<uint32_t> validationMessages{0};
   std::string lastValidationMessage;
   std::unique_ptr<PipelineLibrary> pipelines;  // created with the device, destroyed before it (vulkan_context.cpp)

@@ -25,11 +25,11 @@ vec3 accum_shown_channels(uint target) {
 }
 
 // The value a target shows: the mean of its samples (0 before its first).
-vec3 accum_mean(AccumTarget a) { return a.n > 0u ? a.sum / float(a.n) : vec3(0.0f); }
+vec3 accum_mean(AccumTarget a) { return a.n > 0u ? ht_div3(a.sum, float(a.n)) : vec3(0.0f); }
 
 // Its error estimate, from its mean and the mean of its half samples.
 float accum_target_error(AccumTarget a, uint target) {
-  vec3 halfMean = a.halfN > 0u ? a.halfSum / float(a.halfN) : vec3(0.0f);
+  vec3 halfMean = a.halfN > 0u ? ht_div3(a.halfSum, float(a.halfN)) : vec3(0.0f);
   return ht_accum_error(accum_mean(a), halfMean, a.halfN, accum_shown_channels(target));
 }
 

@@ -41,14 +41,14 @@ void main() {
   }
   vec3 sum = vec3(0.0f);
   for (uint s = 0u; s < spp; ++s) sum += imageLoad(radianceBuffer, int(i * spp + s)).xyz;
-  vec3 value = sum / float(spp);
+  vec3 value = ht_div3(sum, float(spp));
   uint baseSpp = FRAME.refineInfo.w;
   if (REFINING && baseSpp != 0u) {  // (a partial re-render lists targets with no base: their plain mean)
     bool subpixel = ht_model_has_subpixel_targets(MODEL);
     vec3 base = subpixel ? vec3(imageLoad(subpixelBuffer, int(target)).x)
                          : vec3(imageLoad(subpixelBuffer, int(3u * target)).x, imageLoad(subpixelBuffer, int(3u * target + 1u)).x,
                                 imageLoad(subpixelBuffer, int(3u * target + 2u)).x);
-    value = (base * float(baseSpp) + sum) / float(baseSpp + spp);
+    value = ht_div3(base * float(baseSpp) + sum, float(baseSpp + spp));
   }
   bool finite = !(any(isnan(value)) || any(isinf(value)));
   if (!finite) {

@@ -2,10 +2,10 @@
 // RGBA the renderer returns), so a refactoring that must not change any frame can prove it did not.
 //
 // The pinned digests depend on the Vulkan device and on the code the driver's JIT emits for this CPU (lavapipe's
-// LLVM picks FMA/vector width from the host), so the table is keyed by the device name, which for lavapipe includes
-// the vector width ("llvmpipe (LLVM 15.0.6, 256 bits)"). On a device with no pinned row the test is skipped and
-// prints the digests it computed; a row added for a new machine must come from a build before the change under test.
-// Any intended change of the rendered pixels updates the rows in the same commit and says why.
+// LLVM picks the vector width from the host, and used to pick FMA), so the table is keyed by the device name, which for
+// lavapipe includes the vector width ("llvmpipe (LLVM 15.0.6, 256 bits)"). On a device with no pinned row the test is
+// skipped and prints the digests it computed; a row added for a new machine must come from a build before the change
+// under test. Any intended change of the rendered pixels updates the rows in the same commit and says why.
 #include <gtest/gtest.h>
 #include <openssl/evp.h>
 
@@ -162,23 +162,26 @@ std::vector<PinCase> pinCases(const Bounds3& bounds) {
 // choice became keyed by the frame-wide target and sample instead of the path's index within its chunk
 // (gpu/shaders/shade.comp path_sample_key), so that a band of rows or a range of views renders the whole frame's bits;
 // again when that choice became keyed by the absolute sample index instead of (sample, spp), the key progressive
-// frames use, so that a progressive stream at N samples shows the single N-sample frame's bits (docs/REUSE.md §6).
+// frames use, so that a progressive stream at N samples shows the single N-sample frame's bits (docs/REUSE.md §6);
+// again when every float multiply and add of every pass became unfused (gpu/spirv_exact_float.h: lavapipe had
+// fused those not marked precise, as the host's FMA allowed; with the old pipelines, fused, the old digests still
+// came out) and the resolve pass's mean became an exactly rounded division (common/exact_division.h).
 const std::map<std::string, std::map<std::string, std::string>>& pinnedDigests() {
   static const std::map<std::string, std::map<std::string, std::string>> table = {
       {"llvmpipe (LLVM 15.0.6, 256 bits)",  // Mesa 22.3.6 lavapipe, AMD EPYC (AVX2)
        {
-           {"lenticular-portrait", "6583ead153c08897778f1ba68d2d307dde3fe63976663467c5cfaea2c25fa65a"},
-           {"lenticular-gen3", "09f0c50c51a38fa7e2bfc82034866c39f13fa4b4c54e3687e0a0d967c96016f4"},
-           {"quilt-portrait", "6edc777c662c86a086baa996524b80f402528d3dc55aa6efbe982a2c0b214137"},
-           {"pinhole", "57b47e06c5bf35fa23c9a551432fd58019ef6275bcaea7d86fc74df9cdb1f6f2"},
-           {"projector-array", "1b7c6b992f3b07f40d94024887d7795e3e18d0122e31a1b35c3f35eb6a3e9225"},
-           {"integral", "596480e2a2b22b72d2ce7db5dadbaff9157144e022fda0e840770981824e1356"},
-           {"capture-grid", "9280c84d0551953d13aa1fe1b6116b3f2bc3d2035906be5802e0386081f7abc5"},
-           {"oblique", "3b1e11cc7aa395311786dab6786721d85075df09709418e59b3ba289544acc29"},
-           {"ray-table", "e54478afc95b18bc4a7157981617ac94141e4709d3d1e5488e34c9b68f90a2f7"},
-           {"lenticular-gaussian", "d781d14d70243e69f1ac82532dce01fb8bfb4f95bde20f89dbfa36885c3902fd"},
-           {"lenticular-refined", "288acaf3c12e2b0505f853f368ec2232436d9045da9117bbb1f54ef165c5be63"},
-           {"pinhole-tent-unspecialized", "4d4d7d2954e672bf4cd44887bd9f779be733ea1e046caecfc5723a118d737997"},
+           {"lenticular-portrait", "7d69c9bfdca963cb526f20b4f5acdf9f52b4970be5902600f326d0b9e0699cee"},
+           {"lenticular-gen3", "adf81cd8bf6a77c0a57fbf158278907f1a0fe9aefd10e49bb24e57da6e713325"},
+           {"quilt-portrait", "8741fa283bffde270ac3e33c204928a3cc34f788675dd3d012bac2ef5e3c1d7e"},
+           {"pinhole", "834b608091ebd57fc0c50e24defbf2005af112f3406c181a54b69d8db7351a7a"},
+           {"projector-array", "27601343de5acb0198e11e214e2d1c76ed636734a786ad92f87ac085dab0ba90"},
+           {"integral", "072fbcd0ad39df4bced364122a85919cbf48b8dc825cf46a85a47d8d5dce053b"},
+           {"capture-grid", "7b13c3795564c4b19fbeef1eedfe94dd1688ef8d90d0ec64f281896e3ce0b15e"},
+           {"oblique", "ba632aba7d2c62025faa1bea0701de263cbd40046c2bef1d7f734373f1e72934"},
+           {"ray-table", "6fefa1831ed44d4780810037491537f8d71ee96b705aacc36fc123afb0c06475"},
+           {"lenticular-gaussian", "04f9bbf9cf94f548e068d66da75be6d54ec587b9bebebbe4604a1bfe0fcbb3f0"},
+           {"lenticular-refined", "62e3514a440fb8613450f0b5d75d0f9502ebbcbd1143c07236835738d7e0c20c"},
+           {"pinhole-tent-unspecialized", "b2523f3c2d2c562fb1e70cfb4016af8e9bddbc097d7cc9ca1947aee92c67850c"},
        }},
   };
   return table;
