@@ -41,10 +41,11 @@ struct EditOptions {
   double scale = 1.0, move = 0.05;
   std::uint32_t spp = 1, runs = 5;
   int deviceIndex = -1;
+  bool fusedFloatMath = false;
   std::optional<std::string> csvPath;
 };
 
-const std::array<cli::OptionSpec, 9> kSpecs = {{
+const std::array<cli::OptionSpec, 10> kSpecs = {{
     {"--displays", "", "LIST", "comma-separated displays (default builtin:portrait,bench/configs/quality-hpo-14.json)"},
     {"--scene", "", "SPEC", "scene (default builtin:showcase)"},
     {"--node", "", "NAME", "the node moved (default green-sphere)"},
@@ -54,6 +55,7 @@ const std::array<cli::OptionSpec, 9> kSpecs = {{
     {"--runs", "", "N", "timed runs after one warm-up (default 5)"},
     {"--device", "", "N", "Vulkan device index (default: automatic)"},
     {"--csv", "", "PATH", "one row per display and quantity"},
+    {"--fused-math", "", "", "let the driver fuse multiplies and adds (VulkanContext::Options::fusedFloatMath)"},
 }};
 
 std::optional<EditOptions> parseOptions(std::span<const std::string> args) {
@@ -82,6 +84,7 @@ std::optional<EditOptions> parseOptions(std::span<const std::string> args) {
   o.runs = parsed.unsignedValue("--runs", 1, 1000).value_or(o.runs);
   if (auto device = parsed.unsignedValue("--device", 0, 255)) o.deviceIndex = int(*device);
   o.csvPath = parsed.text("--csv");
+  o.fusedFloatMath = parsed.has("--fused-math");
   return o;
 }
 
@@ -261,7 +264,7 @@ std::string csvRows(const DisplayEdits& e) {
 }
 
 int run(const EditOptions& o) {
-  gpu::VulkanContext context({o.deviceIndex, false});
+  gpu::VulkanContext context({o.deviceIndex, false, false, o.fusedFloatMath});
   std::string csv = "display,quantity,value\n";
   for (const std::string& display : o.displays) {
     const DisplayEdits e = measure(context, display, o);

@@ -11,13 +11,14 @@ namespace {
 
 const char* const kCommand = "holotrace-bench-primary";
 
-const std::array<cli::OptionSpec, 6> kSpecs = {{
+const std::array<cli::OptionSpec, 7> kSpecs = {{
     {"--runs", "", "N", "timed runs per tracer, interleaved, after one warm-up (default 7, at least 1)"},
     {"--size", "", "N", "trace N x N pinhole primary rays (default 1024)"},
     {"--mesh", "", "PATH", "mesh or scene to load (default /usr/share/glmark2/models/bunny.obj)"},
     {"--device", "", "N", "Vulkan device index (default: automatic, see `holotrace info`)"},
     {"--threads", "", "N", "Embree threads (default: all cores)"},
     {"--json", "", "PATH", "also write the result as JSON to PATH"},
+    {"--fused-math", "", "", "let the driver fuse multiplies and adds (VulkanContext::Options::fusedFloatMath)"},
 }};
 
 }  // namespace
@@ -41,6 +42,7 @@ std::optional<BenchOptions> parseBenchOptions(std::span<const std::string> args,
   options.threads =
       parsed.unsignedValue("--threads", 1, 1024).value_or(std::max(1u, std::thread::hardware_concurrency()));
   options.jsonPath = parsed.text("--json");
+  options.fusedFloatMath = parsed.has("--fused-math");
   return options;
 }
 

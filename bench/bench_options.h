@@ -12,6 +12,7 @@ struct BenchOptions {
   std::uint32_t size = 1024;                                 // image is size x size primary rays
   std::string mesh = "/usr/share/glmark2/models/bunny.obj";  // anything ht::loadScene reads
   int deviceIndex = -1;                                      // Vulkan device, -1 = automatic
+  bool fusedFloatMath = false;                               // --fused-math
   unsigned threads = 0;                                      // Embree threads, 0 = all cores
   std::optional<std::string> jsonPath;                       // write the result as JSON here
 };

@@ -65,7 +65,7 @@ void warmUp(gpu::Renderer& renderer, const EmbreeTracer& embree, const RayBatch&
 int runBenchmark(const BenchOptions& options) {
   const Scene scene = loadScene(options.mesh);
   const RayBatch batch = makePinholeRays(scene.bounds(), options.size);
-  gpu::VulkanContext context({options.deviceIndex, false});
+  gpu::VulkanContext context({options.deviceIndex, false, false, options.fusedFloatMath});
   gpu::Renderer renderer(context, scene);
   const EmbreeTracer embree(scene);
 

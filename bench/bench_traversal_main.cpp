@@ -140,7 +140,7 @@ std::string utcNow() {
 }
 
 int runBenchmark(const TraversalOptions& o) {
-  gpu::VulkanContext context({o.deviceIndex, false});
+  gpu::VulkanContext context({o.deviceIndex, false, false, o.fusedFloatMath});
   TraversalReport report;
   report.device = context.device().name + " (" + context.device().type + ")";
   report.embreeVersion = EmbreeTracer::version();

@@ -14,7 +14,7 @@ namespace {
 
 const char* const kCommand = "holotrace-bench-traversal";
 
-const std::array<cli::OptionSpec, 10> kSpecs = {{
+const std::array<cli::OptionSpec, 11> kSpecs = {{
     {"--meshes", "", "LIST",
      "comma-separated meshes/scenes (default: bunny, assets/armadillo.off, "
      "assets/refined_elephant.off; scripts/fetch-meshes.sh)"},
@@ -27,6 +27,7 @@ const std::array<cli::OptionSpec, 10> kSpecs = {{
     {"--threads", "", "N", "Embree / CPU threads (default: all cores)"},
     {"--csv", "", "PREFIX", "write PREFIX_throughput.csv, PREFIX_bvh.csv and PREFIX_cost.csv"},
     {"--json", "", "PATH", "write every figure as JSON to PATH"},
+    {"--fused-math", "", "", "let the driver fuse multiplies and adds (VulkanContext::Options::fusedFloatMath)"},
 }};
 
 const char* const kHelp =
@@ -68,6 +69,7 @@ std::optional<TraversalOptions> parseTraversalOptions(std::span<const std::strin
   if (auto device = parsed.unsignedValue("--device", 0, 255)) o.deviceIndex = int(*device);
   o.threads = parsed.unsignedValue("--threads", 1, 1024).value_or(std::max(1u, std::thread::hardware_concurrency()));
   o.csvPrefix = parsed.text("--csv");
+  o.fusedFloatMath = parsed.has("--fused-math");
   o.jsonPath = parsed.text("--json");
   return o;
 }

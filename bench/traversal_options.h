@@ -15,6 +15,7 @@ struct TraversalOptions {
   std::uint32_t costStride = 4;     // the CPU cost counter traces every Nth ray of each set
   std::uint32_t seed = 1;           // diffuse bounce directions
   int deviceIndex = -1;
+  bool fusedFloatMath = false;           // --fused-math
   unsigned threads = 0;                  // Embree / CPU threads
   std::optional<std::string> csvPrefix;  // writes PREFIX_throughput.csv, PREFIX_bvh.csv, PREFIX_cost.csv
   std::optional<std::string> jsonPath;
