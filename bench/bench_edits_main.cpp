@@ -42,10 +42,11 @@ struct EditOptions {
   std::uint32_t spp = 1, runs = 5;
   int deviceIndex = -1;
   bool fusedFloatMath = false;
+  bool freshBuffers = false;  // --fresh-buffers: no Renderer::recycle
   std::optional<std::string> csvPath;
 };
 
-const std::array<cli::OptionSpec, 10> kSpecs = {{
+const std::array<cli::OptionSpec, 11> kSpecs = {{
     {"--displays", "", "LIST", "comma-separated displays (default builtin:portrait,bench/configs/quality-hpo-14.json)"},
     {"--scene", "", "SPEC", "scene (default builtin:showcase)"},
     {"--node", "", "NAME", "the node moved (default green-sphere)"},
@@ -55,6 +56,8 @@ const std::array<cli::OptionSpec, 10> kSpecs = {{
     {"--runs", "", "N", "timed runs after one warm-up (default 5)"},
     {"--device", "", "N", "Vulkan device index (default: automatic)"},
     {"--csv", "", "PATH", "one row per display and quantity"},
+    {"--fresh-buffers", "", "",
+     "a new host buffer for every frame (default: frames recycle theirs, Renderer::recycle)"},
     {"--fused-math", "", "", "let the driver fuse multiplies and adds (VulkanContext::Options::fusedFloatMath)"},
 }};
 
@@ -85,6 +88,7 @@ std::optional<EditOptions> parseOptions(std::span<const std::string> args) {
   if (auto device = parsed.unsignedValue("--device", 0, 255)) o.deviceIndex = int(*device);
   o.csvPath = parsed.text("--csv");
   o.fusedFloatMath = parsed.has("--fused-math");
+  o.freshBuffers = parsed.has("--fresh-buffers");
   return o;
 }
 
@@ -176,6 +180,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     reusing.replaceScene(scene, gpu::BvhLayoutPolicy::TwoLevel);  // drops the state: `recorded` records it afresh
     if (run % 2) fullFrame = reference.render(camera, off);
     recorded = reusing.render(camera, on);
+    if (!o.freshBuffers) reusing.recycle(std::move(recorded.rgba));
     if (run % 2 == 0) fullFrame = reference.render(camera, off);
     const double full = fullFrame.totalMs;
     if (run == 0) e.coverage = nodeCoverage(reusing.reuseSnapshot(), scene.nodes[node]);
@@ -185,7 +190,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     editLight(scene, 0, dim);
     auto t0 = std::chrono::steady_clock::now();
     reusing.updateLights(scene);
-    const gpu::RenderResult lit = reusing.render(camera, on);
+    gpu::RenderResult lit = reusing.render(camera, on);
     const double light = msSince(t0);
     if (lit.reuse != gpu::FrameReuse::CachedPrimaryHits) throw GpuError("the light edit did not reuse the cache");
 
@@ -196,9 +201,15 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     t0 = std::chrono::steady_clock::now();
     reusing.moveNodes(scene, movedNodes, gpu::MovedBounds{before, nodeWorldBounds(scene, node)});
     const double rebuild = msSince(t0);
-    const gpu::RenderResult moved = reusing.render(camera, on);
+    gpu::RenderResult moved = reusing.render(camera, on);
     const double move = msSince(t0);
     if (moved.reuse != gpu::FrameReuse::PartialRetrace) throw GpuError("the node move did not re-render partially");
+    const double changed = changedValueFraction(lit.rgba, moved.rgba);
+    if (!o.freshBuffers) {  // as a frame loop does once it has shown them
+      reference.recycle(std::move(fullFrame.rgba));
+      reusing.recycle(std::move(lit.rgba));
+      reusing.recycle(std::move(moved.rgba));
+    }
     if (run == 0) continue;
 
     e.full.ms.push_back(full);
@@ -213,7 +224,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     e.moveVsRecording.push_back(move / recorded.totalMs);
     e.traced.push_back(double(moved.tracedTargets) / double(e.targets));
     e.movedRays.push_back(double(moved.raysTraced) / double(std::max<std::uint64_t>(fullFrame.raysTraced, 1)));
-    e.changed.push_back(changedValueFraction(lit.rgba, moved.rgba));
+    e.changed.push_back(changed);
     appendStages(stageRuns[0], fullFrame.stages);
     appendStages(stageRuns[1], lit.stages);
     appendStages(stageRuns[2], moved.stages);

@@ -357,6 +357,16 @@ RenderResult Renderer::accumulate(const FrameCamera& camera, const RenderSetting
   return impl_->accumulate(camera, settings, accumulator);
 }
 
+void Renderer::recycle(std::vector<float>&& rgba) {
+  std::vector<float> oldest;  // freed after the lock
+  std::lock_guard lock(impl_->spareMutex);
+  if (impl_->spareRgba.size() == Impl::kSpareFrames) {
+    oldest = std::move(impl_->spareRgba.front());
+    impl_->spareRgba.erase(impl_->spareRgba.begin());
+  }
+  impl_->spareRgba.push_back(std::move(rgba));
+}
+
 std::vector<gpu_shared::HtRay> Renderer::generateRays(const FrameCamera& camera, const RenderSettings& settings,
                                                       std::uint64_t firstTarget, std::uint32_t targetCount,
                                                       TraceStats* stats) {

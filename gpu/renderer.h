@@ -170,6 +170,14 @@ class Renderer {
   // that shapes samples changed since its last frame.
   RenderResult accumulate(const FrameCamera& camera, const RenderSettings& settings, Accumulator& accumulator);
 
+  // Gives a frame's pixels (RenderResult::rgba) back for the next render() or accumulate() to write into. A loop
+  // that renders frame after frame then reuses one host buffer instead of allocating a new one each time: for the
+  // Portrait that is 151 MB of fresh pages, whose first touch cost 90-200 ms on the 2-vCPU VM of
+  // docs/BENCHMARKS.md (a cost outside the GPU's stages: "Host buffers of a frame loop"). Keeps the last two buffers
+  // (a loop that holds one frame while it renders the next needs two); safe to call from another thread than the
+  // one rendering.
+  void recycle(std::vector<float>&& rgba);
+
   // The primary rays raygen writes for targets [firstTarget, firstTarget + targetCount), settings.spp samples each
   // (sample s of target t at index (t - firstTarget)*spp + s), read back without tracing them: the GPU side of
   // the float-vs-double ray tests, `holotrace rays`, and the ray-generation benchmark (stats->gpuMs = raygen time).

@@ -7,6 +7,7 @@
 #include <deque>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
@@ -132,10 +133,13 @@ struct Renderer::Impl {
   };
   std::deque<SceneChange> sceneChanges;  // the last kSceneChangeLog changes
   static constexpr std::size_t kSceneChangeLog = 64;
-  Accumulator* accumulating = nullptr;  // during accumulate(): the accumulation the chunks add to
-  std::uint64_t chunksRendered = 0;     // chunks begun by render(): whose values the subpixel buffer holds
-  FrameReuseState reuse;                // what the next frame of the same view may reuse (RenderSettings::reuse)
-  ReusePlan framePlan;                  // the plan of the chunk being rendered
+  Accumulator* accumulating = nullptr;        // during accumulate(): the accumulation the chunks add to
+  std::uint64_t chunksRendered = 0;           // chunks begun by render(): whose values the subpixel buffer holds
+  std::mutex spareMutex;                      // guards spareRgba (Renderer::recycle may come from another thread)
+  std::vector<std::vector<float>> spareRgba;  // recycled frame buffers for the next render()s, at most kSpareFrames
+  static constexpr std::size_t kSpareFrames = 2;
+  FrameReuseState reuse;  // what the next frame of the same view may reuse (RenderSettings::reuse)
+  ReusePlan framePlan;    // the plan of the chunk being rendered
 
   Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptions& o, const Bounds3& sceneBounds);
 
@@ -229,6 +233,8 @@ struct Renderer::Impl {
                  std::uint32_t viewCount, const RenderSettings& settings);
   // The wavefront frame loop (wavefront_loop.cpp).
   RenderResult render(const FrameCamera& camera, const RenderSettings& settings);
+  // `floats` values to overwrite: a recycled buffer that holds them without wasting more than half, else a new one.
+  std::vector<float> frameBuffer(std::size_t floats);
   // reusable: the frame is this one chunk without refinement, so it may reuse and keep state (gpu/frame_reuse.h).
   void renderChunk(const FrameCamera& camera, const FrameShape& shape, const RowBand& band, std::uint32_t viewFirst,
                    std::uint32_t viewCount, const RenderSettings& settings, bool reusable, StageTimes& stageMs,

@@ -44,6 +44,22 @@ RenderRegion resolveRegion(const RenderSettings& settings, const FrameShape& sha
 
 }  // namespace
 
+std::vector<float> Renderer::Impl::frameBuffer(std::size_t floats) {
+  std::vector<float> buffer;
+  {
+    std::lock_guard lock(spareMutex);
+    for (auto it = spareRgba.begin(); it != spareRgba.end(); ++it) {
+      if (it->capacity() >= floats && it->capacity() / 2 <= floats) {
+        buffer = std::move(*it);
+        spareRgba.erase(it);
+        break;
+      }
+    }
+  }
+  buffer.resize(floats);
+  return buffer;
+}
+
 RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSettings& settings) {
   auto t0 = std::chrono::steady_clock::now();
   checkSettings(settings);
@@ -59,7 +75,7 @@ RenderResult Renderer::Impl::render(const FrameCamera& camera, const RenderSetti
   result.height = shape.height;
   result.views = shape.views;
   const std::uint64_t viewPixels = static_cast<std::uint64_t>(shape.width) * shape.height;
-  result.rgba.resize(static_cast<size_t>(viewPixels * shape.views * 4));
+  result.rgba = frameBuffer(static_cast<size_t>(viewPixels * shape.views * 4));  // every value downloaded below
   const auto chunkViews =
       static_cast<std::uint32_t>(std::clamp<std::uint64_t>(kMaxChunkPixels / viewPixels, 1, shape.views));
   std::array<double, static_cast<size_t>(Stage::Count)> stageMs{};

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 
 #include "camera_models/display_config.h"
 #include "camera_models/lenticular_params.h"
@@ -95,6 +96,41 @@ TEST_F(GpuRegion, RegionsOutsideTheFrameAndRefinedBandsAreRefused) {
   EXPECT_THROW(renderer.render(camera, refined), GpuError);
   refined.region = {};
   EXPECT_NO_THROW(renderer.render(camera, refined));
+}
+
+// Renderer::recycle: a recycled buffer of the frame's size is written whole (none of its old values survive) and
+// used instead of a new one, for whole frames and for bands of rows; one too small or more than twice too large is
+// not.
+TEST_F(GpuRegion, RecycledFrameBuffersAreReusedAndOverwrittenWhole) {
+  DisplayConfig display = builtinDisplay("portrait");
+  display.calibration->screenW = 40;
+  display.calibration->screenH = 30;
+  const gpu::FrameCamera camera = makeLenticularParams(display, scene_->bounds());
+  gpu::Renderer renderer(sharedContext(), *scene_);
+  const gpu::RenderResult fresh = renderer.render(camera, regionSettings(2));
+  const gpu::RenderRegion band{0, 0, 4, 20};  // 20 of 30 rows
+  const std::vector<float> bandFresh = renderer.render(camera, regionSettings(2, band)).rgba;
+
+  std::vector<float> junk(fresh.rgba.size(), std::numeric_limits<float>::quiet_NaN());
+  const float* junkData = junk.data();
+  renderer.recycle(std::move(junk));
+  gpu::RenderResult again = renderer.render(camera, regionSettings(2));
+  EXPECT_EQ(again.rgba.data(), junkData) << "the recycled buffer was not used";
+  EXPECT_TRUE(sameBits(again.rgba, fresh.rgba));
+
+  // The same buffer for a band of rows (more than half its size): used, and the band's values only.
+  ASSERT_GT(bandFresh.size() * 2, again.rgba.size());
+  const float* againData = again.rgba.data();
+  renderer.recycle(std::move(again.rgba));
+  const gpu::RenderResult bandAgain = renderer.render(camera, regionSettings(2, band));
+  EXPECT_EQ(bandAgain.rgba.data(), againData);
+  EXPECT_TRUE(sameBits(bandAgain.rgba, bandFresh));
+
+  // Too small, and more than twice too large: left alone.
+  renderer.recycle(std::vector<float>(fresh.rgba.size() - 4, 1.0f));
+  renderer.recycle(std::vector<float>(fresh.rgba.size() * 2 + 8, 1.0f));
+  const gpu::RenderResult third = renderer.render(camera, regionSettings(2));
+  EXPECT_TRUE(sameBits(third.rgba, fresh.rgba));
 }
 
 }  // namespace
