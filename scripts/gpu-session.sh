@@ -2,7 +2,7 @@
 # gpu-session.sh - one prepared pass on a lent GPU machine (docs/BENCHMARKS.md "On an NVIDIA GPU"): the benchmark
 # programs, then the GPU kernels' CPU-reference parity tests, each under its own time limit, within one deadline.
 #   scripts/gpu-session.sh BUNDLE OUTDIR [DEADLINE_S]     (DEADLINE_S default 420)
-# PARTS="tests fused_ab benches" (environment) picks and orders the parts; default "benches tests fused_ab".
+# PARTS="tests fused_ab" (environment) picks and orders the parts; default "tests fused_ab recycle_ab benches".
 # BUNDLE is a folder made by `BUNDLE_TESTS=1 scripts/bundle-bench.sh` (its run script sets the library path). Every
 # program's output goes to OUTDIR/session.log; CSV and JSON files beside it. Run from the repository root (display
 # configs are read from configs/ and bench/configs/). Steps are ordered by what matters most, so a short lease
@@ -56,6 +56,15 @@ fused_ab() {
   step 30 edits-exact holotrace-bench-edits --runs 5 --node glow-sphere
   step 30 edits-fused holotrace-bench-edits --runs 5 --node glow-sphere --fused-math
 }
+# Frames that recycle their host buffer (the default) against a new buffer per frame: the time outside the GPU
+# stages that the H200 run left unexplained (docs/BENCHMARKS.md "Host buffers of a frame loop").
+recycle_ab() {
+  for pair in 1 2; do
+    step 30 "edits-recycled-$pair" holotrace-bench-edits --runs 5 --node glow-sphere --displays builtin:portrait
+    step 30 "edits-fresh-$pair" holotrace-bench-edits --runs 5 --node glow-sphere --displays builtin:portrait \
+      --fresh-buffers
+  done
+}
 benches() {
   step 60 primary holotrace-bench-primary --mesh "$bunny" --json "$out/primary.json"
   step 120 traversal holotrace-bench-traversal --meshes "$meshes" --json "$out/traversal.json"
@@ -66,6 +75,6 @@ benches() {
   step 20 raygen holotrace-bench-raygen
   step 150 quality holotrace-bench-quality --runs 5 --csv "$out/quality.csv" --summary-csv "$out/quality_summary.csv"
 }
-# PARTS: which of benches, tests, fused_ab run, in that order (default all three).
-for part in ${PARTS:-benches tests fused_ab}; do "$part"; done
+# PARTS: which of tests, fused_ab, recycle_ab, benches run, in the order given (default all four, most needed first).
+for part in ${PARTS:-tests fused_ab recycle_ab benches}; do "$part"; done
 echo "gpu-session.sh: done at ${SECONDS} s" >>"$log"
