@@ -30,13 +30,16 @@ std::vector<std::uint32_t> withoutAdded(std::span<const std::uint32_t> spirv) {
 }
 
 TEST(SpirvExactFloat, EveryFloatArithmeticResultOfEveryPassIsDecoratedOnceAndDenormalsKept) {
-  for (ShaderId id : {ShaderId::Raygen, ShaderId::TraceClosest, ShaderId::TraceAny, ShaderId::Shade, ShaderId::Resolve,
-                      ShaderId::AccumShow, ShaderId::MarkDirty}) {
+  int withArithmetic = 0;
+  for (int i = 0; i <= static_cast<int>(ShaderId::MarkAccumulated); ++i) {  // every pass
+    const auto id = static_cast<ShaderId>(i);
     const std::span<const std::uint32_t> embedded = embeddedSpirv(id);
     const ExactFloatCount before = countExactFloat(embedded);
-    ASSERT_GT(before.arithmetic, 0u) << shaderName(id);
     // glslang decorates what the shared headers mark HT_PRECISE, not the rest.
-    EXPECT_LT(before.decorated, before.arithmetic) << shaderName(id);
+    if (before.arithmetic > 0) {
+      ++withArithmetic;
+      EXPECT_LT(before.decorated, before.arithmetic) << shaderName(id);
+    }
     EXPECT_FALSE(before.denormCapability) << shaderName(id);
 
     const std::vector<std::uint32_t> exact = makeFloatExact(embedded, kBoth);
@@ -51,6 +54,7 @@ TEST(SpirvExactFloat, EveryFloatArithmeticResultOfEveryPassIsDecoratedOnceAndDen
     EXPECT_EQ(withoutAdded(exact), withoutAdded(embedded)) << shaderName(id);
     EXPECT_EQ(makeFloatExact(exact, kBoth), exact) << shaderName(id);
   }
+  EXPECT_EQ(withArithmetic, 11) << "of the 13 passes, all but prepare and the interleave do float arithmetic";
 }
 
 TEST(SpirvExactFloat, EachPartCanBeLeftOut) {
