@@ -7,6 +7,7 @@
 
 #include "gpu/device_buffer.h"
 #include "gpu/vulkan_impl.h"
+#include "spirv/exact_math_probe.spv.h"
 #include "spirv/offset_ray_probe.spv.h"
 #include "spirv/two_level_probe.spv.h"
 
@@ -120,6 +121,19 @@ std::vector<glm::vec3> runOffsetRayProbe(VulkanContext& context, std::span<const
   offsets.reserve(results.size());
   for (const glm::vec4& r : results) offsets.emplace_back(r);
   return offsets;
+}
+
+std::vector<glm::vec4> runExactMathProbe(VulkanContext& context, std::span<const glm::vec4> inputs) {
+  if (inputs.empty()) return {};
+  VulkanContext::Impl& vk = context.impl();
+  const DeviceBuffer input = uploadBuffer(vk, std::vector<glm::vec4>(inputs.begin(), inputs.end()));
+  const VkDeviceSize outputBytes = inputs.size() * sizeof(glm::vec4);
+  DeviceBuffer output(vk, outputBytes, MemoryPlace::HostReadback);
+  const ProbeConstants constants{input.address(), output.address(), static_cast<std::uint32_t>(inputs.size())};
+  dispatchProbe(vk, ht_spv_exact_math_probe, sizeof(ht_spv_exact_math_probe), constants, inputs.size());
+  std::vector<glm::vec4> results(inputs.size());
+  output.download(results.data(), outputBytes);
+  return results;
 }
 
 std::vector<gpu_shared::HtTraceResult> runTwoLevelProbe(VulkanContext& context, const bvh::TwoLevelBvh& bvh,

@@ -21,6 +21,10 @@ struct OffsetRayProbeInput {
 // order. Throws GpuError on a Vulkan failure.
 std::vector<glm::vec3> runOffsetRayProbe(VulkanContext& context, std::span<const OffsetRayProbeInput> inputs);
 
+// For each input (a, b, x, -): (ht_div(a, b), ht_sqrt(x), ht_div3(vec3(a, x, b), b).y, 0) (common/exact_division.h)
+// evaluated by gpu/shaders/exact_math_probe.comp, in order. Throws GpuError on a Vulkan failure.
+std::vector<glm::vec4> runExactMathProbe(VulkanContext& context, std::span<const glm::vec4> inputs);
+
 // ht_trace_two_level_ordered (bvh/ordered_traversal.h) over `bvh`'s buffers, evaluated by
 // gpu/shaders/two_level_probe.comp: one result per ray, in order (hit, steps, overflow). Throws GpuError on a Vulkan
 // failure.
