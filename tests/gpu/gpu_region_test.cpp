@@ -48,15 +48,19 @@ class GpuRegion : public ::testing::Test {
     delete scene_;
     scene_ = nullptr;
   }
+  // The Portrait's lenticular model on a 40 x 30 panel.
+  static gpu::FrameCamera smallPanel() {
+    DisplayConfig display = builtinDisplay("portrait");
+    display.calibration->screenW = 40;
+    display.calibration->screenH = 30;
+    return makeLenticularParams(display, scene_->bounds());
+  }
   static Scene* scene_;
 };
 Scene* GpuRegion::scene_ = nullptr;
 
 TEST_F(GpuRegion, RowBandsOfALenticularPanelAreTheWholeFramesRows) {
-  DisplayConfig display = builtinDisplay("portrait");
-  display.calibration->screenW = 40;
-  display.calibration->screenH = 30;
-  const gpu::FrameCamera camera = makeLenticularParams(display, scene_->bounds());
+  const gpu::FrameCamera camera = smallPanel();
   gpu::Renderer renderer(sharedContext(), *scene_);
   const gpu::RenderResult whole = renderer.render(camera, regionSettings(2));
   ASSERT_EQ(whole.height, 30u);
@@ -102,10 +106,7 @@ TEST_F(GpuRegion, RegionsOutsideTheFrameAndRefinedBandsAreRefused) {
 // used instead of a new one, for whole frames and for bands of rows; one too small or more than twice too large is
 // not.
 TEST_F(GpuRegion, RecycledFrameBuffersAreReusedAndOverwrittenWhole) {
-  DisplayConfig display = builtinDisplay("portrait");
-  display.calibration->screenW = 40;
-  display.calibration->screenH = 30;
-  const gpu::FrameCamera camera = makeLenticularParams(display, scene_->bounds());
+  const gpu::FrameCamera camera = smallPanel();
   gpu::Renderer renderer(sharedContext(), *scene_);
   const gpu::RenderResult fresh = renderer.render(camera, regionSettings(2));
   const gpu::RenderRegion band{0, 0, 4, 20};  // 20 of 30 rows
