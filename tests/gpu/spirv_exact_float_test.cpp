@@ -3,7 +3,13 @@
 // changed, bad modules refused. That drivers then agree with the C++ references is what the parity tests check on
 // each driver they run on.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
 #include <vector>
 
 #include "common/error.h"
@@ -87,6 +93,26 @@ TEST(SpirvExactFloat, AddedInstructionsKeepTheModulesSectionOrder) {
   EXPECT_LT(lastCapability, firstOther);
   if (firstDebug != 0) { EXPECT_LT(lastMode, firstDebug); }
   EXPECT_LT(lastDecorate, firstType);
+}
+
+// spirv-val (SPIRV-Tools, scripts/install-deps.sh) accepts every pass with both parts added, for Vulkan 1.2: the
+// DenormPreserve capability and execution mode included, which lavapipe never gets (it cannot keep denormals), so only
+// a GPU that can would otherwise try them.
+TEST(SpirvExactFloat, EveryPassStaysValidForSpirvVal) {
+  if (std::system("spirv-val --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "spirv-val not installed (spirv-tools)";
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("ht_exact_float_" + std::to_string(::getpid()) + ".spv");
+  for (int i = 0; i <= static_cast<int>(ShaderId::MarkAccumulated); ++i) {
+    const auto id = static_cast<ShaderId>(i);
+    const std::vector<std::uint32_t> exact = makeFloatExact(embeddedSpirv(id), kBoth);
+    {
+      std::ofstream out(file, std::ios::binary);
+      out.write(reinterpret_cast<const char*>(exact.data()), static_cast<std::streamsize>(exact.size() * 4));
+    }
+    const std::string command = "spirv-val --target-env vulkan1.2 " + file.string() + " 2>&1";
+    EXPECT_EQ(std::system(command.c_str()), 0) << shaderName(id);
+  }
+  std::filesystem::remove(file);
 }
 
 TEST(SpirvExactFloat, MalformedModulesAreRefusedNotWalkedPastTheirEnd) {
