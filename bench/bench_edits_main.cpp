@@ -135,7 +135,16 @@ struct DisplayEdits {
   std::vector<double> movedRays;  // rays the move traced (closest + any) / rays of the full frame
   std::vector<double> lightVsRecording, moveVsRecording;  // the same edits against the reusing Renderer's full frame
   std::vector<gpu::StageTiming> fullStages, lightStages, moveStages;  // medians over the runs (appendStages)
+  // Host time of each frame outside its stages: RenderResult::totalMs minus the stages' sum (GPU timestamps and the
+  // host readback): submissions, waits, host buffers (docs/BENCHMARKS.md "Host buffers of a frame loop").
+  std::vector<double> fullOutside, lightOutside, moveOutside;
 };
+
+double outsideStagesMs(const gpu::RenderResult& frame) {
+  double stages = 0.0;
+  for (const gpu::StageTiming& s : frame.stages) stages += s.ms;
+  return frame.totalMs - stages;
+}
 
 // Per stage name, its times over the runs.
 using StageRuns = std::vector<std::pair<std::string, std::vector<double>>>;
@@ -225,6 +234,9 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     e.traced.push_back(double(moved.tracedTargets) / double(e.targets));
     e.movedRays.push_back(double(moved.raysTraced) / double(std::max<std::uint64_t>(fullFrame.raysTraced, 1)));
     e.changed.push_back(changed);
+    e.fullOutside.push_back(outsideStagesMs(fullFrame));
+    e.lightOutside.push_back(outsideStagesMs(lit));
+    e.moveOutside.push_back(outsideStagesMs(moved));
     appendStages(stageRuns[0], fullFrame.stages);
     appendStages(stageRuns[1], lit.stages);
     appendStages(stageRuns[2], moved.stages);
@@ -251,7 +263,8 @@ void print(const DisplayEdits& e) {
     std::printf("\n   %s", stages == &e.fullStages ? "full " : stages == &e.lightStages ? "light" : "move ");
     for (const gpu::StageTiming& s : *stages) std::printf(" %s %.1f", s.name.c_str(), s.ms);
   }
-  std::printf("\n");
+  std::printf("\n  host time outside the stages (ms, medians): full %.1f, light %.1f, move %.1f\n",
+              median(e.fullOutside), median(e.lightOutside), median(e.moveOutside));
 }
 
 std::string csvRows(const DisplayEdits& e) {
@@ -269,7 +282,10 @@ std::string csvRows(const DisplayEdits& e) {
                                                  {"node_coverage", e.coverage},
                                                  {"retraced_fraction", median(e.traced)},
                                                  {"move_rays_fraction", median(e.movedRays)},
-                                                 {"changed_fraction", median(e.changed)}};
+                                                 {"changed_fraction", median(e.changed)},
+                                                 {"full_outside_stages_ms", median(e.fullOutside)},
+                                                 {"light_edit_outside_stages_ms", median(e.lightOutside)},
+                                                 {"node_move_outside_stages_ms", median(e.moveOutside)}};
   for (const auto& [name, value] : rows) csv << e.display << "," << name << "," << value << "\n";
   return csv.str();
 }
