@@ -53,7 +53,8 @@ gpu::RenderResult accumulateFrameJob(RenderWorker& worker, const std::string& cl
   return result;
 }
 
-gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job) {
+gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job,
+                                 std::vector<float>* recycled) {
   const gpu::RenderSettings settings = jobSettings(job);
   const SceneContent& content = *job.session->content;
   if (content.quilt) {  // existing quilt content: interleaved for the display, nothing traced
@@ -67,6 +68,7 @@ gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client
   worker
       .submit(client,
               [&](gpu::VulkanContext&) {
+                if (recycled && !recycled->empty() && !job.cluster) content.renderer->recycle(std::move(*recycled));
                 result = job.cluster ? job.cluster->render(job, camera, settings)
                                      : content.renderer->render(camera.camera, settings);
               })

@@ -37,8 +37,11 @@ DisplayConfig displayForSession(const DisplayConfig& display, const SceneSession
 // The camera a job renders (the session's display, placed against its scene).
 gpu::DisplayCamera jobCamera(const FrameJob& job);
 
-// Queues the frame for `client` and waits for it. Throws what the worker or renderer threw.
-gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job);
+// Queues the frame for `client` and waits for it. Throws what the worker or renderer threw. `recycled`: the pixels of
+// the caller's previous frame, done with, which the session's renderer may write this one into instead of a new
+// buffer (gpu::Renderer::recycle, on the worker thread; docs/BENCHMARKS.md "Host buffers of a frame loop"); taken.
+gpu::RenderResult renderFrameJob(RenderWorker& worker, const std::string& client, const FrameJob& job,
+                                 std::vector<float>* recycled = nullptr);
 
 // One progressive frame of `job` (gpu/accumulator.h): job.spp (or the display's) more samples into `accumulator`,
 // on the worker. The job's refinement settings are ignored (the accumulator's policy places samples). The session's

@@ -78,15 +78,19 @@ bool sendRendered(ServiceState& state, const FrameJob& job, const gpu::RenderRes
 }
 
 // Renders one frame and sends it (sendRendered). `panel` (StreamRequest.present_on) also gets the frame, through
-// its one-slot mailbox: never waits on the display.
+// its one-slot mailbox: never waits on the display. `recycled` (renderFrameJob) is taken and, once the frame is sent,
+// given this frame's pixels for the next.
 bool renderAndSend(ServiceState& state, const std::string& client, const FrameJob& job, v1::PixelFormat format,
                    std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer,
-                   CallWatchdog::Watch& watch, present::PanelSink* panel = nullptr) {
+                   CallWatchdog::Watch& watch, present::PanelSink* panel = nullptr,
+                   std::vector<float>* recycled = nullptr) {
   const auto queued = Clock::now();
-  const gpu::RenderResult frame = renderFrameJob(state.worker, client, job);
+  gpu::RenderResult frame = renderFrameJob(state.worker, client, job, recycled);
   if (panel) panel->submit(panelFrameOf(frame, job));
   const double queueMs = std::max(0.0, msBetween(queued, Clock::now()) - frame.totalMs);
-  return sendRendered(state, job, frame, format, queueMs, dropped, writer, watch);
+  const bool sent = sendRendered(state, job, frame, format, queueMs, dropped, writer, watch);
+  if (recycled) *recycled = std::move(frame.rgba);
+  return sent;
 }
 
 // Sleeps until `due` in slices of `slice`, so a cancelled call or a shutdown frees its slot within one slice.
@@ -199,11 +203,14 @@ void streamIndependent(ServiceState& state, grpc::ServerContext& context, const 
                        CallWatchdog::Watch& watch, present::PanelSink* panel) {
   TickClock clock(request.frames_per_second());
   std::uint64_t dropped = 0;
+  std::vector<float> recycled;  // the last frame's pixels, for the next to be written into
   while (!context.IsCancelled()) {
     if (state.shuttingDown) throw ShuttingDown("holotraced is shutting down");
     job.session = state.scenes.find(request.render().scene_id());  // picks up UpdateScene
     job.seed = request.render().seed() + static_cast<std::uint32_t>(clock.tick());
-    if (!renderAndSend(state, client, job, request.render().format(), dropped, writer, watch, panel)) return;
+    if (!renderAndSend(state, client, job, request.render().format(), dropped, writer, watch, panel, &recycled)) {
+      return;
+    }
     dropped = clock.next();
     waitForTick(state, context, clock.due());
   }

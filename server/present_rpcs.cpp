@@ -53,6 +53,7 @@ grpc::Status HolotraceService::Present(grpc::ServerContext* context, const v1::P
     const std::string client = clientKey(*context);
     const auto start = Clock::now();
     const double fps = request->frames_per_second();
+    std::vector<float> recycled;  // the last frame's pixels, for the next to be written into (renderFrameJob)
     for (std::uint32_t i = 0; i < frames; ++i) {
       if (context->IsCancelled()) throw ClientGone("present cancelled after " + std::to_string(i) + " frames");
       if (state_.shuttingDown) throw ShuttingDown("shutting down after " + std::to_string(i) + " frames");
@@ -63,8 +64,9 @@ grpc::Status HolotraceService::Present(grpc::ServerContext* context, const v1::P
       }
       job.session = state_.scenes.find(request->render().scene_id());  // picks up UpdateScene
       job.seed = request->render().seed() + i;
-      const gpu::RenderResult frame = renderFrameJob(state_.worker, client, job);
+      gpu::RenderResult frame = renderFrameJob(state_.worker, client, job, &recycled);
       sink->submit(panelFrameOf(frame, job));
+      recycled = std::move(frame.rgba);  // the panel frame is a copy
       v1::PresentProgress progress;
       progress.set_frame_id(state_.nextFrameId++);
       progress.set_frames_done(i + 1);
