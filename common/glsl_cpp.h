@@ -6,7 +6,11 @@
 //   * no swizzles beyond .x/.y/.z/.w (GLM swizzles are off);
 //   * out/inout parameters through HT_OUT(T) / HT_INOUT(T);
 //   * mark arithmetic that must not be contracted into FMA with HT_PRECISE (GLSL `precise`); C++ is
-//     compiled with -ffp-contract=off for the same reason;
+//     compiled with -ffp-contract=off for the same reason. Every pipeline is also created with no contraction at
+//     all (gpu/spirv_exact_float.h); HT_PRECISE keeps its expressions unfused when a context allows fusing
+//     (VulkanContext::Options::fusedFloatMath);
+//   * divide and take square roots that C++ and GLSL must round alike with ht_div / ht_div3 / ht_sqrt
+//     (common/exact_division.h): Vulkan's division and sqrt may be several ULP off (docs/DRIVERS.md);
 //   * wrap declarations in HT_SHARED_BEGIN / HT_SHARED_END (namespace ht::gpu_shared in C++).
 #ifndef HT_GLSL_CPP_H
 #define HT_GLSL_CPP_H
