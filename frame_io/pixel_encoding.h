@@ -19,8 +19,11 @@ std::uint8_t linearEncode8(float value);
 // 8-bit sRGB code -> linear value: decoding then encoding gives the code back for all 256 codes.
 float srgbDecode8(std::uint8_t code);
 
-// RGBA floats -> RGBA bytes (colour sRGB, alpha linear), one byte per float.
+// RGBA floats -> RGBA bytes (colour sRGB, alpha linear), one byte per float: the codes of srgbEncode8 and
+// linearEncode8, looked up (frame_io/code8_table.h).
 std::vector<std::uint8_t> encodeRgba8Srgb(std::span<const float> rgba);
+// The same into `out` (as many bytes as floats, a multiple of 4; std::invalid_argument otherwise).
+void encodeRgba8Srgb(std::span<const float> rgba, std::span<std::uint8_t> out);
 
 // RGBA floats -> little-endian half floats, two bytes per float, values unchanged (linear).
 std::vector<std::uint8_t> encodeRgba16fLinear(std::span<const float> rgba);

@@ -11,7 +11,7 @@ out="${1:-$root/.bench-bundle}"
 build="${BUILD_DIR:-$root/build}"
 programs=(bench/holotrace-bench-primary bench/holotrace-bench-traversal bench/holotrace-bench-raygen
           bench/holotrace-bench-skipping bench/holotrace-bench-quality bench/holotrace-bench-edits
-          bench/holotrace-bench-bvh2)
+          bench/holotrace-bench-bvh2 bench/holotrace-bench-encode)
 # Not the CLI nor holotrace-bench-stream: through OpenImageIO and gRPC they need ~300 libraries (430 MiB).
 # BUNDLE_TESTS=1: also the GPU and accuracy test programs (GoogleTest linked in), to run the CPU-reference parity
 # tests on the GPU machine's driver (scripts/gpu-session.sh).

@@ -73,6 +73,7 @@ benches() {
   step 60 bvh2-gpu holotrace-bench-bvh2 --gpu --runs 5 --meshes "$meshes"
   step 30 skipping holotrace-bench-skipping --scenes "builtin:plain,$bunny,builtin:showcase"
   step 20 raygen holotrace-bench-raygen
+  step 20 encode holotrace-bench-encode  # the frame encoding's threads on the device's 16 vCPUs
   step 150 quality holotrace-bench-quality --runs 5 --csv "$out/quality.csv" --summary-csv "$out/quality_summary.csv"
 }
 # PARTS: which of tests, fused_ab, recycle_ab, benches run, in the order given (default all four, most needed first).
