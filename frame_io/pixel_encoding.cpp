@@ -68,13 +68,21 @@ std::vector<std::uint8_t> encodeRgba8Srgb(std::span<const float> rgba) {
   return out;
 }
 
-std::vector<std::uint8_t> encodeRgba16fLinear(std::span<const float> rgba) {
+void encodeRgba16fLinear(std::span<const float> rgba, std::span<std::uint8_t> out) {
   static_assert(std::endian::native == std::endian::little, "RGBA16F is little endian on the wire");
-  std::vector<std::uint8_t> out(rgba.size() * 2);
+  if (out.size() != 2 * rgba.size()) {
+    throw std::invalid_argument("encodeRgba16fLinear: " + std::to_string(rgba.size()) + " floats into " +
+                                std::to_string(out.size()) + " bytes (want two bytes per float)");
+  }
   for (std::size_t i = 0; i < rgba.size(); ++i) {
     const std::uint16_t bits = Imath::half(rgba[i]).bits();
     std::memcpy(out.data() + 2 * i, &bits, 2);
   }
+}
+
+std::vector<std::uint8_t> encodeRgba16fLinear(std::span<const float> rgba) {
+  std::vector<std::uint8_t> out(rgba.size() * 2);
+  encodeRgba16fLinear(rgba, out);
   return out;
 }
 

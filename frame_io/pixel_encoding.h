@@ -27,5 +27,7 @@ void encodeRgba8Srgb(std::span<const float> rgba, std::span<std::uint8_t> out);
 
 // RGBA floats -> little-endian half floats, two bytes per float, values unchanged (linear).
 std::vector<std::uint8_t> encodeRgba16fLinear(std::span<const float> rgba);
+// The same into `out` (two bytes per float; std::invalid_argument otherwise).
+void encodeRgba16fLinear(std::span<const float> rgba, std::span<std::uint8_t> out);
 
 }  // namespace ht::frame_io

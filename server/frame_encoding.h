@@ -22,5 +22,9 @@ struct EncodedFrame {
 // quilt (metadata embedded) when the views form one, else the views stacked top to bottom. `display` matters for PNG
 // only. Throws IoError if encoding fails.
 EncodedFrame encodeFrame(const gpu::RenderResult& frame, FrameEncoding encoding, const frame_io::FrameDisplay& display);
+// The same into `into`, whose byte buffer is reused: a stream encodes every frame into one buffer instead of a new
+// one per frame (a Portrait panel image is 12.6 MB, and fresh pages cost more than the writes into them).
+void encodeFrame(const gpu::RenderResult& frame, FrameEncoding encoding, const frame_io::FrameDisplay& display,
+                 EncodedFrame& into);
 
 }  // namespace ht::server

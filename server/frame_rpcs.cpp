@@ -55,13 +55,15 @@ v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame
   return header;
 }
 
-// Encodes `frame` and sends it; false when the client went away or stopped reading for longer than
-// limits.stream_stall_seconds (`watch` cancels the blocked Write). `state` set: a progressive frame's fields.
+// Encodes `frame` into `encoded` (a stream's buffer, reused from frame to frame) and sends it; false when the client
+// went away or stopped reading for longer than limits.stream_stall_seconds (`watch` cancels the blocked Write).
+// `streamState` set: a progressive frame's fields.
 bool sendRendered(ServiceState& state, const FrameJob& job, const gpu::RenderResult& frame, v1::PixelFormat format,
                   double queueMs, std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer,
-                  CallWatchdog::Watch& watch, v1::StreamState streamState = v1::STREAM_STATE_UNSPECIFIED) {
+                  CallWatchdog::Watch& watch, EncodedFrame& encoded,
+                  v1::StreamState streamState = v1::STREAM_STATE_UNSPECIFIED) {
   const DisplayConfig display = displayForSession(job.display->config, *job.session);
-  const EncodedFrame encoded = encodeFrame(frame, checkPixelFormat(format), {display, jobCamera(job).quilt});
+  encodeFrame(frame, checkPixelFormat(format), {display, jobCamera(job).quilt}, encoded);
   v1::FrameHeader header = makeHeader(state.nextFrameId++, frame, encoded, format, queueMs);
   header.set_dropped_frames(dropped);
   if (streamState != v1::STREAM_STATE_UNSPECIFIED) {
@@ -77,19 +79,25 @@ bool sendRendered(ServiceState& state, const FrameJob& job, const gpu::RenderRes
   return sendFrame(writer, std::move(header), encoded.bytes);
 }
 
+// What a stream keeps from one frame to the next: the last frame's pixels, for the next to be rendered into
+// (renderFrameJob), and the buffer its frames are encoded into.
+struct StreamBuffers {
+  std::vector<float> pixels;
+  EncodedFrame encoded;
+};
+
 // Renders one frame and sends it (sendRendered). `panel` (StreamRequest.present_on) also gets the frame, through
-// its one-slot mailbox: never waits on the display. `recycled` (renderFrameJob) is taken and, once the frame is sent,
-// given this frame's pixels for the next.
+// its one-slot mailbox: never waits on the display. `buffers`' pixels are taken and, once the frame is sent, given
+// this frame's pixels for the next.
 bool renderAndSend(ServiceState& state, const std::string& client, const FrameJob& job, v1::PixelFormat format,
                    std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer,
-                   CallWatchdog::Watch& watch, present::PanelSink* panel = nullptr,
-                   std::vector<float>* recycled = nullptr) {
+                   CallWatchdog::Watch& watch, StreamBuffers& buffers, present::PanelSink* panel = nullptr) {
   const auto queued = Clock::now();
-  gpu::RenderResult frame = renderFrameJob(state.worker, client, job, recycled);
+  gpu::RenderResult frame = renderFrameJob(state.worker, client, job, &buffers.pixels);
   if (panel) panel->submit(panelFrameOf(frame, job));
   const double queueMs = std::max(0.0, msBetween(queued, Clock::now()) - frame.totalMs);
-  const bool sent = sendRendered(state, job, frame, format, queueMs, dropped, writer, watch);
-  if (recycled) *recycled = std::move(frame.rgba);
+  const bool sent = sendRendered(state, job, frame, format, queueMs, dropped, writer, watch, buffers.encoded);
+  buffers.pixels = std::move(frame.rgba);
   return sent;
 }
 
@@ -203,12 +211,12 @@ void streamIndependent(ServiceState& state, grpc::ServerContext& context, const 
                        CallWatchdog::Watch& watch, present::PanelSink* panel) {
   TickClock clock(request.frames_per_second());
   std::uint64_t dropped = 0;
-  std::vector<float> recycled;  // the last frame's pixels, for the next to be written into
+  StreamBuffers buffers;
   while (!context.IsCancelled()) {
     if (state.shuttingDown) throw ShuttingDown("holotraced is shutting down");
     job.session = state.scenes.find(request.render().scene_id());  // picks up UpdateScene
     job.seed = request.render().seed() + static_cast<std::uint32_t>(clock.tick());
-    if (!renderAndSend(state, client, job, request.render().format(), dropped, writer, watch, panel, &recycled)) {
+    if (!renderAndSend(state, client, job, request.render().format(), dropped, writer, watch, buffers, panel)) {
       return;
     }
     dropped = clock.next();
@@ -231,6 +239,7 @@ void streamProgressive(ServiceState& state, grpc::ServerContext& context, const 
   ProgressiveStream& stream = member.stream();
   TickClock clock(request.frames_per_second());
   std::uint64_t dropped = 0, sentFrame = 0;
+  EncodedFrame encoded;  // reused by every frame this call sends
   while (!context.IsCancelled()) {
     if (state.shuttingDown) throw ShuttingDown("holotraced is shutting down");
     job.session = state.scenes.find(request.render().scene_id());  // picks up UpdateScene
@@ -254,7 +263,10 @@ void streamProgressive(ServiceState& state, grpc::ServerContext& context, const 
     if (frameNumber != sentFrame) {
       if (panel) panel->submit(panelFrameOf(*frame, job));  // each new sum / n, the converged one last
       const v1::StreamState shown = converged ? v1::STREAM_STATE_CONVERGED : v1::STREAM_STATE_ACCUMULATING;
-      if (!sendRendered(state, job, *frame, request.render().format(), queueMs, dropped, writer, watch, shown)) return;
+      if (!sendRendered(state, job, *frame, request.render().format(), queueMs, dropped, writer, watch, encoded,
+                        shown)) {
+        return;
+      }
       sentFrame = frameNumber;
     }
     dropped = clock.next();
@@ -277,7 +289,8 @@ grpc::Status HolotraceService::RenderFrame(grpc::ServerContext* context, const v
       job.session = state_.scenes.ownRenderer(clientKey(*context), request->scene_id());
     }
     CallWatchdog::Watch watch(state_.watchdog, *context, state_.config.limits.streamStallSeconds, "RenderFrame");
-    if (!renderAndSend(state_, clientKey(*context), job, request->format(), 0, *writer, watch)) {
+    StreamBuffers buffers;
+    if (!renderAndSend(state_, clientKey(*context), job, request->format(), 0, *writer, watch, buffers)) {
       throw ClientGone("client closed the stream");
     }
     return grpc::Status::OK;
