@@ -46,8 +46,9 @@ bool cached_primary_meets_moved(uint path) {
   return ht_segment_meets_box(ray.origin, ray.dir, ray.tmin, tEnd, moved_lo(), moved_hi());
 }
 
-// The shadow-occlusion cache's word (gpu/wavefront_types.h HT_OCCLUSION_TRACED_SHIFT) of batch path `batchPath` at this dispatch's depth; `listed`: the batch traces listed targets.
+// The shadow-occlusion cache's word (gpu/wavefront_types.h HT_OCCLUSION_TRACED_SHIFT) of frame path `framePath` at
+// this dispatch's depth; occlusion_word_index: of batch path `batchPath` (`listed`: the batch traces listed targets).
+uint occlusion_word_of_frame_path(uint framePath) { return pc.depth * FRAME.dims.w * FRAME.dims.z + framePath; }
 uint occlusion_word_index(uint batchPath, bool listed) {
-  uint framePath = listed ? listed_frame_path(batchPath) : pc.batchFirst + batchPath;
-  return pc.depth * FRAME.dims.w * FRAME.dims.z + framePath;
+  return occlusion_word_of_frame_path(listed ? listed_frame_path(batchPath) : pc.batchFirst + batchPath);
 }

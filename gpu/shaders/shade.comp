@@ -130,19 +130,19 @@ vec3 light_incidence(GpuLight light, vec3 p, out vec3 wi, out float dist) {
 }
 
 // Emits the path's shadow rays; returns the word of the occlusion cache to store (OCCLUSION != OFF).
-uint emit_shadow_rays(uint path, SurfacePoint s, vec3 weight) {
+// `occlusionIndex`: the path's word in the occlusion cache (occlusion_word_index).
+uint emit_shadow_rays(uint path, SurfacePoint s, vec3 weight, uint occlusionIndex) {
   uint lightCount = FRAME.scene.x;
   vec3 origin = ht_offset_ray(s.p, s.nFace);
   uint word = 0u;      // the path's recorded word
   uint holding = 0u;   // bit l: light l's recorded occlusion holds (if the ray's segment allows, KEPT_SEGMENTS)
   if (OCCLUSION == HT_OCCLUSION_KEPT_LIGHTS || OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS) {
-    word = UintRef(FRAME.shadowOcclusion).v[occlusion_word_index(path, OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS)];
+    // KEPT_SEGMENTS (depth 0 of a partial re-render): trace_closest.comp cleared the word of every path whose
+    // primary ray it traced again, so a word that holds bits belongs to a path that kept its cached hit.
+    word = UintRef(FRAME.shadowOcclusion).v[occlusionIndex];
     holding = word >> HT_OCCLUSION_TRACED_SHIFT;
     if (OCCLUSION == HT_OCCLUSION_KEPT_LIGHTS) holding &= FRAME.frame.w;
-    if (OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS) {
-      load_moved_view();
-      if (cached_primary_meets_moved(listed_frame_path(path))) holding = 0u;  // depth 0: path = batch path
-    }
+    if (OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS) load_moved_view();
   }
   uint taken = 0u;  // bit l: light l's slot takes the recorded occlusion
   for (uint l = 0u; l < lightCount; ++l) {
@@ -264,10 +264,12 @@ void main() {
 
   // Subgroup operations act on the lanes active at the call, so each divergent group appends for itself.
   uint occlusionWord = 0u;  // a path without shadow rays here has no recorded occlusion here
-  if (HAS_LIGHTS && wantShadows) occlusionWord = emit_shadow_rays(path, s, throughput * albedo * HT_INV_PI);
-  if (OCCLUSION != HT_OCCLUSION_OFF) {
-    UintRef(FRAME.shadowOcclusion).v[occlusion_word_index(path, OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS)] = occlusionWord;
+  uint occlusionIndex =
+      OCCLUSION != HT_OCCLUSION_OFF ? occlusion_word_index(path, OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS) : 0u;
+  if (HAS_LIGHTS && wantShadows) {
+    occlusionWord = emit_shadow_rays(path, s, throughput * albedo * HT_INV_PI, occlusionIndex);
   }
+  if (OCCLUSION != HT_OCCLUSION_OFF) UintRef(FRAME.shadowOcclusion).v[occlusionIndex] = occlusionWord;
   if (HAS_MIRROR || HAS_GLASS) {
     uint out_queue = 1u - pc.queue;
     uint q = append_slot(continues, out_queue);

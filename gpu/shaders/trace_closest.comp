@@ -15,7 +15,9 @@
 // The primary rays of a partial re-render with the primary hits cached (ReusePlan::primaryCached; docs/REUSE.md §4):
 // a ray whose cached segment, up to its cached hit, does not meet the padded moved bounds has that same hit in the
 // edited scene (reuse_cache.glsl), so it takes the cached hit and is not traced. Most re-traced targets are
-// re-traced for a shadow or a reflection, not for their primary ray.
+// re-traced for a shadow or a reflection, not for their primary ray. A ray that is traced may hit elsewhere now, so
+// its path's recorded shadow occlusion at this depth is cleared: shade.comp (KEPT_SEGMENTS) takes a recorded
+// occlusion only where the word still holds one, without testing the primary segment again.
 layout(constant_id = 0) const bool REUSE_PRIMARY = false;
 
 #include "gpu/shaders/reuse_cache.glsl"
@@ -31,6 +33,8 @@ void main() {
     if (!cached_primary_meets_moved(path)) {
       store_hit(i, cached_primary_ht_hit(path));
       inQueue = false;  // not traced
+    } else if (FRAME.shadowOcclusion != 0ul) {
+      UintRef(FRAME.shadowOcclusion).v[occlusion_word_of_frame_path(path)] = 0u;
     }
   }
   if (inQueue) {
