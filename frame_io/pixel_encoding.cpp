@@ -45,8 +45,8 @@ void encodeRgba8Srgb(std::span<const float> rgba, std::span<std::uint8_t> out) {
     }
   };
   // A panel image (1536 x 2048) takes 55 ms on one core of the 2-vCPU EPYC, 32-40 ms on both (docs/BENCHMARKS.md
-  // "Encoding frames"):
-  // large frames are cut across up to kMaxEncodeThreads threads, each at least kPixelsPerThread pixels.
+  // "Encoding frames"), so large frames are cut across up to kMaxEncodeThreads threads of kPixelsPerThread pixels
+  // or more.
   constexpr std::size_t kPixelsPerThread = 1u << 18, kMaxEncodeThreads = 8;
   const std::size_t pixels = rgba.size() / 4;
   const std::size_t threads = std::clamp<std::size_t>(
