@@ -1,6 +1,7 @@
 // device_buffer.cpp - buffer allocation (one allocation per buffer: holotrace allocates few, large buffers).
 #include "gpu/device_buffer.h"
 
+#include <algorithm>
 #include <cstring>
 #include <utility>
 
@@ -61,7 +62,8 @@ DeviceBuffer::DeviceBuffer(VulkanContext::Impl& vk, VkDeviceSize size, MemoryPla
   }
   HT_VK(vkBindBufferMemory(vk.device, buffer_, memory_, 0));
   VkMemoryPropertyFlags got = vk.memoryProperties.memoryTypes[ai.memoryTypeIndex].propertyFlags;
-  if ((got & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) && (got & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)) {
+  if ((got & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) && (got & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) &&
+      (place == MemoryPlace::HostReadback || vk.mapDeviceMemory)) {
     HT_VK(vkMapMemory(vk.device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
   }
   VkBufferDeviceAddressInfo dai{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
@@ -98,29 +100,45 @@ DeviceBuffer& DeviceBuffer::operator=(DeviceBuffer&& o) noexcept {
 }
 
 void DeviceBuffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
-  if (bytes == 0) return;
-  if (mapped_) {
-    std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
-    return;
-  }
-  DeviceBuffer staging(*vk_, bytes, MemoryPlace::HostReadback);
-  std::memcpy(staging.mapped(), data, bytes);
-  OneShotCommands once(*vk_);
-  VkBufferCopy region{0, offset, bytes};
-  vkCmdCopyBuffer(once.cmd(), staging.handle(), buffer_, 1, &region);
-  once.submitAndWait();
+  StagingBuffer(*vk_).upload(*this, data, bytes, offset);
 }
 
 void DeviceBuffer::download(void* data, VkDeviceSize bytes, VkDeviceSize offset) const {
+  StagingBuffer(*vk_).download(*this, data, bytes, offset);
+}
+
+DeviceBuffer& StagingBuffer::reserve(VkDeviceSize bytes) {
+  if (buffer_.size() < bytes) {
+    buffer_ = DeviceBuffer();  // the old one goes before the larger one is allocated
+    buffer_ = DeviceBuffer(*vk_, bytes, MemoryPlace::HostReadback);
+  }
+  return buffer_;
+}
+
+void StagingBuffer::upload(DeviceBuffer& to, const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
   if (bytes == 0) return;
-  if (mapped_) {
-    std::memcpy(data, static_cast<const char*>(mapped_) + offset, bytes);
+  if (to.mapped()) {
+    std::memcpy(static_cast<char*>(to.mapped()) + offset, data, bytes);
     return;
   }
-  DeviceBuffer staging(*vk_, bytes, MemoryPlace::HostReadback);
+  DeviceBuffer& staging = reserve(bytes);
+  std::memcpy(staging.mapped(), data, bytes);
   OneShotCommands once(*vk_);
-  VkBufferCopy region{offset, 0, bytes};
-  vkCmdCopyBuffer(once.cmd(), buffer_, staging.handle(), 1, &region);
+  const VkBufferCopy region{0, offset, bytes};
+  vkCmdCopyBuffer(once.cmd(), staging.handle(), to.handle(), 1, &region);
+  once.submitAndWait();
+}
+
+void StagingBuffer::download(const DeviceBuffer& from, void* data, VkDeviceSize bytes, VkDeviceSize offset) {
+  if (bytes == 0) return;
+  if (from.mapped()) {
+    std::memcpy(data, static_cast<const char*>(from.mapped()) + offset, bytes);
+    return;
+  }
+  DeviceBuffer& staging = reserve(bytes);
+  OneShotCommands once(*vk_);
+  const VkBufferCopy region{offset, 0, bytes};
+  vkCmdCopyBuffer(once.cmd(), from.handle(), staging.handle(), 1, &region);
   once.submitAndWait();
   std::memcpy(data, staging.mapped(), bytes);
 }
@@ -134,9 +152,12 @@ void UploadBatch::add(DeviceBuffer& buffer, const void* data, VkDeviceSize bytes
 
 void UploadBatch::submit() {
   if (copies_.empty()) return;
-  DeviceBuffer staging(vk_, staged_.size(), MemoryPlace::HostReadback);
-  std::memcpy(staging.mapped(), staged_.data(), staged_.size());
-  OneShotCommands once(vk_);
+  const bool allMapped =
+      std::all_of(copies_.begin(), copies_.end(), [](const Copy& c) { return c.buffer->mapped() != nullptr; });
+  StagingBuffer own(vk_);  // when the batch was given none
+  DeviceBuffer* staging = allMapped ? nullptr : &(staging_ ? *staging_ : own).reserve(staged_.size());
+  if (staging) std::memcpy(staging->mapped(), staged_.data(), staged_.size());
+  OneShotCommands commands(vk_);
   for (const Copy& c : copies_) {
     if (c.buffer->mapped()) {  // host-visible memory: written in place
       std::memcpy(static_cast<unsigned char*>(c.buffer->mapped()) + c.offset, staged_.data() + c.stagingOffset,
@@ -144,9 +165,9 @@ void UploadBatch::submit() {
       continue;
     }
     const VkBufferCopy region{c.stagingOffset, c.offset, c.bytes};
-    vkCmdCopyBuffer(once.cmd(), staging.handle(), c.buffer->handle(), 1, &region);
+    vkCmdCopyBuffer(commands.cmd(), staging->handle(), c.buffer->handle(), 1, &region);
   }
-  once.submitAndWait();
+  commands.submitAndWait();
   copies_.clear();
   staged_.clear();
 }

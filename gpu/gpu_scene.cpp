@@ -72,7 +72,7 @@ GpuScene::GpuScene(VulkanContext::Impl& vk, const Scene& scene, const bvh::Build
 GpuScene::GpuScene(VulkanContext::Impl& vk, const Scene& scene, bvh::GpuBvh bvh)
     : GpuScene(vk, scene, flattenedSceneBvh(std::move(bvh))) {}
 
-GpuScene::GpuScene(VulkanContext::Impl& vk, const Scene& scene, SceneBvh bvh) : vk_(&vk) {
+GpuScene::GpuScene(VulkanContext::Impl& vk, const Scene& scene, SceneBvh bvh) : vk_(&vk), moveStaging_(vk) {
   features_ = scene.features();
   background_ = scene.background;
   ambient_ = scene.ambient;
@@ -189,7 +189,7 @@ bool GpuScene::moveInstances(const Scene& scene, std::span<const std::uint32_t> 
   }
   twoLevel_->updateInstances(scene.positions, scene.triangles, moved);
   bool reallocated = false;
-  UploadBatch batch(*vk_);  // one staging buffer and one submission for every range below
+  UploadBatch batch(*vk_, &moveStaging_);  // one staging buffer, kept, and one submission for every range below
   const auto& blasNodes = twoLevel_->blasNodes();
   const auto& blasTris = twoLevel_->blasTriangles();
   constexpr VkDeviceSize kNode = sizeof(gpu_shared::GpuBvhNode);

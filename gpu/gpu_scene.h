@@ -60,6 +60,7 @@ class GpuScene {
   bool uploadTopLevel(UploadBatch* batch = nullptr);
   void uploadInstanceRecords(const Scene& scene, const SceneInstance& instance, UploadBatch& batch);
   VulkanContext::Impl* vk_;
+  StagingBuffer moveStaging_;  // the uploads of node moves (moveInstances), reused from move to move
   bvh::BvhLayout layout_ = bvh::BvhLayout::Flattened;
   std::unique_ptr<bvh::TwoLevelBvh> twoLevel_;
   double lastUploadMs_ = 0.0;

@@ -289,6 +289,7 @@ std::vector<DeviceInfo> VulkanContext::listDevices() {
 VulkanContext::VulkanContext(const Options& options) : impl_(std::make_unique<Impl>()) {
   Impl& v = *impl_;
   v.exactFloat.noContraction = !options.fusedFloatMath;
+  v.mapDeviceMemory = options.mapDeviceMemory;
   v.instance = createInstance(options.validation, &v, &v.messenger, options.presentation);
   auto devices = physicalDevices(v.instance);
   if (devices.empty())

@@ -40,6 +40,9 @@ class VulkanContext {
     // rounds each operation as the C++ references do, on every driver. On: a few ULP from them where the driver
     // fuses (NVIDIA, lavapipe), for its speed (docs/DRIVERS.md).
     bool fusedFloatMath = false;
+    // Off: buffers in device memory are never mapped, even where that memory is host visible (lavapipe, integrated
+    // GPUs), so every copy to and from them takes the staging path of a discrete GPU (tests of that path).
+    bool mapDeviceMemory = true;
   };
   explicit VulkanContext(const Options& options);
   ~VulkanContext();

@@ -30,6 +30,7 @@ struct VulkanContext::Impl {
   VkPhysicalDeviceMemoryProperties memoryProperties{};
   DeviceInfo info;
   ExactFloatOptions exactFloat;  // how shader modules are made exact (Options::fusedFloatMath, DeviceInfo)
+  bool mapDeviceMemory = true;   // Options::mapDeviceMemory
   std::atomic<uint32_t> validationMessages{0};
   std::string lastValidationMessage;
   std::unique_ptr<PipelineLibrary> pipelines;  // created with the device, destroyed before it (vulkan_context.cpp)

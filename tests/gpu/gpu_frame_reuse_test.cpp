@@ -237,6 +237,50 @@ TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesEqualsAFullRender) {
   EXPECT_LT(traced, total) << "every target was re-traced: the masks select nothing";
 }
 
+// Through the staging path of a discrete GPU (VulkanContext::Options::mapDeviceMemory off: no buffer in device memory
+// is mapped, so the scene's upload and each node move's upload go through staging buffers, the moves' through the
+// one GpuScene keeps): the same frames, bit for bit, as the shared context's mapped memory gives, for full frames,
+// partial re-renders after node moves on the two-level BVH and a light edit.
+TEST(FrameReuse, TheStagingPathOfADiscreteGpuGivesTheSameFrames) {
+  gpu::VulkanContext::Options options;
+  options.mapDeviceMemory = false;
+  gpu::VulkanContext unmapped(options);
+  Scene scene = loadScene("builtin:showcase");
+  const gpu::FrameCamera camera = cameras(scene)[2].second;  // the projector array: several views
+  gpu::Renderer mapped(sharedContext(), scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::TwoLevel));
+  gpu::Renderer staged(unmapped, scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::TwoLevel));
+  auto expectSameFrames = [&](FrameReuse reuse) {
+    const gpu::RenderResult a = staged.render(camera, reuseSettings()), b = mapped.render(camera, reuseSettings());
+    EXPECT_EQ(a.reuse, reuse);
+    EXPECT_EQ(b.reuse, reuse);
+    EXPECT_TRUE(sameBits(a, b));
+  };
+  expectSameFrames(FrameReuse::None);
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> offset(-0.2, 0.2);
+  const char* movable[] = {"green-sphere", "glass-sphere", "glow-sphere"};
+  for (int move = 0; move < 3; ++move) {
+    SCOPED_TRACE("move " + std::to_string(move));
+    const std::size_t index = *findNode(scene, movable[move]);
+    const Bounds3 before = nodeWorldBounds(scene, index);
+    glm::dmat4 world = scene.nodes[index].world;
+    world[3] += glm::dvec4(offset(rng), offset(rng), offset(rng), 0.0);
+    setNodeWorldMatrix(scene, movable[move], world);
+    const std::uint32_t nodes[] = {static_cast<std::uint32_t>(index)};
+    const gpu::MovedBounds bounds{before, nodeWorldBounds(scene, index)};
+    staged.moveNodes(scene, nodes, bounds);
+    mapped.moveNodes(scene, nodes, bounds);
+    expectSameFrames(FrameReuse::PartialRetrace);
+  }
+  LightEdit dim;
+  dim.intensity = scene.lights[1].intensity * 0.5;
+  editLight(scene, 1, dim);
+  staged.updateLights(scene);
+  mapped.updateLights(scene);
+  expectSameFrames(FrameReuse::CachedPrimaryHits);
+  EXPECT_EQ(staged.bvhStats().fullBuilds, 1u);
+}
+
 // A light edit's frame records the cells of the shadow rays it traced, so a later move is tested against where the
 // light is now. The lamp moves from the left to low on the right: the rays from the floor now run through the cells
 // of a box on the right, whose shadow falls on floor that sees neither the box nor its cells. The box then rises,
