@@ -55,15 +55,30 @@ v1::FrameHeader makeHeader(std::uint64_t frameId, const gpu::RenderResult& frame
   return header;
 }
 
-// Encodes `frame` into `encoded` (a stream's buffer, reused from frame to frame) and sends it; false when the client
-// went away or stopped reading for longer than limits.stream_stall_seconds (`watch` cancels the blocked Write).
-// `streamState` set: a progressive frame's fields.
-bool sendRendered(ServiceState& state, const FrameJob& job, const gpu::RenderResult& frame, v1::PixelFormat format,
-                  double queueMs, std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer,
-                  CallWatchdog::Watch& watch, EncodedFrame& encoded,
-                  v1::StreamState streamState = v1::STREAM_STATE_UNSPECIFIED) {
+// Encodes `frame` for `format` into `encoded` (a stream's buffer, reused from frame to frame).
+void encodeRendered(const FrameJob& job, const gpu::RenderResult& frame, v1::PixelFormat format,
+                    EncodedFrame& encoded) {
   const DisplayConfig display = displayForSession(job.display->config, *job.session);
   encodeFrame(frame, checkPixelFormat(format), {display, jobCamera(job).quilt}, encoded);
+}
+
+// Encodes `frame` for the stream (encodeRendered) and hands it to `panel` (StreamRequest.present_on; none: nothing)
+// through its one-slot mailbox, which never waits on the display. An RGBA8 stream's bytes serve the panel where they
+// are its image (one encoding for both); for the other formats the panel gets its frame first.
+void encodeAndPresent(present::PanelSink* panel, const gpu::RenderResult& frame, const FrameJob& job,
+                      v1::PixelFormat format, EncodedFrame& encoded) {
+  const bool rgba8 = checkPixelFormat(format) == FrameEncoding::Rgba8Srgb;
+  if (panel && !rgba8) panel->submit(panelFrameOf(frame, job));
+  encodeRendered(job, frame, format, encoded);
+  if (panel && rgba8) panel->submit(panelFrameOf(frame, job, &encoded.bytes));
+}
+
+// Sends `frame`, encoded in `encoded`; false when the client went away or stopped reading for longer than
+// limits.stream_stall_seconds (`watch` cancels the blocked Write). `streamState` set: a progressive frame's fields.
+bool sendRendered(ServiceState& state, const gpu::RenderResult& frame, const EncodedFrame& encoded,
+                  v1::PixelFormat format, double queueMs, std::uint64_t dropped,
+                  grpc::ServerWriterInterface<v1::FramePart>& writer, CallWatchdog::Watch& watch,
+                  v1::StreamState streamState = v1::STREAM_STATE_UNSPECIFIED) {
   v1::FrameHeader header = makeHeader(state.nextFrameId++, frame, encoded, format, queueMs);
   header.set_dropped_frames(dropped);
   if (streamState != v1::STREAM_STATE_UNSPECIFIED) {
@@ -86,17 +101,16 @@ struct StreamBuffers {
   EncodedFrame encoded;
 };
 
-// Renders one frame and sends it (sendRendered). `panel` (StreamRequest.present_on) also gets the frame, through
-// its one-slot mailbox: never waits on the display. `buffers`' pixels are taken and, once the frame is sent, given
-// this frame's pixels for the next.
+// Renders one frame, encodes it and sends it (sendRendered); `panel` (StreamRequest.present_on) also gets it
+// (encodeAndPresent). `buffers`' pixels are taken and, once the frame is sent, given this frame's pixels for the next.
 bool renderAndSend(ServiceState& state, const std::string& client, const FrameJob& job, v1::PixelFormat format,
                    std::uint64_t dropped, grpc::ServerWriterInterface<v1::FramePart>& writer,
                    CallWatchdog::Watch& watch, StreamBuffers& buffers, present::PanelSink* panel = nullptr) {
   const auto queued = Clock::now();
   gpu::RenderResult frame = renderFrameJob(state.worker, client, job, &buffers.pixels);
-  if (panel) panel->submit(panelFrameOf(frame, job));
   const double queueMs = std::max(0.0, msBetween(queued, Clock::now()) - frame.totalMs);
-  const bool sent = sendRendered(state, job, frame, format, queueMs, dropped, writer, watch, buffers.encoded);
+  encodeAndPresent(panel, frame, job, format, buffers.encoded);
+  const bool sent = sendRendered(state, frame, buffers.encoded, format, queueMs, dropped, writer, watch);
   buffers.pixels = std::move(frame.rgba);
   return sent;
 }
@@ -261,10 +275,10 @@ void streamProgressive(ServiceState& state, grpc::ServerContext& context, const 
     }
     const bool converged = frame->accumulation.converged;
     if (frameNumber != sentFrame) {
-      if (panel) panel->submit(panelFrameOf(*frame, job));  // each new sum / n, the converged one last
+      // the panel gets each new sum / n, the converged one last
+      encodeAndPresent(panel, *frame, job, request.render().format(), encoded);
       const v1::StreamState shown = converged ? v1::STREAM_STATE_CONVERGED : v1::STREAM_STATE_ACCUMULATING;
-      if (!sendRendered(state, job, *frame, request.render().format(), queueMs, dropped, writer, watch, encoded,
-                        shown)) {
+      if (!sendRendered(state, *frame, encoded, request.render().format(), queueMs, dropped, writer, watch, shown)) {
         return;
       }
       sentFrame = frameNumber;

@@ -14,9 +14,13 @@ std::string shapeText(const gpu::FrameShape& shape) {
 
 }  // namespace
 
-present::PanelFrame panelFrameOf(const gpu::RenderResult& frame, const FrameJob& job) {
+present::PanelFrame panelFrameOf(const gpu::RenderResult& frame, const FrameJob& job,
+                                 const std::vector<std::uint8_t>* rgba8) {
   const DisplayConfig display = displayForSession(job.display->config, *job.session);
-  return present::panelFrame({frame.width, frame.height, frame.views, frame.rgba}, {display, jobCamera(job).quilt});
+  const frame_io::FrameImages images{frame.width, frame.height, frame.views, frame.rgba};
+  const frame_io::FrameDisplay panel{display, jobCamera(job).quilt};
+  if (rgba8 && present::panelImageIsTheFrame(images, panel)) return present::panelFrameFromRgba8(images, *rgba8);
+  return present::panelFrame(images, panel);
 }
 
 std::shared_ptr<present::PanelSink> streamPanelSink(const ServiceState& state, const std::string& displayId,

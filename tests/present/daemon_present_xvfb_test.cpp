@@ -191,7 +191,8 @@ grpc::Status streamFrames(v1::Holotrace::Stub& stub, const v1::StreamRequest& re
 }
 
 // StreamFrames with present_on: every streamed frame also goes to the panel; the screen shows the last one's PNG
-// bytes. An unknown id and a display without a sink are refused before any frame, naming it.
+// bytes, and then an RGBA8 stream's last frame. An unknown id and a display without a sink are refused before any
+// frame, naming it.
 TEST(DaemonPresentXvfb, StreamFramesPresentOnShowsTheLastStreamedFrame) {
   auto xvfb = startPanelServer();
   DaemonFiles files;
@@ -230,6 +231,20 @@ TEST(DaemonPresentXvfb, StreamFramesPresentOnShowsTheLastStreamedFrame) {
   const std::vector<std::uint8_t> last = rgbOfPngBytes(frames[1].bytes);
   ASSERT_EQ(last.size(), std::size_t(server::test::kTinyWidth) * server::test::kTinyHeight * 3);
   EXPECT_EQ(mismatches(xvfb->connection(), last), 0u);
+
+  // An RGBA8 stream (independent frames): the panel gets the streamed bytes themselves, encoded once for both.
+  request.mutable_render()->set_format(v1::PIXEL_FORMAT_RGBA8);
+  request.set_mode(v1::STREAM_MODE_INDEPENDENT);
+  frames.clear();
+  EXPECT_EQ(streamFrames(*stub, request, 2, frames).error_code(), grpc::StatusCode::CANCELLED);
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_EQ(waitForPanel(*stub, [](const v1::PanelStatus& p) { return p.submitted() >= 4; }).submitted(), 4u);
+  std::vector<std::uint8_t> rgb;
+  for (std::size_t i = 0; i + 3 < frames[1].bytes.size(); i += 4) {
+    rgb.insert(rgb.end(), frames[1].bytes.begin() + std::ptrdiff_t(i), frames[1].bytes.begin() + std::ptrdiff_t(i + 3));
+  }
+  ASSERT_EQ(rgb.size(), last.size());
+  EXPECT_EQ(mismatches(xvfb->connection(), rgb), 0u);
   daemon.shutdown(std::chrono::milliseconds(0));
 }
 

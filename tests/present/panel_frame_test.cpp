@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "camera_models/display_config.h"
+#include "common/error.h"
 #include "frame_io/pixel_encoding.h"
 #include "frame_io/view_mosaic.h"
 
@@ -43,6 +44,26 @@ TEST(PanelFrame, IsTheEightBitMosaicOfOneViewStackedViewsAndAQuilt) {
   const PanelFrame tiled = panelFrame({7, 5, 6, six}, {DisplayConfig{}, layout});
   EXPECT_EQ(tiled.width, 21u);
   EXPECT_EQ(tiled.height, 10u);
+}
+
+// A stream's RGBA8 bytes are the panel frame where the panel image is the frame itself (one view, views stacked), so
+// the daemon copies them instead of encoding twice; a quilt is not.
+TEST(PanelFrame, FromTheFramesRgba8BytesIsThePanelFrameWhereTheImageIsTheFrame) {
+  const QuiltLayout layout = makeQuiltLayout(3, 2, 21, 10, 1.4);
+  const std::vector<float> one = randomPixels(7 * 5 * 4), six = randomPixels(6 * 7 * 5 * 4);
+  DisplayConfig config;
+  for (const auto& [frame, quilt] : {std::pair{frame_io::FrameImages{7, 5, 1, one}, std::optional<QuiltLayout>{}},
+                                     std::pair{frame_io::FrameImages{7, 5, 1, one}, std::optional(layout)},
+                                     std::pair{frame_io::FrameImages{7, 5, 6, six}, std::optional<QuiltLayout>{}}}) {
+    ASSERT_TRUE(panelImageIsTheFrame(frame, {config, quilt}));
+    const PanelFrame copied = panelFrameFromRgba8(frame, frame_io::encodeRgba8Srgb(frame.rgba));
+    const PanelFrame encoded = panelFrame(frame, {config, quilt});
+    EXPECT_EQ(copied.width, encoded.width);
+    EXPECT_EQ(copied.height, encoded.height);
+    EXPECT_EQ(copied.rgba, encoded.rgba);
+  }
+  EXPECT_FALSE(panelImageIsTheFrame({7, 5, 6, six}, {config, layout}));
+  EXPECT_THROW(panelFrameFromRgba8({7, 5, 1, one}, std::vector<std::uint8_t>(7 * 5 * 4 - 4)), IoError);
 }
 
 }  // namespace
