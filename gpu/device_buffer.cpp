@@ -1,7 +1,6 @@
 // device_buffer.cpp - buffer allocation (one allocation per buffer: holotrace allocates few, large buffers).
 #include "gpu/device_buffer.h"
 
-#include <algorithm>
 #include <cstring>
 #include <utility>
 
@@ -151,23 +150,27 @@ void UploadBatch::add(DeviceBuffer& buffer, const void* data, VkDeviceSize bytes
 }
 
 void UploadBatch::submit() {
-  if (copies_.empty()) return;
-  const bool allMapped =
-      std::all_of(copies_.begin(), copies_.end(), [](const Copy& c) { return c.buffer->mapped() != nullptr; });
-  StagingBuffer own(vk_);  // when the batch was given none
-  DeviceBuffer* staging = allMapped ? nullptr : &(staging_ ? *staging_ : own).reserve(staged_.size());
-  if (staging) std::memcpy(staging->mapped(), staged_.data(), staged_.size());
-  OneShotCommands commands(vk_);
+  // Host-visible buffers are written in place; the others are copied from the staging buffer in one submission.
+  std::size_t unmapped = 0;
   for (const Copy& c : copies_) {
-    if (c.buffer->mapped()) {  // host-visible memory: written in place
-      std::memcpy(static_cast<unsigned char*>(c.buffer->mapped()) + c.offset, staged_.data() + c.stagingOffset,
-                  c.bytes);
+    if (!c.buffer->mapped()) {
+      ++unmapped;
       continue;
     }
-    const VkBufferCopy region{c.stagingOffset, c.offset, c.bytes};
-    vkCmdCopyBuffer(commands.cmd(), staging->handle(), c.buffer->handle(), 1, &region);
+    std::memcpy(static_cast<unsigned char*>(c.buffer->mapped()) + c.offset, staged_.data() + c.stagingOffset, c.bytes);
   }
-  commands.submitAndWait();
+  if (unmapped > 0) {
+    StagingBuffer own(vk_);  // when the batch was given none
+    DeviceBuffer& staging = (staging_ ? *staging_ : own).reserve(staged_.size());
+    std::memcpy(staging.mapped(), staged_.data(), staged_.size());
+    OneShotCommands commands(vk_);
+    for (const Copy& c : copies_) {
+      if (c.buffer->mapped()) continue;
+      const VkBufferCopy region{c.stagingOffset, c.offset, c.bytes};
+      vkCmdCopyBuffer(commands.cmd(), staging.handle(), c.buffer->handle(), 1, &region);
+    }
+    commands.submitAndWait();
+  }
   copies_.clear();
   staged_.clear();
 }
