@@ -172,8 +172,8 @@ class Renderer {
 
   // Gives a frame's pixels (RenderResult::rgba) back for the next render() or accumulate() to write into. A loop
   // that renders frame after frame then reuses one host buffer instead of allocating a new one each time: for the
-  // Portrait that is 151 MB of fresh pages, whose first touch cost 90-200 ms on the 2-vCPU VM of
-  // docs/BENCHMARKS.md (a cost outside the GPU's stages: "Host buffers of a frame loop"). Keeps the last two buffers
+  // Portrait that is 50 MB of fresh pages, whose first touch costs more than the copy into them (docs/BENCHMARKS.md
+  // "Host buffers of a frame loop": a cost outside the GPU's stages). Keeps the last two buffers
   // (a loop that holds one frame while it renders the next needs two); safe to call from another thread than the
   // one rendering.
   void recycle(std::vector<float>&& rgba);
