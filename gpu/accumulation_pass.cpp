@@ -126,9 +126,12 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
     st.key.clear();
     st.masksValid = false;
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(frame.targets()) * sizeof(gpu_shared::AccumTarget);
-    // kMaskWords per target, then the bounds of each target's primary segments (common.glsl accum_reach_word)
+    // kMaskWords per target, then the bounds of each target's primary segments (common.glsl accum_reach_word), in
+    // whole 16-byte texels (the marking pass reads them through an RGBA32UI view)
     const VkDeviceSize maskBytes =
-        static_cast<VkDeviceSize>(frame.targets()) * (kMaskWords + kAccumulationBoundWords) * sizeof(std::uint32_t);
+        (static_cast<VkDeviceSize>(frame.targets()) * (kMaskWords + kAccumulationBoundWords) * sizeof(std::uint32_t) +
+         15) /
+        16 * 16;
     if (st.targets.size() != bytes) {
       st.targets = DeviceBuffer();  // the old sums go before the new ones are allocated
       st.masks = DeviceBuffer();
@@ -142,7 +145,9 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
     zero.submitAndWait();
     // Recording costs a pass per depth (about 12 % of a progressive frame on lavapipe), so only scenes whose nodes
     // move record: the ones on the two-level BVH (a node move puts a scene there; static scenes stay flattened).
-    st.masksValid = recordsWholeFrame(frame, settings) && scene.layout() == bvh::BvhLayout::TwoLevel;
+    // (The marking pass reads the masks through a texel view: they must fit the device's texel-buffer limit.)
+    st.masksValid = recordsWholeFrame(frame, settings) && scene.layout() == bvh::BvhLayout::TwoLevel &&
+                    maskBytes / 16 <= vk.info.maxTexelBufferElements;
     // the frame's statistics, then the settled targets' (FrameBlock::accumSettledStats)
     if (st.stats.size() == 0) {
       st.stats = DeviceBuffer(vk, 2 * sizeof(gpu_shared::AccumStats), MemoryPlace::HostReadback);
@@ -286,7 +291,7 @@ std::uint64_t Renderer::Impl::resetMovedTargets(Accumulator& accumulator, const 
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
   const std::vector<std::uint32_t> spec = raygenSpec(camera, shape);
   const ComputePipeline& exact = pipeline(ShaderId::MarkAccumulated, {spec[0], spec[1], spec[2]});
-  runMarkingPass(targets, true, list, stageMs, {}, &exact);
+  runMarkingPass(targets, true, list, st.masks, stageMs, {}, &exact);
   f.refine = 0;
   f.refineInfo = glm::uvec4(0u);
   return list[2];

@@ -42,7 +42,9 @@ void FrameReuseState::ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPl
 ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable, std::uint64_t paths,
                                 std::uint64_t targets, std::uint32_t secondaryDepths, std::uint64_t perBatch) {
   ReusePlan p;
-  if (!wanted || !reusable) {
+  // The marking pass reads the masks through a texel view of one texel per target (HT_BINDING_REUSE_MASKS).
+  const std::uint64_t maxTexels = vk_.info.maxTexelBufferElements;
+  if (!wanted || !reusable || targets > maxTexels) {
     invalidate();
     if (!wanted) {  // free the memory
       for (DeviceBuffer* b : {&primaryRays, &primaryHits, &segmentMasks, &dirtyList, &secondaryCache, &secondaryCounts,
@@ -53,7 +55,8 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
     return p;
   }
   // Fixed by the key (paths): every frame of one view caches its primary hits or none does.
-  p.primaryCached = paths * kPrimaryHitBytesPerPath <= kPrimaryHitCacheBudget;
+  // Its texel view holds 2 texels per path's ray (HT_BINDING_REUSE_PRIMARY_RAYS).
+  p.primaryCached = paths * kPrimaryHitBytesPerPath <= kPrimaryHitCacheBudget && 2 * paths <= maxTexels;
   const bool sameView = key == key_;
   if (sameView && !moved_ && hitsValid_) {
     p.mode = FrameReuse::CachedPrimaryHits;  // light values edited, or nothing at all
@@ -71,7 +74,9 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
   p.recordHits = p.mode == FrameReuse::None && p.primaryCached;
   // The secondary cache takes at most the budget; whether the frame's bounce queues fit is known as they are traced.
   // It starts at a quarter of the paths (the showcase's bounces take 5-7 % of paths x depths) and grows by doubling.
-  const std::uint64_t entries = std::min(paths * secondaryDepths, secondaryBudget_ / kSecondaryBytesPerPath);
+  // Its texel view (HT_BINDING_REUSE_BOUNCES) covers it whole: 16-byte texels.
+  const std::uint64_t entries = std::min(
+      {paths * secondaryDepths, secondaryBudget_ / kSecondaryBytesPerPath, maxTexels * 16 / kSecondaryBytesPerPath});
   if (!sameView) secondaryTooLarge_ = false;
   const bool secondaryFits = p.primaryCached && secondaryDepths > 0 && entries > 0 && !secondaryTooLarge_;
   p.recordSecondary =
@@ -157,10 +162,12 @@ std::vector<FrameReuseState::SecondaryQueue> FrameReuseState::secondaryQueues() 
 
 namespace {
 
-// Where a secondary cache of `entries` entries keeps its rays, path indices and hits.
+// Where a secondary cache of `entries` entries keeps its rays, hits and path indices: in that order, so that each
+// array starts at a multiple of 16 B and the marking pass reads all three through one RGBA32UI texel view
+// (HT_BINDING_REUSE_BOUNCES, mark_dirty.comp).
 FrameReuseState::SecondaryRegion secondaryLayout(std::uint64_t entries) {
   const VkDeviceSize rays = entries * sizeof(gpu_shared::HtRay);
-  return {0, rays, rays + entries * sizeof(std::uint32_t)};
+  return {0, rays + entries * sizeof(gpu_shared::HtHit), rays};
 }
 
 }  // namespace
@@ -184,7 +191,8 @@ void FrameReuseState::growSecondary(std::uint64_t entries) {
 
 std::optional<std::uint32_t> FrameReuseState::reserveSecondary(std::uint64_t batchFirst, std::uint32_t depth,
                                                                std::uint32_t count) {
-  const std::uint64_t limit = secondaryBudget_ / kSecondaryBytesPerPath;
+  const std::uint64_t limit = std::min<std::uint64_t>(secondaryBudget_ / kSecondaryBytesPerPath,
+                                                      vk_.info.maxTexelBufferElements * 16ull / kSecondaryBytesPerPath);
   if (secondaryOverflow_ || secondaryUsed_ + count > limit) {
     secondaryOverflow_ = true;
     return std::nullopt;

@@ -97,7 +97,7 @@ class FrameReuseState {
   // Sized by plan(): primary rays and hits of every path of the frame (path order), segment masks (kMaskWords per
   // target), and the dirty-target list (header: moved cells in words 0-1, the count in 2, the padded moved bounds'
   // lo in 4-6 and hi in 8-10 as float bits; entries from kListFirst).
-  // The secondary cache holds secondaryEntries() entries: their rays, then their path indices, then their hits
+  // The secondary cache holds secondaryEntries() entries: their rays, then their hits, then their path indices
   // (secondaryRegion). The queue of each batch and depth >= 1 takes the next `count` entries (secondaryBase), in
   // the order the frame traced them; a frame whose queues overflow the cache keeps no state (frameDone).
   // secondaryCounts: the entries of each batch's queue of each depth (batch * (secondaryDepths + 1) + depth), copied

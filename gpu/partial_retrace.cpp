@@ -55,7 +55,7 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   FrameBlock& f = frameBlock();
   f.refine = reuse.dirtyList.address();
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
-  runMarkingPass(targets, false, list, stageMs, secondary);
+  runMarkingPass(targets, false, list, reuse.segmentMasks, stageMs, secondary);
   const std::uint64_t dirty = list[2];
   if (dirty > 0) {
     const std::uint32_t spp = settings.spp;
@@ -68,7 +68,8 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
 }
 
 void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulation, const std::uint32_t* list,
-                                    StageTimes& stageMs, std::span<const FrameReuseState::SecondaryQueue> secondary,
+                                    const DeviceBuffer& masks, StageTimes& stageMs,
+                                    std::span<const FrameReuseState::SecondaryQueue> secondary,
                                     const ComputePipeline* accumulatedCandidates) {
   // Specialisation: RESET_ACCUMULATION, then MODE (mark_dirty.comp); RESET_ACCUMULATION only when set, so that a
   // single frame's partial re-render keeps the pipeline it always had.
@@ -76,6 +77,7 @@ void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulatio
     if (mode == 0 && !resetAccumulation) return pipeline(ShaderId::MarkDirty);
     return pipeline(ShaderId::MarkDirty, {resetAccumulation ? 1u : 0u, mode});
   };
+  bindReuseTexels(masks, frameBlock().primaryHits != 0, !secondary.empty());
   beginCommands();
   PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
   for (const FrameReuseState::SecondaryQueue& q : secondary) {  // first: they mark their targets' words 0-1

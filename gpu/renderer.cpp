@@ -93,6 +93,8 @@ Renderer::Impl::Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptio
   VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   HT_VK(vkCreateFence(vk.device, &fci, nullptr, &fence));
   bindScene();
+  reuseTexelDummy = DeviceBuffer(vk, sizeof(glm::vec4), MemoryPlace::Device);
+  bindReuseTexels(reuseTexelDummy, false, false);
   bindRayTable(nullptr);
   bvhStats.layout = scene.layout();
   bvhStats.fullBuilds = 1;
@@ -123,6 +125,26 @@ void Renderer::Impl::bindRayTable(const std::shared_ptr<const RayTable>& table) 
   }
   descriptors.flush();
   boundRayTable = table;
+}
+
+void Renderer::Impl::bindReuseTexels(const DeviceBuffer& masks, bool primaryCached, bool bouncesCached) {
+  using namespace gpu_shared;
+  // `fresh`: the reuse buffers are reallocated as frames change shape, and a new buffer may reuse a freed handle.
+  const struct {
+    std::uint32_t binding;
+    const DeviceBuffer& buffer;
+    VkFormat format;
+  } views[] = {
+      {HT_BINDING_REUSE_MASKS, masks, VK_FORMAT_R32G32B32A32_UINT},
+      {HT_BINDING_REUSE_PRIMARY_RAYS, primaryCached ? reuse.primaryRays : reuseTexelDummy,
+       VK_FORMAT_R32G32B32A32_SFLOAT},
+      {HT_BINDING_REUSE_PRIMARY_HITS, primaryCached ? reuse.primaryHits : reuseTexelDummy, VK_FORMAT_R32G32B32A32_UINT},
+      {HT_BINDING_REUSE_BOUNCES, bouncesCached ? reuse.secondaryCache : reuseTexelDummy, VK_FORMAT_R32G32B32A32_UINT}};
+  // A view is clamped to the device's maxTexelBufferElements; what the shaders read lies within it
+  // (FrameReuseState::plan and the accumulation's masks keep to that limit, a buffer kept from a larger frame may
+  // exceed it).
+  for (const auto& v : views) descriptors.setUniformTexels(v.binding, v.buffer, v.format, true);
+  descriptors.flush();
 }
 
 void Renderer::Impl::sceneChanged(std::optional<Bounds3> moved) {

@@ -117,8 +117,9 @@ struct Renderer::Impl {
   VkQueryPool queryPool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
-  DeviceBuffer refineBuffer;    // adaptive refinement: per-subgroup counts, staging, target list (refine_select.comp)
-  DeviceBuffer rayTableTexels;  // the current ray table (2 texels per entry) or a 1-entry dummy
+  DeviceBuffer refineBuffer;     // adaptive refinement: per-subgroup counts, staging, target list (refine_select.comp)
+  DeviceBuffer rayTableTexels;   // the current ray table (2 texels per entry) or a 1-entry dummy
+  DeviceBuffer reuseTexelDummy;  // one texel: the reuse views (HT_BINDING_REUSE_*) where no state is bound
   std::shared_ptr<const RayTable> boundRayTable;  // which table rayTableTexels holds
 
   bvh::BuildOptions buildOptions;
@@ -298,9 +299,14 @@ struct Renderer::Impl {
   // `secondary`: the cached queues of depths >= 1 to test entry by entry first (ReusePlan::secondaryExact).
   // `accumulatedCandidates`: in an accumulation (resetAccumulation), the pipeline that tests its candidates
   // (mark_accumulated.comp, raygen's specialisation); otherwise mark_dirty.comp's MARK_CANDIDATES does.
-  void runMarkingPass(std::uint64_t targets, bool resetAccumulation, const std::uint32_t* list, StageTimes& stageMs,
+  // `masks`: the segment masks FrameBlock.segmentMasks points at (the frame's or the accumulation's).
+  void runMarkingPass(std::uint64_t targets, bool resetAccumulation, const std::uint32_t* list,
+                      const DeviceBuffer& masks, StageTimes& stageMs,
                       std::span<const FrameReuseState::SecondaryQueue> secondary = {},
                       const ComputePipeline* accumulatedCandidates = nullptr);
+  // Points the marking pass's texel views (HT_BINDING_REUSE_*) at `masks` and, where the frame keeps them, the
+  // cached primary rays and hits and the bounce cache; the others at reuseTexelDummy. Flushes the set.
+  void bindReuseTexels(const DeviceBuffer& masks, bool primaryCached, bool bouncesCached);
   // After node moves: lists the targets whose recorded cells meet the moved bounds (their primary segments and the
   // shadow rays from their hits: tested exactly on their samples' regenerated rays) and zeroes their sums and masks
   // (mark_dirty.comp, RESET_ACCUMULATION, then mark_accumulated.comp); returns how many.

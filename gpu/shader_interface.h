@@ -44,7 +44,13 @@ HT_CONST uint HT_BINDING_SUBPIXEL_TEXELS = 26u;  // read-only texel view of HT_B
 HT_CONST uint HT_BINDING_TOP_NODES = 27u;       // RGBA32F, 4 texels per node
 HT_CONST uint HT_BINDING_TOP_NODE_UINTS = 28u;  // RGBA32UI view of the top nodes
 HT_CONST uint HT_BINDING_INSTANCES = 29u;       // RGBA32UI: nodeBase, slotBase, instance, 0
-HT_CONST uint HT_BINDING_COUNT = 30u;
+// What the marking pass reads of the frame-reuse state (gpu/frame_reuse.h, mark_dirty.comp), uniform texel views of
+// buffers its writers reach by device address; a 1-texel dummy outside the marking pass.
+HT_CONST uint HT_BINDING_REUSE_MASKS = 30u;         // RGBA32UI: a target's 4 mask words per texel
+HT_CONST uint HT_BINDING_REUSE_PRIMARY_RAYS = 31u;  // RGBA32F, 2 texels per path
+HT_CONST uint HT_BINDING_REUSE_PRIMARY_HITS = 32u;  // RGBA32UI, 1 texel per path
+HT_CONST uint HT_BINDING_REUSE_BOUNCES = 33u;       // RGBA32UI view of the bounce cache (FrameReuseState)
+HT_CONST uint HT_BINDING_COUNT = 34u;
 // The storage texel buffers are exactly the bindings [FIRST, LAST].
 HT_CONST uint HT_BINDING_STORAGE_FIRST = HT_BINDING_RAY_QUEUE_0;
 HT_CONST uint HT_BINDING_STORAGE_LAST = HT_BINDING_OUTPUT_IMAGE;

@@ -138,6 +138,8 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
     frameBlock().primaryHits = reuse.primaryHits.address();
     frameBlock().shadowOcclusion = reuse.shadowOcclusion.address();
   }
+  bindReuseTexels(framePlan.recordSegments ? reuse.segmentMasks : reuseTexelDummy, framePlan.primaryCached,
+                  framePlan.secondaryExact);
   result.reuse = framePlan.mode;
   frameBlock().frame.w = framePlan.keptLightRays;  // after reuseKey: not part of the frame's identity
 

@@ -5,7 +5,9 @@
 // load/store into a loop over the 8 SIMD lanes (gallivm lp_bld_nir_soa.c emit_load_global / emit_load_mem), while
 // image and texel-buffer accesses handle all lanes at once. Per-path state therefore lives in storage texel
 // buffers, read-only scene records in uniform texel buffers, the frame parameters in a uniform buffer (uniform
-// loads are scalar), and only the atomic queue counters are reached by device address. GPUs are indifferent.
+// loads are scalar). Device addresses reach the atomic queue counters and what the frame-reuse and accumulation
+// passes write; the marking and partial re-render passes read the reuse caches back through uniform texel views of
+// the same buffers (HT_BINDING_REUSE_*). GPUs are indifferent.
 // Binding numbers and shared specialisation ids: gpu/shader_interface.h.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
@@ -56,6 +58,12 @@ layout(set = 0, binding = HT_BINDING_TEXTURES) uniform usamplerBuffer textureTex
 layout(set = 0, binding = HT_BINDING_TEXELS) uniform samplerBuffer texelTexels;
 layout(set = 0, binding = HT_BINDING_RAY_TABLE) uniform samplerBuffer rayTableTexels;           // 2 texels per entry: origin, direction
 layout(set = 0, binding = HT_BINDING_SUBPIXEL_TEXELS) uniform samplerBuffer subpixelTexels;           // subpixelBuffer, read through texel fetches
+// The frame-reuse state the marking and partial re-render passes read (uniform texel views whose writers reach the
+// same buffers by device address; Renderer::Impl::bindReuseTexels).
+layout(set = 0, binding = HT_BINDING_REUSE_MASKS) uniform usamplerBuffer reuseMaskTexels;              // 4 mask words per texel
+layout(set = 0, binding = HT_BINDING_REUSE_PRIMARY_RAYS) uniform samplerBuffer reusePrimaryRayTexels;  // 2 texels per path
+layout(set = 0, binding = HT_BINDING_REUSE_PRIMARY_HITS) uniform usamplerBuffer reusePrimaryHitTexels;
+layout(set = 0, binding = HT_BINDING_REUSE_BOUNCES) uniform usamplerBuffer reuseBounceTexels;          // the bounce cache
 
 // The index of chunk target `target` in the whole frame: targets count pixels x, then rows y from the bottom, then
 // views, FRAME.frame.z per pixel (raygen.comp). A chunk covers views [FRAME.views.y, + FRAME.views.x) and rows

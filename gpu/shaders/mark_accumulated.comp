@@ -30,10 +30,10 @@
 bool samples_meet_moved(uint target) {
   uint n = accum_samples_so_far(frame_global_target(target));
   if (n > HT_MARK_MAX_SAMPLES) return true;  // lavapipe's loop budget (segment_cells.h): restart, never miss one
-  float reach = uintBitsToFloat(UintRef(FRAME.segmentMasks).v[accum_reach_word(target)]);
-  uint nearWord = UintRef(FRAME.segmentMasks).v[accum_near_hit_word(target)];
+  float reach = uintBitsToFloat(reuse_mask_word(accum_reach_word(target)));
+  uint nearWord = reuse_mask_word(accum_near_hit_word(target));
   bool hits = nearWord != 0u;
-  float near = uintBitsToFloat(~nearWord), far = uintBitsToFloat(UintRef(FRAME.segmentMasks).v[accum_far_hit_word(target)]);
+  float near = uintBitsToFloat(~nearWord), far = uintBitsToFloat(reuse_mask_word(accum_far_hit_word(target)));
   vec3 pLo = vec3(HT_GRID_T_INFINITY), pHi = vec3(-HT_GRID_T_INFINITY);
   float pErr = 0.0f;
   for (uint k = 0u; k < n; ++k) {

@@ -36,10 +36,8 @@ layout(constant_id = 0) const bool RESET_ACCUMULATION = false;
 const uint MARK_TARGETS = 0u, MARK_SECONDARY_ENTRIES = 1u, MARK_CANDIDATES = 2u;
 layout(constant_id = 1) const uint MODE = MARK_TARGETS;
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MaskRef { uvec4 m[]; };
-// The secondary cache's regions start at multiples of 4 B only (FrameReuseState::secondaryRegion).
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer WordsRef { uint w[]; };
-
+// Every read goes through the reuse texel views (common.glsl, HT_BINDING_REUSE_*): lavapipe turns each 32-bit
+// component of a device-address load into a loop over the 8 lanes, a texel fetch loads all lanes at once.
 
 // Does the cached segment o + t d, t in [tmin, its hit or tmax], or a shadow ray from its hit to a light, meet the
 // padded moved bounds?
@@ -64,8 +62,8 @@ bool primary_meets_moved(uint target) {
   uint spp = FRAME.dims.z;
   for (uint s = 0u; s < spp; ++s) {
     uint path = target * spp + s;
-    vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * path], b = RayCacheRef(FRAME.primaryRays).v[2u * path + 1u];
-    if (cached_segment_meets_moved(a.xyz, a.w, b.xyz, b.w, cached_primary_hit(path))) return true;
+    HtRay ray = cached_primary_ray(path);
+    if (cached_segment_meets_moved(ray.origin, ray.tmin, ray.dir, ray.tmax, cached_primary_hit(path))) return true;
   }
   return false;
 }
@@ -74,21 +72,18 @@ void mark_secondary_entry() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= pc.batchCount) return;
   uint targets = FRAME.dims.w;  // a reusable frame is one chunk: all of its targets
-  // FrameReuseState::secondaryRegion: the cache's `entries` rays, then their path indices, then their hits; this
-  // queue's entries from pc.queue on (its base in the cache).
-  uint64_t cache = packUint2x32(uvec2(reuse_header_word(12u), reuse_header_word(13u)));
-  uint64_t entries = uint64_t(reuse_header_word(14u));
-  uint64_t rays = cache, pathIds = rays + entries * 32ul, hits = pathIds + entries * 4ul;
+  // FrameReuseState::secondaryRegion: the cache's `entries` rays (2 texels each), then their hits (1 texel), then
+  // their path indices (4 per texel); this queue's entries from pc.queue on (its base in the cache).
+  uint entries = reuse_header_word(14u);
   uint e = pc.queue + i;
-  uint target = (pc.batchFirst + WordsRef(pathIds).w[e]) / FRAME.dims.z;
+  uint target = (pc.batchFirst + texelFetch(reuseBounceTexels, int(3u * entries + e / 4u))[e % 4u]) / FRAME.dims.z;
   if (target >= targets) return;
-  if ((UintRef(FRAME.segmentMasks).v[4u * target] | UintRef(FRAME.segmentMasks).v[4u * target + 1u]) != 0u) return;
-  uint r[8];
-  for (uint k = 0u; k < 8u; ++k) r[k] = WordsRef(rays).w[8u * e + k];
-  uvec4 hit = uvec4(WordsRef(hits).w[4u * e], WordsRef(hits).w[4u * e + 1u], WordsRef(hits).w[4u * e + 2u],
-                    WordsRef(hits).w[4u * e + 3u]);
-  vec3 o = uintBitsToFloat(uvec3(r[0], r[1], r[2])), d = uintBitsToFloat(uvec3(r[4], r[5], r[6]));
-  if (cached_segment_meets_moved(o, uintBitsToFloat(r[3]), d, uintBitsToFloat(r[7]), hit)) {
+  uvec4 mask = texelFetch(reuseMaskTexels, int(target));
+  if ((mask.x | mask.y) != 0u) return;
+  uvec4 a = texelFetch(reuseBounceTexels, int(2u * e)), b = texelFetch(reuseBounceTexels, int(2u * e + 1u));
+  uvec4 hit = texelFetch(reuseBounceTexels, int(2u * entries + e));
+  if (cached_segment_meets_moved(uintBitsToFloat(a.xyz), uintBitsToFloat(a.w), uintBitsToFloat(b.xyz),
+                                 uintBitsToFloat(b.w), hit)) {
     atomicOr(UintRef(FRAME.segmentMasks).v[4u * target], 0xffffffffu);
     atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 1u], 0xffffffffu);
   }
@@ -103,7 +98,7 @@ void mark_target() {
   uint dirtyBits = 0u, candidateBits = 0u;  // bit k: target first + k
   for (uint k = 0u; k < HT_MARK_TARGETS_PER_INVOCATION; ++k) {
     if (first + k >= pc.batchCount) break;
-    uvec4 mask = MaskRef(FRAME.segmentMasks).m[first + k];
+    uvec4 mask = texelFetch(reuseMaskTexels, int(first + k));
     if (((mask.x & moved.x) | (mask.y & moved.y)) != 0u) {
       dirtyBits |= 1u << k;
     } else if (((mask.z & moved.x) | (mask.w & moved.y)) != 0u && candidates != 0u) {

@@ -2,8 +2,9 @@
 // docs/REUSE.md §4): the cached primary rays and hits of every path of the frame, and the dirty list's header with
 // the padded moved bounds (FrameReuseState::kListFirst). Included after common.glsl and gpu/segment_cells.h.
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RayCacheRef { vec4 v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer HitCacheRef { uvec4 h[]; };
+// The caches are read through their uniform texel views (common.glsl HT_BINDING_REUSE_*, bound for every frame that
+// keeps them: Renderer::Impl::bindReuseTexels): lavapipe turns each 32-bit component of a device-address load into a
+// loop over the 8 lanes, while a texel fetch loads all lanes at once. Their writers reach them by device address.
 
 uint reuse_header_word(uint k) { return UintRef(FRAME.refine).v[k]; }
 vec3 reuse_header_vec3(uint first) {
@@ -19,6 +20,10 @@ void load_moved_view() {
 vec3 moved_lo() { return gMovedLo; }
 vec3 moved_hi() { return gMovedHi; }
 
+// Word `w` of the segment masks (and what follows them, common.glsl accum_reach_word), through the marking pass's
+// texel view of them.
+uint reuse_mask_word(uint w) { return texelFetch(reuseMaskTexels, int(w / 4u))[w % 4u]; }
+
 // The frame path of path `batchPath` of a batch of listed targets (entry (batchFirst + batchPath) / spp of the list).
 uint listed_frame_path(uint batchPath) {
   uint spp = FRAME.dims.z;
@@ -26,13 +31,13 @@ uint listed_frame_path(uint batchPath) {
   return target * spp + (pc.batchFirst + batchPath) % spp;
 }
 
-uvec4 cached_primary_hit(uint path) { return HitCacheRef(FRAME.primaryHits).h[path]; }
+uvec4 cached_primary_hit(uint path) { return texelFetch(reusePrimaryHitTexels, int(path)); }
 HtHit cached_primary_ht_hit(uint path) {
   uvec4 h = cached_primary_hit(path);
   return HtHit(uintBitsToFloat(h.x), h.y, uintBitsToFloat(h.z), uintBitsToFloat(h.w));
 }
 HtRay cached_primary_ray(uint path) {
-  vec4 a = RayCacheRef(FRAME.primaryRays).v[2u * path], b = RayCacheRef(FRAME.primaryRays).v[2u * path + 1u];
+  vec4 a = texelFetch(reusePrimaryRayTexels, int(2u * path)), b = texelFetch(reusePrimaryRayTexels, int(2u * path + 1u));
   return HtRay(a.xyz, a.w, b.xyz, b.w);
 }
 
