@@ -44,9 +44,9 @@ HtRay cached_primary_ray(uint path) {
 // Does the cached primary segment of frame path `path`, to its cached hit (a miss: to tmax), meet the padded moved
 // bounds? If not, that hit is still the path's primary hit: every triangle of the moved node lies inside those
 // bounds, every other triangle is unchanged, and the closest hit is the order-free one.
-bool cached_primary_meets_moved(uint path) {
+// `hit`: its cached hit (cached_primary_hit).
+bool cached_primary_meets_moved(uint path, uvec4 hit) {
   HtRay ray = cached_primary_ray(path);
-  uvec4 hit = cached_primary_hit(path);
   float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : ray.tmax;
   return ht_segment_meets_box(ray.origin, ray.dir, ray.tmin, tEnd, moved_lo(), moved_hi());
 }

@@ -15,9 +15,11 @@
 // The primary rays of a partial re-render with the primary hits cached (ReusePlan::primaryCached; docs/REUSE.md §4):
 // a ray whose cached segment, up to its cached hit, does not meet the padded moved bounds has that same hit in the
 // edited scene (reuse_cache.glsl), so it takes the cached hit and is not traced. Most re-traced targets are
-// re-traced for a shadow or a reflection, not for their primary ray. A ray that is traced may hit elsewhere now, so
-// its path's recorded shadow occlusion at this depth is cleared: shade.comp (KEPT_SEGMENTS) takes a recorded
-// occlusion only where the word still holds one, without testing the primary segment again.
+// re-traced for a shadow or a reflection, not for their primary ray. A ray that is traced and hits elsewhere now
+// has its path's recorded shadow occlusion at this depth cleared: shade.comp (KEPT_SEGMENTS) takes a recorded
+// occlusion only where the word still holds one, without testing the primary segment again. One that finds the
+// cached hit again, bit for bit (it crossed the moved bounds where the node is in neither place), keeps the word:
+// shade then builds the same surface point and the same shadow rays from it as the frame that recorded them.
 layout(constant_id = 0) const bool REUSE_PRIMARY = false;
 
 #include "gpu/shaders/reuse_cache.glsl"
@@ -27,14 +29,16 @@ void main() {
   bool inQueue = i < COUNTERS.queueCount[pc.queue];
   uint steps = 0u;
   bool overflow = false;
+  uint path = 0u;
+  uvec4 cachedHit = uvec4(0u);
   if (REUSE_PRIMARY && inQueue) {  // queue 0 entry i is path i of the batch
     load_moved_view();
-    uint path = listed_frame_path(i);
-    if (!cached_primary_meets_moved(path)) {
-      store_hit(i, cached_primary_ht_hit(path));
+    path = listed_frame_path(i);
+    cachedHit = cached_primary_hit(path);
+    if (!cached_primary_meets_moved(path, cachedHit)) {
+      store_hit(i, HtHit(uintBitsToFloat(cachedHit.x), cachedHit.y, uintBitsToFloat(cachedHit.z),
+                         uintBitsToFloat(cachedHit.w)));
       inQueue = false;  // not traced
-    } else if (FRAME.shadowOcclusion != 0ul) {
-      UintRef(FRAME.shadowOcclusion).v[occlusion_word_of_frame_path(path)] = 0u;
     }
   }
   if (inQueue) {
@@ -48,6 +52,10 @@ void main() {
     store_hit(i, r.hit);
     steps = r.steps;
     overflow = r.overflow;
+    uvec4 hitBits = uvec4(floatBitsToUint(r.hit.t), r.hit.triId, floatBitsToUint(r.hit.u), floatBitsToUint(r.hit.v));
+    if (REUSE_PRIMARY && FRAME.shadowOcclusion != 0ul && hitBits != cachedHit) {
+      UintRef(FRAME.shadowOcclusion).v[occlusion_word_of_frame_path(path)] = 0u;
+    }
   }
   // One atomic per subgroup instead of one per ray.
   uint maxSteps = subgroupMax(steps);
