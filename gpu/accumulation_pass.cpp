@@ -47,7 +47,7 @@ bool recordsWholeFrame(const FrameShape& frame, const RenderSettings& settings) 
 Accumulator::Accumulator(const AccumulationPolicy& policy) : policy_(policy), state_(std::make_unique<State>()) {}
 Accumulator::~Accumulator() = default;
 std::uint64_t Accumulator::deviceBytes() const {
-  return state_->targets.size() + state_->masks.size() + state_->list.size();
+  return state_->sums.size() + state_->halves.size() + state_->masks.size() + state_->list.size();
 }
 void Accumulator::restart() { state_->key.clear(); }
 
@@ -66,12 +66,21 @@ std::vector<std::uint32_t> Accumulator::lastResetTargets() const {
 }
 
 std::vector<float> Accumulator::downloadSums() const {
-  std::vector<gpu_shared::AccumTarget> targets(state_->targets.size() / sizeof(gpu_shared::AccumTarget));
-  if (!targets.empty()) state_->targets.download(targets.data(), targets.size() * sizeof(gpu_shared::AccumTarget));
+  struct Plane {  // sum and n, or halfSum and halfN
+    glm::vec3 sum;
+    std::uint32_t n;
+  };
+  const std::size_t count = state_->sums.size() / sizeof(Plane);
+  std::vector<Plane> whole(count), half(count);
+  if (count > 0) {
+    state_->sums.download(whole.data(), count * sizeof(Plane));
+    state_->halves.download(half.data(), count * sizeof(Plane));
+  }
   std::vector<float> sums;
-  sums.reserve(targets.size() * 8);
-  for (const gpu_shared::AccumTarget& t : targets) {
-    for (float v : {t.sum.x, t.sum.y, t.sum.z, float(t.n), t.halfSum.x, t.halfSum.y, t.halfSum.z, float(t.halfN)})
+  sums.reserve(count * 8);
+  for (std::size_t t = 0; t < count; ++t) {
+    for (float v : {whole[t].sum.x, whole[t].sum.y, whole[t].sum.z, float(whole[t].n), half[t].sum.x, half[t].sum.y,
+                    half[t].sum.z, float(half[t].n)})
       sums.push_back(v);
   }
   return sums;
@@ -95,7 +104,6 @@ std::string accumulationKey(const void* renderer, const FrameCamera& camera, con
 }
 
 void Renderer::Impl::fillAccumulation(FrameBlock& f, Accumulator& accumulator) const {
-  f.accumTargets = accumulator.state().targets.address();
   f.accumStats = accumulator.state().stats.address();
   f.accumSettledStats = accumulator.state().stats.address() + sizeof(gpu_shared::AccumStats);
   const AccumulationPolicy& p = accumulator.policy();
@@ -112,6 +120,11 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
   }
   const FrameShape frame = frameShape(camera);
   checkShape(frame, settings.spp);
+  if (frame.targets() > vk.info.maxTexelBufferElements) {
+    throw GpuError("a progressive accumulation of " + std::to_string(frame.targets()) +
+                   " targets exceeds the device's texel buffers (" + std::to_string(vk.info.maxTexelBufferElements) +
+                   " elements, one per target): render independent frames or a smaller panel");
+  }
   Accumulator::State& st = accumulator.state();
   AccumulationReport& report = accumulator.mutableReport();
   const std::string key = accumulationKey(this, camera, settings);
@@ -125,22 +138,25 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
   if (restart) {
     st.key.clear();
     st.masksValid = false;
-    const VkDeviceSize bytes = static_cast<VkDeviceSize>(frame.targets()) * sizeof(gpu_shared::AccumTarget);
+    const VkDeviceSize bytes = static_cast<VkDeviceSize>(frame.targets()) * (sizeof(gpu_shared::AccumTarget) / 2);
     // kMaskWords per target, then the bounds of each target's primary segments (common.glsl accum_reach_word), in
     // whole 16-byte texels (the marking pass reads them through an RGBA32UI view)
     const VkDeviceSize maskBytes =
         (static_cast<VkDeviceSize>(frame.targets()) * (kMaskWords + kAccumulationBoundWords) * sizeof(std::uint32_t) +
          15) /
         16 * 16;
-    if (st.targets.size() != bytes) {
-      st.targets = DeviceBuffer();  // the old sums go before the new ones are allocated
+    if (st.sums.size() != bytes) {
+      st.sums = DeviceBuffer();  // the old sums go before the new ones are allocated
+      st.halves = DeviceBuffer();
       st.masks = DeviceBuffer();
       st.list = DeviceBuffer();
-      st.targets = DeviceBuffer(vk, bytes, MemoryPlace::Device);
+      st.sums = DeviceBuffer(vk, bytes, MemoryPlace::Device);
+      st.halves = DeviceBuffer(vk, bytes, MemoryPlace::Device);
       st.masks = DeviceBuffer(vk, maskBytes, MemoryPlace::Device);  // counted in bytesFor whether used or not
     }
     OneShotCommands zero(vk);
-    vkCmdFillBuffer(zero.cmd(), st.targets.handle(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(zero.cmd(), st.sums.handle(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(zero.cmd(), st.halves.handle(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(zero.cmd(), st.masks.handle(), 0, VK_WHOLE_SIZE, 0);
     zero.submitAndWait();
     // Recording costs a pass per depth (about 12 % of a progressive frame on lavapipe), so only scenes whose nodes
@@ -164,6 +180,7 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
   report.tracedTargets = 0;
   report.resetTargets = 0;
   accumulating = &accumulator;
+  bindAccumulation(&st);
   RenderResult result;
   try {
     result = render(camera, settings);
@@ -171,9 +188,14 @@ RenderResult Renderer::Impl::accumulate(const FrameCamera& camera, const RenderS
     accumulating = nullptr;  // the sums may hold part of a frame: the next frame starts over
     st.key.clear();
     st.listed.reset();
+    try {
+      bindAccumulation(nullptr);
+    } catch (const std::exception&) {  // (the render's own error is the one reported)
+    }
     throw;
   }
   accumulating = nullptr;
+  bindAccumulation(nullptr);  // the accumulation's buffers may go before the next one binds its own
   st.key = key;
   st.generation = sceneGeneration;
   report.targets = std::uint64_t{result.width} * result.height * result.views * frame.targetsPerPixel;

@@ -77,7 +77,20 @@ void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulatio
     if (mode == 0 && !resetAccumulation) return pipeline(ShaderId::MarkDirty);
     return pipeline(ShaderId::MarkDirty, {resetAccumulation ? 1u : 0u, mode});
   };
-  bindReuseTexels(masks, frameBlock().primaryHits != 0, !secondary.empty());
+  // The masks and the bounce cache are viewed for this pass only: the accumulation's masks and a growing bounce cache
+  // may go away while the views stay in the set.
+  const bool primaryCached = frameBlock().primaryHits != 0;
+  bindReuseTexels(masks, primaryCached, !secondary.empty());
+  struct Unbind {
+    Impl& impl;
+    bool primaryCached;
+    ~Unbind() {
+      try {
+        impl.bindReuseTexels(impl.reuseTexelDummy, primaryCached, false);
+      } catch (const std::exception&) {  // (unwinding from the pass's own error: that one is reported)
+      }
+    }
+  } unbind{*this, primaryCached};
   beginCommands();
   PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
   for (const FrameReuseState::SecondaryQueue& q : secondary) {  // first: they mark their targets' words 0-1

@@ -95,6 +95,7 @@ Renderer::Impl::Impl(VulkanContext::Impl& v, GpuScene&& s, const bvh::BuildOptio
   bindScene();
   reuseTexelDummy = DeviceBuffer(vk, sizeof(glm::vec4), MemoryPlace::Device);
   bindReuseTexels(reuseTexelDummy, false, false);
+  bindAccumulation(nullptr);
   bindRayTable(nullptr);
   bvhStats.layout = scene.layout();
   bvhStats.fullBuilds = 1;
@@ -144,6 +145,15 @@ void Renderer::Impl::bindReuseTexels(const DeviceBuffer& masks, bool primaryCach
   // (FrameReuseState::plan and the accumulation's masks keep to that limit, a buffer kept from a larger frame may
   // exceed it).
   for (const auto& v : views) descriptors.setUniformTexels(v.binding, v.buffer, v.format, true);
+  descriptors.flush();
+}
+
+void Renderer::Impl::bindAccumulation(const Accumulator::State* st) {
+  using namespace gpu_shared;
+  descriptors.setStorageTexels(HT_BINDING_ACCUM_SUMS, st ? st->sums : reuseTexelDummy, VK_FORMAT_R32G32B32A32_UINT,
+                               true);
+  descriptors.setStorageTexels(HT_BINDING_ACCUM_HALVES, st ? st->halves : reuseTexelDummy, VK_FORMAT_R32G32B32A32_UINT,
+                               true);
   descriptors.flush();
 }
 

@@ -70,7 +70,10 @@ struct RowBand {
 
 // What an accumulation's sums belong to, and its device buffers (gpu/accumulator.h).
 struct ht::gpu::Accumulator::State {
-  DeviceBuffer targets;          // AccumTarget per target of the whole frame
+  // AccumTarget per target of the whole frame, in two planes of 16 B per target: sum and n, halfSum and halfN (the
+  // storage texel buffers HT_BINDING_ACCUM_SUMS and _HALVES: 2^27 texels on lavapipe, so one plane holds the targets
+  // of an 8K panel's subpixels)
+  DeviceBuffer sums, halves;
   DeviceBuffer stats;            // AccumStats, host visible
   std::string key;               // accumulationKey() of the frames summed; "" = nothing summed yet
   std::uint64_t generation = 0;  // the renderer's scene generation the sums belong to
@@ -119,7 +122,8 @@ struct Renderer::Impl {
   VkFence fence = VK_NULL_HANDLE;
   DeviceBuffer refineBuffer;     // adaptive refinement: per-subgroup counts, staging, target list (refine_select.comp)
   DeviceBuffer rayTableTexels;   // the current ray table (2 texels per entry) or a 1-entry dummy
-  DeviceBuffer reuseTexelDummy;  // one texel: the reuse views (HT_BINDING_REUSE_*) where no state is bound
+  DeviceBuffer reuseTexelDummy;  // one texel: the reuse and accumulation views (HT_BINDING_REUSE_*, _ACCUM_*) where
+                                 // none is bound
   std::shared_ptr<const RayTable> boundRayTable;  // which table rayTableTexels holds
 
   bvh::BuildOptions buildOptions;
@@ -304,9 +308,14 @@ struct Renderer::Impl {
                       const DeviceBuffer& masks, StageTimes& stageMs,
                       std::span<const FrameReuseState::SecondaryQueue> secondary = {},
                       const ComputePipeline* accumulatedCandidates = nullptr);
-  // Points the marking pass's texel views (HT_BINDING_REUSE_*) at `masks` and, where the frame keeps them, the
-  // cached primary rays and hits and the bounce cache; the others at reuseTexelDummy. Flushes the set.
+  // Points the reuse texel views (HT_BINDING_REUSE_*) at `masks` and, where the frame keeps them, the cached primary
+  // rays and hits and the bounce cache; the others at reuseTexelDummy. Flushes the set. A view must not outlive its
+  // buffer while pipelines that use it run: the primary caches are viewed from a frame's plan on (they change only
+  // there), the masks and the bounce cache during the marking pass only (runMarkingPass).
   void bindReuseTexels(const DeviceBuffer& masks, bool primaryCached, bool bouncesCached);
+  // Points the accumulation's storage texel views (HT_BINDING_ACCUM_*) at `st`'s sums, or (null) at reuseTexelDummy:
+  // bound for one accumulate() call, since the sums go with their Accumulator. Flushes the set.
+  void bindAccumulation(const Accumulator::State* st);
   // After node moves: lists the targets whose recorded cells meet the moved bounds (their primary segments and the
   // shadow rays from their hits: tested exactly on their samples' regenerated rays) and zeroes their sums and masks
   // (mark_dirty.comp, RESET_ACCUMULATION, then mark_accumulated.comp); returns how many.

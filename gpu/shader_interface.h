@@ -50,8 +50,12 @@ HT_CONST uint HT_BINDING_REUSE_MASKS = 30u;         // RGBA32UI: a target's 4 ma
 HT_CONST uint HT_BINDING_REUSE_PRIMARY_RAYS = 31u;  // RGBA32F, 2 texels per path
 HT_CONST uint HT_BINDING_REUSE_PRIMARY_HITS = 32u;  // RGBA32UI, 1 texel per path
 HT_CONST uint HT_BINDING_REUSE_BOUNCES = 33u;       // RGBA32UI view of the bounce cache (FrameReuseState)
-HT_CONST uint HT_BINDING_COUNT = 34u;
-// The storage texel buffers are exactly the bindings [FIRST, LAST].
+// A progressive accumulation's sums (gpu/accumulator.h), storage texel buffers of one texel per target of the whole
+// frame; a 1-texel dummy outside accumulations.
+HT_CONST uint HT_BINDING_ACCUM_SUMS = 34u;    // RGBA32UI: AccumTarget sum (float bits), n
+HT_CONST uint HT_BINDING_ACCUM_HALVES = 35u;  // RGBA32UI: AccumTarget halfSum (float bits), halfN
+HT_CONST uint HT_BINDING_COUNT = 36u;
+// The storage texel buffers are the bindings [FIRST, LAST] and the accumulation's two.
 HT_CONST uint HT_BINDING_STORAGE_FIRST = HT_BINDING_RAY_QUEUE_0;
 HT_CONST uint HT_BINDING_STORAGE_LAST = HT_BINDING_OUTPUT_IMAGE;
 

@@ -138,8 +138,7 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
     frameBlock().primaryHits = reuse.primaryHits.address();
     frameBlock().shadowOcclusion = reuse.shadowOcclusion.address();
   }
-  bindReuseTexels(framePlan.recordSegments ? reuse.segmentMasks : reuseTexelDummy, framePlan.primaryCached,
-                  framePlan.secondaryExact);
+  bindReuseTexels(reuseTexelDummy, framePlan.primaryCached, false);  // the marking pass views the rest
   result.reuse = framePlan.mode;
   frameBlock().frame.w = framePlan.keptLightRays;  // after reuseKey: not part of the frame's identity
 

@@ -97,10 +97,11 @@ struct FrameBlock {
   vec4 ambient;        // rgb ambient irradiance on diffuse surfaces
   CameraBlock camera;  // the frame's camera model's parameters (camera_models/model_list.h)
   // Progressive accumulation (gpu/accumulator.h, docs/REUSE.md §1): accum.x = 1 while a frame adds samples to the
-  // sums at `accumTargets` (AccumTarget per target of the whole frame, by frame_global_target), 0 for single frames;
-  // y = the target error (float bits), z = min spp, w = max spp of the stop rule (gpu/accumulation_error.h).
-  uint64_t accumTargets;
-  uint64_t accumStats;  // AccumStats of the frame (device address)
+  // accumulation's sums (AccumTarget per target of the whole frame, by frame_global_target, in the storage texel
+  // buffers HT_BINDING_ACCUM_SUMS and _HALVES), 0 for single frames; y = the target error (float bits), z = min spp,
+  // w = max spp of the stop rule (gpu/accumulation_error.h).
+  uint64_t accumReserved;  // 0 (keeps the members below on 16-byte boundaries)
+  uint64_t accumStats;     // AccumStats of the frame (device address)
   uvec4 accum;
   // ... the accumulation's target list (device address, a uint per entry): the targets its last frame sampled, which
   // the next frame's selection re-judges (a target left out stays converged: its sums no longer change), and which

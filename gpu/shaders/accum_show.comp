@@ -17,7 +17,7 @@ layout(constant_id = 1) const bool LISTED = false;
 
 // Shows target `target` and folds it into `stats`.
 void show_target(uint target, inout TargetStats stats) {
-  AccumTarget a = AccumRef(FRAME.accumTargets).t[frame_global_target(target)];
+  AccumTarget a = load_accum_target(frame_global_target(target));
   vec3 value = accum_mean(a);
   float error = accum_target_error(a, target);
   bool finite = !(any(isnan(value)) || any(isinf(value)));

@@ -25,7 +25,6 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer No
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Vec4Ref { vec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer CountersRef { GpuCounters c; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer UintRef { uint v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer AccumRef { AccumTarget t[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer AccumStatsRef { AccumStats s; };
 
 layout(push_constant, std430) uniform PushBlock { PassConstants pc; };
@@ -64,6 +63,9 @@ layout(set = 0, binding = HT_BINDING_REUSE_MASKS) uniform usamplerBuffer reuseMa
 layout(set = 0, binding = HT_BINDING_REUSE_PRIMARY_RAYS) uniform samplerBuffer reusePrimaryRayTexels;  // 2 texels per path
 layout(set = 0, binding = HT_BINDING_REUSE_PRIMARY_HITS) uniform usamplerBuffer reusePrimaryHitTexels;
 layout(set = 0, binding = HT_BINDING_REUSE_BOUNCES) uniform usamplerBuffer reuseBounceTexels;          // the bounce cache
+// A progressive accumulation's sums, a texel per target of the whole frame in each (storage texel buffers).
+layout(set = 0, binding = HT_BINDING_ACCUM_SUMS, rgba32ui) uniform uimageBuffer accumSums;      // sum bits, n
+layout(set = 0, binding = HT_BINDING_ACCUM_HALVES, rgba32ui) uniform uimageBuffer accumHalves;  // halfSum bits, halfN
 
 // The index of chunk target `target` in the whole frame: targets count pixels x, then rows y from the bottom, then
 // views, FRAME.frame.z per pixel (raygen.comp). A chunk covers views [FRAME.views.y, + FRAME.views.x) and rows
@@ -82,7 +84,16 @@ uint frame_global_target(uint target) {
 
 // Progressive frames (FRAME.accum.x = 1, gpu/accumulator.h): the samples target `globalTarget` already has. Sample
 // s of this frame is sample index n + s of the target's sequence (docs/REUSE.md §1 rule 1).
-uint accum_samples_so_far(uint globalTarget) { return AccumRef(FRAME.accumTargets).t[globalTarget].n; }
+uint accum_samples_so_far(uint globalTarget) { return imageLoad(accumSums, int(globalTarget)).w; }
+// Target `globalTarget`'s sums (AccumTarget), kept in two planes of a texel per target (accumulator.h).
+AccumTarget load_accum_target(uint globalTarget) {
+  uvec4 s = imageLoad(accumSums, int(globalTarget)), h = imageLoad(accumHalves, int(globalTarget));
+  return AccumTarget(uintBitsToFloat(s.xyz), s.w, uintBitsToFloat(h.xyz), h.w);
+}
+void store_accum_target(uint globalTarget, AccumTarget a) {
+  imageStore(accumSums, int(globalTarget), uvec4(floatBitsToUint(a.sum), a.n));
+  imageStore(accumHalves, int(globalTarget), uvec4(floatBitsToUint(a.halfSum), a.halfN));
+}
 // What an accumulation records of target `target`'s primary segments (docs/REUSE.md §4 in streams; an accumulation
 // that records segments is one chunk covering the whole frame, so chunk and frame index agree), after the masks of
 // all FRAME.dims.w targets (gpu/frame_reuse.h kMaskWords per target), a word per target each: its reach, the largest

@@ -38,7 +38,7 @@ void append_bits(uint bits, uint countWord, uint first, uint firstTarget) {
 void clear_dirty_target(uint target, bool resetAccumulation) {
   for (uint w = 0u; w < 4u; ++w) UintRef(FRAME.segmentMasks).v[4u * target + w] = 0u;
   if (resetAccumulation) {
-    AccumRef(FRAME.accumTargets).t[frame_global_target(target)] = AccumTarget(vec3(0.0f), 0u, vec3(0.0f), 0u);
+    store_accum_target(frame_global_target(target), AccumTarget(vec3(0.0f), 0u, vec3(0.0f), 0u));
     UintRef(FRAME.segmentMasks).v[accum_reach_word(target)] = 0u;
     UintRef(FRAME.segmentMasks).v[accum_near_hit_word(target)] = 0u;
     UintRef(FRAME.segmentMasks).v[accum_far_hit_word(target)] = 0u;

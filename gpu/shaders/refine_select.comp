@@ -62,7 +62,7 @@ float target_contrast(uint x, uint c, uint y, uint view) {
 // Whether chunk target `target` still needs samples under the stop rule (progressive accumulation); if not, it is
 // folded into `settled`.
 bool target_needs_samples(uint target, inout TargetStats settled) {
-  AccumTarget a = AccumRef(FRAME.accumTargets).t[frame_global_target(target)];
+  AccumTarget a = load_accum_target(frame_global_target(target));
   float error = accum_target_error(a, target);
   bool needs = accum_needs_samples(a.n, error);
   if (!needs) fold_target_stats(settled, a.n, error, false);

@@ -24,9 +24,8 @@ void main() {
   uint entry = pc.batchFirst / spp + i;
   uint target = REFINING ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;  // refining: listed
   if (PROGRESSIVE) {
-    AccumRef accum = AccumRef(FRAME.accumTargets);
     uint globalTarget = frame_global_target(target);
-    AccumTarget a = accum.t[globalTarget];
+    AccumTarget a = load_accum_target(globalTarget);
     for (uint s = 0u; s < spp; ++s) {
       vec3 x = imageLoad(radianceBuffer, int(i * spp + s)).xyz;
       a.sum += x;
@@ -36,7 +35,7 @@ void main() {
       }
     }
     a.n += spp;
-    accum.t[globalTarget] = a;
+    store_accum_target(globalTarget, a);
     return;
   }
   vec3 sum = vec3(0.0f);
