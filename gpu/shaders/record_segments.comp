@@ -60,13 +60,15 @@ void main() {
   bool cachedPrimary = pc.depth == 0u && FRAME.primaryHits != 0ul;
   float tEnd = hit.triId != HT_MISS ? hit.t : ray.tmax;
   uvec2 cells = ht_segment_cells(ray.origin, ray.dir, ray.tmin, tEnd, FRAME.grid);
+  // Words 2-3 get the primary segment's cells and its shadow rays' in one atomic each (lavapipe runs an atomic on a
+  // device address as a loop over the 8 lanes).
+  uvec2 primaryCells = uvec2(0u);
   if (ACCUMULATING && pc.depth == 0u) {
     // An accumulation's primary segments: their cells to words 2-3 (their shadow rays' too, below), the target's
     // reach raised to this segment's end and its range of hit distances widened to this hit. After a move,
     // mark_accumulated.comp generates the rays of a target whose words 2-3 meet the moved cells again and tests them
     // exactly up to the reach, and the shadow rays from the box of their points between the nearest and farthest hit.
-    if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], cells.x);
-    if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], cells.y);
+    primaryCells = cells;
     atomicMax(UintRef(FRAME.segmentMasks).v[accum_reach_word(target)], floatBitsToUint(max(tEnd, 0.0f)));
     if (hit.triId != HT_MISS) {
       atomicMax(UintRef(FRAME.segmentMasks).v[accum_near_hit_word(target)], ~floatBitsToUint(max(hit.t, 0.0f)));
@@ -75,8 +77,7 @@ void main() {
     cells = uvec2(0u);
   }
   if (cachedPrimary) {  // words 2-3: the marking pass's quick reject before its exact test of the cached segments
-    if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], cells.x);
-    if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], cells.y);
+    primaryCells = cells;
     cells = uvec2(0u);
     if (LISTED) {
       HitCacheRef(FRAME.primaryHits).h[target * spp + (pc.batchFirst + path) % spp] =
@@ -94,11 +95,12 @@ void main() {
     }
   }
   if (cachedPrimary || (ACCUMULATING && pc.depth == 0u)) {  // the primary hits' shadow rays: tested exactly
-    if (shadowCells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], shadowCells.x);
-    if (shadowCells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], shadowCells.y);
+    primaryCells |= shadowCells;
   } else {
     cells |= shadowCells;
   }
+  if (primaryCells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 2u], primaryCells.x);
+  if (primaryCells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 3u], primaryCells.y);
   if (cells.x != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target], cells.x);
   if (cells.y != 0u) atomicOr(UintRef(FRAME.segmentMasks).v[4u * target + 1u], cells.y);
 }
