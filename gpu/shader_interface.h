@@ -44,8 +44,9 @@ HT_CONST uint HT_BINDING_SUBPIXEL_TEXELS = 26u;  // read-only texel view of HT_B
 HT_CONST uint HT_BINDING_TOP_NODES = 27u;       // RGBA32F, 4 texels per node
 HT_CONST uint HT_BINDING_TOP_NODE_UINTS = 28u;  // RGBA32UI view of the top nodes
 HT_CONST uint HT_BINDING_INSTANCES = 29u;       // RGBA32UI: nodeBase, slotBase, instance, 0
-// What the marking pass reads of the frame-reuse state (gpu/frame_reuse.h, mark_dirty.comp), uniform texel views of
-// buffers its writers reach by device address; a 1-texel dummy outside the marking pass.
+// What the marking pass and a partial re-render read of the frame-reuse state (gpu/frame_reuse.h, reuse_cache.glsl),
+// uniform texel views of buffers their writers reach by device address; a 1-texel dummy where none is bound
+// (Renderer::Impl::bindReuseTexels).
 HT_CONST uint HT_BINDING_REUSE_MASKS = 30u;         // RGBA32UI: a target's 4 mask words per texel
 HT_CONST uint HT_BINDING_REUSE_PRIMARY_RAYS = 31u;  // RGBA32F, 2 texels per path
 HT_CONST uint HT_BINDING_REUSE_PRIMARY_HITS = 32u;  // RGBA32UI, 1 texel per path

@@ -76,7 +76,8 @@ struct GpuCounters {
 
 // One block per frame, in a uniform buffer (binding HT_BINDING_FRAME). Every member is 16-byte aligned, so the
 // std140 layout GLSL uses equals the C++ layout. Per-path state and scene records are texel buffers (see
-// gpu/shaders/common.glsl for why); only the atomic counters and the BVH fallback are reached by address.
+// gpu/shaders/common.glsl for why). The atomic counters, the BVH fallback and the writers of the frame-reuse state
+// reach their buffers by address.
 struct FrameBlock {
   uint64_t counters;   // GpuCounters (device address)
   uint64_t refine;     // adaptive refinement: slot counts, staging, the refined targets (device address)
@@ -112,6 +113,7 @@ struct FrameBlock {
   // Frame reuse (gpu/frame_reuse.h): per-target segment cells, 4 words per target (device address; 0 = the frame
   // records none), the cached primary rays and hits of every path (HtRay / HtHit per path in path order; 0 = none:
   // then the masks hold the primary segments too) and the world grid the cells are counted on (segment_cells.h).
+  // Their readers use the texel views HT_BINDING_REUSE_* of the same buffers.
   uint64_t segmentMasks;
   uint64_t primaryRays;
   uint64_t primaryHits;
