@@ -130,7 +130,8 @@ void Renderer::Impl::bindRayTable(const std::shared_ptr<const RayTable>& table) 
 
 void Renderer::Impl::bindReuseTexels(const DeviceBuffer& masks, bool primaryCached, bool bouncesCached) {
   using namespace gpu_shared;
-  // `fresh`: the reuse buffers are reallocated as frames change shape, and a new buffer may reuse a freed handle.
+  // `fresh`: the reuse buffers are reallocated as frames change shape, and a new buffer may reuse a freed handle (the
+  // dummy stays: frames without reuse state keep their views).
   const struct {
     std::uint32_t binding;
     const DeviceBuffer& buffer;
@@ -144,16 +145,18 @@ void Renderer::Impl::bindReuseTexels(const DeviceBuffer& masks, bool primaryCach
   // A view is clamped to the device's maxTexelBufferElements; what the shaders read lies within it
   // (FrameReuseState::plan and the accumulation's masks keep to that limit, a buffer kept from a larger frame may
   // exceed it).
-  for (const auto& v : views) descriptors.setUniformTexels(v.binding, v.buffer, v.format, true);
+  for (const auto& v : views)
+    descriptors.setUniformTexels(v.binding, v.buffer, v.format, &v.buffer != &reuseTexelDummy);
   descriptors.flush();
 }
 
 void Renderer::Impl::bindAccumulation(const Accumulator::State* st) {
   using namespace gpu_shared;
+  // `fresh` for the sums: an accumulation's buffers may take the handles of another's freed ones
   descriptors.setStorageTexels(HT_BINDING_ACCUM_SUMS, st ? st->sums : reuseTexelDummy, VK_FORMAT_R32G32B32A32_UINT,
-                               true);
+                               st != nullptr);
   descriptors.setStorageTexels(HT_BINDING_ACCUM_HALVES, st ? st->halves : reuseTexelDummy, VK_FORMAT_R32G32B32A32_UINT,
-                               true);
+                               st != nullptr);
   descriptors.flush();
 }
 
