@@ -302,9 +302,9 @@ std::uint64_t Renderer::Impl::resetMovedTargets(Accumulator& accumulator, const 
   const gpu_shared::uvec2 cellMask = gpu_shared::ht_grid_bounds_mask(moved.lo, moved.hi, reuse.grid());
   const std::uint32_t cells[2] = {cellMask.x, cellMask.y};
   const Bounds3 padded = paddedMovedBounds(moved, reuse.grid());
-  FrameReuseState::writeListHeader(list, cells, padded.lo, padded.hi,
-                                   static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets));
   FrameBlock& f = frameBlock();
+  FrameReuseState::writeMarkingInputs(list, f, cells, padded.lo, padded.hi,
+                                      static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets), 0u);
   f.segmentMasks = st.masks.address();
   f.grid = reuse.grid();
   f.primaryRays = 0;  // no cached primary rays or hits: mark_accumulated.comp generates the rays again

@@ -258,14 +258,14 @@ std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks
   return dirty;
 }
 
-void FrameReuseState::writeListHeader(std::uint32_t* list, const std::uint32_t cells[2], const glm::vec3& paddedLo,
-                                      const glm::vec3& paddedHi, std::uint32_t candidatesFirst) {
+void FrameReuseState::writeMarkingInputs(std::uint32_t* list, gpu_shared::FrameBlock& frame,
+                                         const std::uint32_t cells[2], const glm::vec3& paddedLo,
+                                         const glm::vec3& paddedHi, std::uint32_t candidatesFirst,
+                                         std::uint32_t bounceEntries) {
   std::memset(list, 0, kListFirst * sizeof(std::uint32_t));
-  list[0] = cells[0];
-  list[1] = cells[1];
-  std::memcpy(list + 4, &paddedLo, sizeof(glm::vec3));
-  std::memcpy(list + 8, &paddedHi, sizeof(glm::vec3));
-  list[11] = candidatesFirst;
+  frame.movedLo = glm::vec4(paddedLo, 0.0f);
+  frame.movedHi = glm::vec4(paddedHi, 0.0f);
+  frame.moved = glm::uvec4(cells[0], cells[1], candidatesFirst, bounceEntries);
 }
 
 Bounds3 paddedMovedBounds(const Bounds3& moved, const gpu_shared::SegmentGrid& grid) {

@@ -95,8 +95,7 @@ class FrameReuseState {
   void frameDone(const ReuseKey& key, const ReusePlan& plan);
 
   // Sized by plan(): primary rays and hits of every path of the frame (path order), segment masks (kMaskWords per
-  // target), and the dirty-target list (header: moved cells in words 0-1, the count in 2, the padded moved bounds'
-  // lo in 4-6 and hi in 8-10 as float bits; entries from kListFirst).
+  // target), and the dirty-target list (header: the count in word 2; entries from kListFirst).
   // The secondary cache holds secondaryEntries() entries: their rays, then their hits, then their path indices
   // (secondaryRegion). The queue of each batch and depth >= 1 takes the next `count` entries (secondaryBase), in
   // the order the frame traced them; a frame whose queues overflow the cache keeps no state (frameDone).
@@ -126,14 +125,15 @@ class FrameReuseState {
   std::uint32_t secondaryCount(std::uint64_t batchFirst, std::uint32_t depth) const;  // entries of one cached queue
   std::uint64_t cachedPaths() const { return cachedPaths_; }
   bool secondaryMarkable() const { return secondaryMarkable_; }
-  // List header: moved cells (words 0-1), count (2), candidates for the exact tests (3; their entries from word 11's
-  // value, 0: none), padded moved bounds lo (4-6) and hi (8-10) as float bits, and with ReusePlan::secondaryExact
-  // the secondary cache's address (12-13) and its entries (14).
+  // List header: the count of dirty targets (word 2) and of candidates for the exact tests (3; their entries from
+  // FrameBlock::moved.z), the other words zero.
   static constexpr std::uint32_t kListFirst = 16;
-  // Writes the header of a marking pass's list (the other words zero): the moved cells, the padded moved bounds,
-  // and where the candidates' entries start (0: no exact tests).
-  static void writeListHeader(std::uint32_t* list, const std::uint32_t cells[2], const glm::vec3& paddedLo,
-                              const glm::vec3& paddedHi, std::uint32_t candidatesFirst);
+  // Clears the header of a marking pass's list and writes the pass's inputs into the frame block (FrameBlock::movedLo,
+  // movedHi, moved): the moved cells, the padded moved bounds, where the candidates' entries start (0: no exact
+  // tests) and the bounce cache's entries (0: none tested).
+  static void writeMarkingInputs(std::uint32_t* list, gpu_shared::FrameBlock& frame, const std::uint32_t cells[2],
+                                 const glm::vec3& paddedLo, const glm::vec3& paddedHi, std::uint32_t candidatesFirst,
+                                 std::uint32_t bounceEntries);
 
  private:
   void ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPlace place);

@@ -40,19 +40,14 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
                                            std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
                                            const std::function<void(double)>& progress) {
   auto* list = static_cast<std::uint32_t*>(reuse.dirtyList.mapped());
-  // The candidates of the exact tests follow the dirty entries (none without the primary cache).
-  FrameReuseState::writeListHeader(
-      list, framePlan.gridCells, framePlan.movedLo, framePlan.movedHi,
-      framePlan.primaryCached ? static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets) : 0u);
   std::vector<FrameReuseState::SecondaryQueue> secondary;
-  if (framePlan.secondaryExact) {
-    secondary = reuse.secondaryQueues();
-    const std::uint64_t address = reuse.secondaryCache.address();
-    list[12] = static_cast<std::uint32_t>(address);
-    list[13] = static_cast<std::uint32_t>(address >> 32);
-    list[14] = static_cast<std::uint32_t>(reuse.secondaryEntries());
-  }
+  if (framePlan.secondaryExact) secondary = reuse.secondaryQueues();
   FrameBlock& f = frameBlock();
+  // The candidates of the exact tests follow the dirty entries (none without the primary cache).
+  FrameReuseState::writeMarkingInputs(
+      list, f, framePlan.gridCells, framePlan.movedLo, framePlan.movedHi,
+      framePlan.primaryCached ? static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets) : 0u,
+      framePlan.secondaryExact ? static_cast<std::uint32_t>(reuse.secondaryEntries()) : 0u);
   f.refine = reuse.dirtyList.address();
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
   runMarkingPass(targets, false, list, reuse.segmentMasks, stageMs, secondary);

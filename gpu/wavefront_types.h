@@ -121,6 +121,14 @@ struct FrameBlock {
   // gpu/frame_reuse.h ReusePlan::occlusionDepths, shade.comp OCCLUSION, trace_any.comp SHADOW_CACHE).
   uint64_t shadowOcclusion;
   SegmentGrid grid;
+  // The inputs of a marking pass and a partial re-render (FrameReuseState::writeMarkingInputs; 0 otherwise), here
+  // rather than in the dirty list's header because uniform loads are scalar on lavapipe, where a load by device
+  // address is a loop over the 8 lanes: the padded moved bounds (xyz; lo > hi: none), and moved = (the moved bounds'
+  // grid cells, words 0-1; the first list entry of the candidates of the exact tests, 0: none; the bounce cache's
+  // entries, with ReusePlan::secondaryExact).
+  vec4 movedLo;
+  vec4 movedHi;
+  uvec4 moved;
 };
 
 // The accumulated samples of one target (docs/REUSE.md §1-§2): the sum of its n samples in sample order, and the

@@ -5,7 +5,7 @@
 // RESET_ACCUMULATION). One invocation per candidate: a target whose other segments' cells (mask words 0-1) avoid the
 // moved bounds' cells but whose primary segments' or their shadow rays' cells (words 2-3) meet them. An accumulation
 // keeps no primary rays or hits (up to max spp of them per target), so its n samples' rays are generated again, with
-// raygen's own code (primary_ray.glsl), and tested against the padded moved bounds (header words 4-6, 8-10):
+// raygen's own code (primary_ray.glsl), and tested against the padded moved bounds (FRAME.movedLo, movedHi):
 // - each segment from the ray's origin to the target's reach (the farthest primary hit or miss of its samples,
 //   common.glsl accum_reach_word): a target none of whose segments meets them kept every primary hit, since every
 //   triangle of the moved nodes lies inside those bounds before and after, every other is unchanged, and the closest
@@ -57,7 +57,7 @@ void main() {
   bool dirty = false;
   uint target = 0u;
   if (i < pc.batchCount) {
-    target = reuse_header_word(reuse_header_word(11u) + i);
+    target = reuse_header_word(FRAME.moved.z + i);
     dirty = samples_meet_moved(target);
   }
   mark_dirty(dirty, target, true);

@@ -8,15 +8,15 @@
 //   words 0-1 of its target to all ones; targets whose words 0-1 already hold cells (re-traced after the cache was
 //   filled) are left to those cells.
 // - MARK_TARGETS: one invocation per HT_MARK_TARGETS_PER_INVOCATION (4) targets of the frame. A target whose mask
-//   words 0-1 meet the moved bounds' cells (FRAME.refine words 0-1) is appended to the dirty list (count in word 2,
+//   words 0-1 meet the moved bounds' cells (FRAME.moved.xy) is appended to the dirty list (count in word 2,
 //   entries from word FRAME.refineInfo.y) and its mask cleared for the re-trace to record again. With the primary
 //   rays and hits cached (FRAME.primaryHits != 0), a target whose words 2-3 (the cells of its primary segments and
 //   their shadow rays) meet those cells is a candidate: appended to the candidate list (count in word 3, entries
-//   from word 11's value). So is one of a progressive accumulation (RESET_ACCUMULATION), whose words 2-3 hold the
+//   from word FRAME.moved.z). So is one of a progressive accumulation (RESET_ACCUMULATION), whose words 2-3 hold the
 //   cells of its primary segments alone; mark_accumulated.comp tests those candidates.
 // - MARK_CANDIDATES: one invocation per HT_MARK_TARGETS_PER_INVOCATION candidates; a candidate is dirty when the
 //   cached primary segment of one of its samples, or a shadow ray from that hit to a light (ht_shadow_meets_box),
-//   meets the padded moved bounds (words 4-6 and 8-10, float bits). A separate pass over a compact list, so that no
+//   meets the padded moved bounds (FRAME.movedLo, movedHi). A separate pass over a compact list, so that no
 //   subgroup runs the exact tests for lanes that do not need them (a glow-sphere move on Portrait x0.5, 2.4 M
 //   targets: 26 % candidates; MARK_TARGETS 48 ms, the candidates 44 ms, the secondary entries 31 ms on lavapipe, 2
 //   vCPUs, 2026-12-03). Both MARK_TARGETS and MARK_CANDIDATES list their dirty targets with one subgroup scan per
@@ -74,7 +74,7 @@ void mark_secondary_entry() {
   uint targets = FRAME.dims.w;  // a reusable frame is one chunk: all of its targets
   // FrameReuseState::secondaryRegion: the cache's `entries` rays (2 texels each), then their hits (1 texel), then
   // their path indices (4 per texel); this queue's entries from pc.queue on (its base in the cache).
-  uint entries = reuse_header_word(14u);
+  uint entries = FRAME.moved.w;
   uint e = pc.queue + i;
   uint target = (pc.batchFirst + texelFetch(reuseBounceTexels, int(3u * entries + e / 4u))[e % 4u]) / FRAME.dims.z;
   if (target >= targets) return;
@@ -93,8 +93,8 @@ void mark_target() {
   // Dispatched in slices of targets (pc.batchFirst: the slice's first; batchCount: all targets), each invocation
   // comparing HT_MARK_TARGETS_PER_INVOCATION consecutive targets and listing them with one subgroup scan per list.
   uint first = pc.batchFirst + HT_MARK_TARGETS_PER_INVOCATION * gl_GlobalInvocationID.x;
-  uvec2 moved = uvec2(reuse_header_word(0u), reuse_header_word(1u));
-  uint candidates = reuse_header_word(11u);
+  uvec2 moved = FRAME.moved.xy;
+  uint candidates = FRAME.moved.z;
   uint dirtyBits = 0u, candidateBits = 0u;  // bit k: target first + k
   for (uint k = 0u; k < HT_MARK_TARGETS_PER_INVOCATION; ++k) {
     if (first + k >= pc.batchCount) break;
@@ -116,7 +116,7 @@ void mark_candidate() {
   // Dispatched in slices of candidates (pc.batchFirst: the slice's first; batchCount: all), each invocation testing
   // HT_MARK_TARGETS_PER_INVOCATION consecutive ones and listing the dirty ones with one subgroup scan.
   uint first = pc.batchFirst + HT_MARK_TARGETS_PER_INVOCATION * gl_GlobalInvocationID.x;
-  uint candidates = reuse_header_word(11u);
+  uint candidates = FRAME.moved.z;
   uint dirty[HT_MARK_TARGETS_PER_INVOCATION];
   uint n = 0u;
   for (uint k = 0u; k < HT_MARK_TARGETS_PER_INVOCATION; ++k) {

@@ -1,21 +1,19 @@
 // reuse_cache.glsl - what a partial re-render reads of the frame-reuse state on the GPU (gpu/frame_reuse.h,
-// docs/REUSE.md §4): the cached primary rays and hits of every path of the frame, and the dirty list's header with
-// the padded moved bounds (FrameReuseState::kListFirst). Included after common.glsl and gpu/segment_cells.h.
+// docs/REUSE.md §4): the cached primary rays and hits of every path of the frame, the dirty list, and the padded
+// moved bounds (FrameBlock::movedLo, movedHi). Included after common.glsl and gpu/segment_cells.h.
 
 // The caches are read through their uniform texel views (common.glsl HT_BINDING_REUSE_*, bound for every frame that
 // keeps them: Renderer::Impl::bindReuseTexels): lavapipe turns each 32-bit component of a device-address load into a
 // loop over the 8 lanes, while a texel fetch loads all lanes at once. Their writers reach them by device address.
 
+// Word `k` of the marking pass's list (its header and entries, FrameReuseState::kListFirst).
 uint reuse_header_word(uint k) { return UintRef(FRAME.refine).v[k]; }
-vec3 reuse_header_vec3(uint first) {
-  return uintBitsToFloat(uvec3(reuse_header_word(first), reuse_header_word(first + 1u), reuse_header_word(first + 2u)));
-}
-// The padded moved bounds, loaded once per invocation by load_moved_view(): lavapipe does not keep a load through a
-// buffer reference in a register across calls, and the marking pass's tests read them for every segment.
+// The padded moved bounds (FrameBlock::movedLo / movedHi), loaded once per invocation by load_moved_view(): the
+// marking pass's tests read them for every segment.
 vec3 gMovedLo = vec3(1.0f), gMovedHi = vec3(-1.0f);
 void load_moved_view() {
-  gMovedLo = reuse_header_vec3(4u);
-  gMovedHi = reuse_header_vec3(8u);
+  gMovedLo = FRAME.movedLo.xyz;
+  gMovedHi = FRAME.movedHi.xyz;
 }
 vec3 moved_lo() { return gMovedLo; }
 vec3 moved_hi() { return gMovedHi; }
