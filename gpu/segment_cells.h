@@ -43,20 +43,16 @@ struct SegmentGrid {
 // The cell of cell coordinate c along one axis, the face cells reaching to +-infinity.
 HT_INLINE uint ht_grid_cell(float c) { return uint(clamp(floor(c), 0.0f, float(HT_GRID_CELLS - 1u))); }
 
-// The mask of the cells [a, b] (inclusive, per axis): bit (z * 4 + y) * 4 + x; word 0 holds layers z = 0, 1.
+// The bits [a, b] of a 4-bit set (none when a > b).
+HT_INLINE uint ht_grid_span(uint a, uint b) { return ((2u << b) - 1u) & ~((1u << a) - 1u); }
+
+// The mask of the cells [a, b] (inclusive, per axis): bit (z * 4 + y) * 4 + x; word 0 holds layers z = 0, 1. Without
+// loops (the recording pass builds one per piece of every segment): the row of x bits is copied to every row y of the
+// span by a multiplication with the sum of 2^(4y), whose copies cannot overlap, and the layer to every z alike.
 HT_INLINE uvec2 ht_grid_box_mask(uvec3 a, uvec3 b) {
-  uint row = ((2u << b.x) - 1u) & ~((1u << a.x) - 1u);
-  uint layer = 0u;
-  for (uint y = a.y; y <= b.y; ++y) layer |= row << (4u * y);
-  uvec2 mask = uvec2(0u, 0u);
-  for (uint z = a.z; z <= b.z; ++z) {
-    if (z < 2u) {
-      mask.x |= layer << (16u * z);
-    } else {
-      mask.y |= layer << (16u * (z - 2u));
-    }
-  }
-  return mask;
+  uint row = ht_grid_span(a.x, b.x), ys = ht_grid_span(a.y, b.y), zs = ht_grid_span(a.z, b.z);
+  uint layer = row * ((ys & 1u) | ((ys & 2u) << 3u) | ((ys & 4u) << 6u) | ((ys & 8u) << 9u));
+  return uvec2(layer * ((zs & 1u) | ((zs & 2u) << 15u)), layer * (((zs >> 2u) & 1u) | ((zs & 8u) << 13u)));
 }
 
 // The cells of the world box [lo, hi] padded by HT_GRID_PAD cells (the moved node's old or new bounds).

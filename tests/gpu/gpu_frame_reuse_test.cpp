@@ -454,6 +454,22 @@ bool segmentMeetsBox(glm::dvec3 o, glm::dvec3 d, double t0, double t1, glm::dvec
   return t0 <= t1;
 }
 
+// The box mask holds exactly the cells of the box, for every pair of corners (an empty range on any axis: none).
+TEST(SegmentCells, BoxMaskIsExactlyTheCellsOfTheBox) {
+  for (std::uint32_t from = 0; from < 64; ++from) {
+    for (std::uint32_t to = 0; to < 64; ++to) {
+      const gpu_shared::uvec3 a(from % 4, from / 4 % 4, from / 16), b(to % 4, to / 4 % 4, to / 16);
+      std::uint64_t expected = 0;
+      for (std::uint32_t cell = 0; cell < 64; ++cell) {
+        const std::uint32_t x = cell % 4, y = cell / 4 % 4, z = cell / 16;
+        if (x >= a.x && x <= b.x && y >= a.y && y <= b.y && z >= a.z && z <= b.z) expected |= 1ull << cell;
+      }
+      const gpu_shared::uvec2 mask = gpu_shared::ht_grid_box_mask(a, b);
+      ASSERT_EQ((std::uint64_t{mask.y} << 32) | mask.x, expected) << "cells " << from << " to " << to;
+    }
+  }
+}
+
 // Conservative: whenever a segment meets a box (inside or outside the grid's bounds, misses to infinity included),
 // its cells and the box's cells share a bit, and the float slab test meets the padded box; and the cells are not
 // simply all of them.
