@@ -146,13 +146,11 @@ void add_path_radiance(uint path, vec3 radiance) {
   if (!PRIMARY_DEPTH) sum = imageLoad(radianceBuffer, int(path));
   imageStore(radianceBuffer, int(path), sum + vec4(radiance, 0.0f));
 }
-HtHit load_hit(uint i) {
-  uvec4 h = imageLoad(hitBuffer, int(i));
-  return HtHit(uintBitsToFloat(h.x), h.y, uintBitsToFloat(h.z), uintBitsToFloat(h.w));
-}
-void store_hit(uint i, HtHit h) {
-  imageStore(hitBuffer, int(i), uvec4(floatBitsToUint(h.t), h.triId, floatBitsToUint(h.u), floatBitsToUint(h.v)));
-}
+// A hit as the four words the hit buffer and the caches hold (t bits, triId, u bits, v bits), and back.
+uvec4 hit_bits(HtHit h) { return uvec4(floatBitsToUint(h.t), h.triId, floatBitsToUint(h.u), floatBitsToUint(h.v)); }
+HtHit hit_of_bits(uvec4 h) { return HtHit(uintBitsToFloat(h.x), h.y, uintBitsToFloat(h.z), uintBitsToFloat(h.w)); }
+HtHit load_hit(uint i) { return hit_of_bits(imageLoad(hitBuffer, int(i))); }
+void store_hit(uint i, HtHit h) { imageStore(hitBuffer, int(i), hit_bits(h)); }
 HtRay load_shadow_ray(uint slot) {
   vec4 a = imageLoad(shadowRayBuffer, int(2u * slot));
   vec4 b = imageLoad(shadowRayBuffer, int(2u * slot + 1u));

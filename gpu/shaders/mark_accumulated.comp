@@ -57,7 +57,7 @@ void main() {
   bool dirty = false;
   uint target = 0u;
   if (i < pc.batchCount) {
-    target = reuse_header_word(FRAME.moved.z + i);
+    target = reuse_list_word(FRAME.moved.z + i);
     dirty = samples_meet_moved(target);
   }
   mark_dirty(dirty, target, true);

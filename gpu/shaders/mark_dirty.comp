@@ -121,7 +121,7 @@ void mark_candidate() {
   uint n = 0u;
   for (uint k = 0u; k < HT_MARK_TARGETS_PER_INVOCATION; ++k) {
     if (first + k >= pc.batchCount) break;
-    uint target = reuse_header_word(candidates + first + k);
+    uint target = reuse_list_word(candidates + first + k);
     if (primary_meets_moved(target)) dirty[n++] = target;
   }
   append_values(n, dirty, 2u, FRAME.refineInfo.y);

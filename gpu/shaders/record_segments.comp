@@ -80,8 +80,7 @@ void main() {
     primaryCells = cells;
     cells = uvec2(0u);
     if (LISTED) {
-      HitCacheRef(FRAME.primaryHits).h[target * spp + (pc.batchFirst + path) % spp] =
-          uvec4(floatBitsToUint(hit.t), hit.triId, floatBitsToUint(hit.u), floatBitsToUint(hit.v));
+      HitCacheRef(FRAME.primaryHits).h[target * spp + (pc.batchFirst + path) % spp] = hit_bits(hit);
     }
   }
   uint lightCount = FRAME.scene.x;

@@ -7,7 +7,7 @@
 // loop over the 8 lanes, while a texel fetch loads all lanes at once. Their writers reach them by device address.
 
 // Word `k` of the marking pass's list (its header and entries, FrameReuseState::kListFirst).
-uint reuse_header_word(uint k) { return UintRef(FRAME.refine).v[k]; }
+uint reuse_list_word(uint k) { return UintRef(FRAME.refine).v[k]; }
 // The padded moved bounds (FrameBlock::movedLo / movedHi), loaded once per invocation by load_moved_view(): the
 // marking pass's tests read them for every segment.
 vec3 gMovedLo = vec3(1.0f), gMovedHi = vec3(-1.0f);
@@ -30,10 +30,7 @@ uint listed_frame_path(uint batchPath) {
 }
 
 uvec4 cached_primary_hit(uint path) { return texelFetch(reusePrimaryHitTexels, int(path)); }
-HtHit cached_primary_ht_hit(uint path) {
-  uvec4 h = cached_primary_hit(path);
-  return HtHit(uintBitsToFloat(h.x), h.y, uintBitsToFloat(h.z), uintBitsToFloat(h.w));
-}
+HtHit cached_primary_ht_hit(uint path) { return hit_of_bits(cached_primary_hit(path)); }
 HtRay cached_primary_ray(uint path) {
   vec4 a = texelFetch(reusePrimaryRayTexels, int(2u * path)), b = texelFetch(reusePrimaryRayTexels, int(2u * path + 1u));
   return HtRay(a.xyz, a.w, b.xyz, b.w);

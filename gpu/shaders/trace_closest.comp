@@ -36,8 +36,7 @@ void main() {
     path = listed_frame_path(i);
     cachedHit = cached_primary_hit(path);
     if (!cached_primary_meets_moved(path, cachedHit)) {
-      store_hit(i, HtHit(uintBitsToFloat(cachedHit.x), cachedHit.y, uintBitsToFloat(cachedHit.z),
-                         uintBitsToFloat(cachedHit.w)));
+      store_hit(i, hit_of_bits(cachedHit));
       inQueue = false;  // not traced
     }
   }
@@ -52,8 +51,7 @@ void main() {
     store_hit(i, r.hit);
     steps = r.steps;
     overflow = r.overflow;
-    uvec4 hitBits = uvec4(floatBitsToUint(r.hit.t), r.hit.triId, floatBitsToUint(r.hit.u), floatBitsToUint(r.hit.v));
-    if (REUSE_PRIMARY && FRAME.shadowOcclusion != 0ul && hitBits != cachedHit) {
+    if (REUSE_PRIMARY && FRAME.shadowOcclusion != 0ul && hit_bits(r.hit) != cachedHit) {
       UintRef(FRAME.shadowOcclusion).v[occlusion_word_of_frame_path(path)] = 0u;
     }
   }
