@@ -43,16 +43,19 @@ struct EditOptions {
   int deviceIndex = -1;
   bool fusedFloatMath = false;
   bool freshBuffers = false;  // --fresh-buffers: no Renderer::recycle
+  double maxDirtyShare = gpu::RenderSettings{}.reuseMaxDirtyShare;
   std::optional<std::string> csvPath;
 };
 
-const std::array<cli::OptionSpec, 11> kSpecs = {{
+const std::array<cli::OptionSpec, 12> kSpecs = {{
     {"--displays", "", "LIST", "comma-separated displays (default builtin:portrait,bench/configs/quality-hpo-14.json)"},
     {"--scene", "", "SPEC", "scene (default builtin:showcase)"},
     {"--node", "", "NAME", "the node moved (default green-sphere)"},
     {"--move", "", "F", "move distance as a fraction of the scene's diagonal (default 0.05)"},
     {"--scale", "", "F", "panel / projector image size factor (default 1 = the display's own size)"},
     {"--spp", "", "N", "samples per target (default 1)"},
+    {"--max-dirty-share", "", "F",
+     "a move dirtying more than this share of the targets renders in full (default the renderer's, 0.75; 1: never)"},
     {"--runs", "", "N", "timed runs after one warm-up (default 5)"},
     {"--device", "", "N", "Vulkan device index (default: automatic)"},
     {"--csv", "", "PATH", "one row per display and quantity"},
@@ -84,6 +87,7 @@ std::optional<EditOptions> parseOptions(std::span<const std::string> args) {
   o.move = parsed.numberValue("--move", 1e-4, 1.0).value_or(o.move);
   o.scale = parsed.numberValue("--scale", 0.01, 1.0).value_or(o.scale);
   o.spp = parsed.unsignedValue("--spp", 1, 4096).value_or(o.spp);
+  o.maxDirtyShare = parsed.numberValue("--max-dirty-share", 0.0, 1.0).value_or(o.maxDirtyShare);
   o.runs = parsed.unsignedValue("--runs", 1, 1000).value_or(o.runs);
   if (auto device = parsed.unsignedValue("--device", 0, 255)) o.deviceIndex = int(*device);
   o.csvPath = parsed.text("--csv");
@@ -138,6 +142,7 @@ struct DisplayEdits {
   // Host time of each frame outside its stages: RenderResult::totalMs minus the stages' sum (GPU timestamps and the
   // host readback): submissions, waits, host buffers (docs/BENCHMARKS.md "Host buffers of a frame loop").
   std::vector<double> fullOutside, lightOutside, moveOutside;
+  std::uint32_t movesInFull = 0;  // timed moves that dirtied too many targets and rendered in full
 };
 
 double outsideStagesMs(const gpu::RenderResult& frame) {
@@ -177,6 +182,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
   gpu::RenderSettings off, on;
   off.spp = on.spp = o.spp;
   on.reuse = true;
+  on.reuseMaxDirtyShare = o.maxDirtyShare;
   DisplayEdits e{spec, frameShape(camera).targets(), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   std::cout << kCommand << ": " << spec << " x " << o.scale << ", " << e.targets << " targets" << std::endl;
   const glm::dvec3 step(o.move * glm::length(scene.bounds().extent()), 0.0, 0.0);
@@ -212,7 +218,9 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     const double rebuild = msSince(t0);
     gpu::RenderResult moved = reusing.render(camera, on);
     const double move = msSince(t0);
-    if (moved.reuse != gpu::FrameReuse::PartialRetrace) throw GpuError("the node move did not re-render partially");
+    // (a move that dirties most of the targets renders the frame in full, docs/REUSE.md §4)
+    if (moved.reuse != gpu::FrameReuse::PartialRetrace && moved.reuse != gpu::FrameReuse::None)
+      throw GpuError("the node move re-shaded cached hits");
     const double changed = changedValueFraction(lit.rgba, moved.rgba);
     if (!o.freshBuffers) {  // as a frame loop does once it has shown them
       reference.recycle(std::move(fullFrame.rgba));
@@ -221,6 +229,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     }
     if (run == 0) continue;
 
+    if (moved.reuse == gpu::FrameReuse::None) ++e.movesInFull;
     e.full.ms.push_back(full);
     e.recording.ms.push_back(recorded.totalMs);
     e.light.ms.push_back(light);
@@ -258,6 +267,10 @@ void print(const DisplayEdits& e) {
               e.move.medianMs(), median(e.moveRatio), median(e.moveVsRecording), e.rebuild.medianMs());
   std::printf("  re-traced targets %.4f, changed output values %.4f, rays traced %.4f of the full frame's\n",
               median(e.traced), median(e.changed), median(e.movedRays));
+  if (e.movesInFull > 0) {
+    std::printf("  %u of %zu moves dirtied too many targets for a partial re-render and rendered in full\n",
+                e.movesInFull, e.move.ms.size());
+  }
   std::printf("  stages, medians of the runs (GPU ms; readback: host):");
   for (const auto* stages : {&e.fullStages, &e.lightStages, &e.moveStages}) {
     std::printf("\n   %s", stages == &e.fullStages ? "full " : stages == &e.lightStages ? "light" : "move ");

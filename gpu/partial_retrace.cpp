@@ -36,9 +36,7 @@ ReuseKey Renderer::Impl::reuseKey(const RenderSettings& settings) const {
   return key;
 }
 
-std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t targets,
-                                           std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
-                                           const std::function<void(double)>& progress) {
+std::uint64_t Renderer::Impl::markMovedTargets(std::uint64_t targets, StageTimes& stageMs) {
   auto* list = static_cast<std::uint32_t*>(reuse.dirtyList.mapped());
   std::vector<FrameReuseState::SecondaryQueue> secondary;
   if (framePlan.secondaryExact) secondary = reuse.secondaryQueues();
@@ -51,15 +49,23 @@ std::uint64_t Renderer::Impl::retraceDirty(const FrameCamera& camera, const Fram
   f.refine = reuse.dirtyList.address();
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
   runMarkingPass(targets, false, list, reuse.segmentMasks, stageMs, secondary);
-  const std::uint64_t dirty = list[2];
-  if (dirty > 0) {
-    const std::uint32_t spp = settings.spp;
-    tracePaths(camera, shape, spp, dirty * spp, std::min(perBatch, dirty * spp), TracedTargets::Dirty, settings,
-               stageMs, progress);
-  }
   f.refine = 0;
   f.refineInfo = glm::uvec4(0u);
-  return dirty;
+  return list[2];
+}
+
+void Renderer::Impl::retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t dirty,
+                                  std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
+                                  const std::function<void(double)>& progress) {
+  if (dirty == 0) return;
+  FrameBlock& f = frameBlock();
+  f.refine = reuse.dirtyList.address();
+  f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
+  const std::uint32_t spp = settings.spp;
+  tracePaths(camera, shape, spp, dirty * spp, std::min(perBatch, dirty * spp), TracedTargets::Dirty, settings, stageMs,
+             progress);
+  f.refine = 0;
+  f.refineInfo = glm::uvec4(0u);
 }
 
 void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulation, const std::uint32_t* list,

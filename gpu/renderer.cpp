@@ -57,6 +57,10 @@ void checkSettings(const RenderSettings& settings) {
     throw GpuError("refinement contrast " + std::to_string(settings.refineContrast) +
                    " must be a finite number >= 0 (0 refines every target, above 1 none)");
   }
+  if (!(settings.reuseMaxDirtyShare >= 0.0 && settings.reuseMaxDirtyShare <= 1.0)) {
+    throw GpuError("reuse max dirty share " + std::to_string(settings.reuseMaxDirtyShare) +
+                   " out of range [0, 1] (the share of a frame's targets a partial re-render may trace)");
+  }
 }
 
 void checkShape(const FrameShape& shape, std::uint32_t spp) {

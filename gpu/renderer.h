@@ -62,6 +62,11 @@ struct RenderSettings {
   // moved bounds; both equal a full render of the edited scene bit for bit. Only frames of one chunk of views
   // without adaptive refinement keep state; others render in full.
   bool reuse = false;
+  // A node move re-renders partially while its marking pass lists at most this share of the frame's targets; a
+  // larger one renders the frame in full (recording the state afresh): a listed target costs 1.3-1.5x a target of
+  // a full frame, so past about 0.7-0.8 of the targets the partial frame is the dearer one (docs/REUSE.md §4 "When
+  // a move dirties most targets"). [0, 1]; 1: always partially.
+  double reuseMaxDirtyShare = 0.75;
   // Paths per batch at most (0: the renderer's own limit, about a million paths): smaller values split a frame into
   // more batches without changing its bits (tests of batching).
   std::uint32_t maxPathsPerBatch = 0;

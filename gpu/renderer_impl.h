@@ -244,11 +244,11 @@ struct Renderer::Impl {
   void renderChunk(const FrameCamera& camera, const FrameShape& shape, const RowBand& band, std::uint32_t viewFirst,
                    std::uint32_t viewCount, const RenderSettings& settings, bool reusable, StageTimes& stageMs,
                    RenderResult& result);
-  // The samples of a single frame's chunk: the base pass (or the dirty targets of a partial re-render), then
-  // adaptive refinement.
+  // The samples of a single frame's chunk: the base pass (or the `dirty` targets of a partial re-render, which the
+  // marking pass listed), then adaptive refinement.
   void renderChunkSamples(const FrameCamera& camera, const FrameShape& shape, std::uint64_t targets,
-                          std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
-                          RenderResult& result);
+                          std::uint64_t dirty, std::uint64_t perBatch, const RenderSettings& settings,
+                          StageTimes& stageMs, RenderResult& result);
   // Traces paths [0, totalPaths) of `spp` samples per target in batches of perBatch (a multiple of spp) and resolves
   // them into the subpixel buffer. Refined / Dirty: the listed targets of FrameBlock.refine (refineInfo.w = the base
   // spp when refining, 0 for dirty targets), through the REFINING pipelines of raygen and resolve; else the chunk's
@@ -268,12 +268,15 @@ struct Renderer::Impl {
   // (load) or into the secondary cache (frame_reuse.h), between the passes recorded into `cmd`: the queue's own
   // entries, whose count the frame that fills the cache has read back (secondaryCounts) before this.
   void copySecondary(std::uint32_t depth, std::uint32_t batchFirst, bool load);
-  // Frame reuse (partial_retrace.cpp): the key of the frame fillFrame wrote; the marking pass and the re-trace of
-  // the dirty targets of a partial re-render (returns how many).
+  // Frame reuse (partial_retrace.cpp): the key of the frame fillFrame wrote; the marking pass of a partial
+  // re-render over the chunk's `targets` (lists the dirty ones in reuse.dirtyList; returns how many), and the
+  // re-trace of those `dirty` targets.
   ReuseKey reuseKey(const RenderSettings& settings) const;
-  std::uint64_t retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t targets,
-                             std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
-                             const std::function<void(double)>& progress);
+  std::uint64_t markMovedTargets(std::uint64_t targets, StageTimes& stageMs);
+  void retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t dirty, std::uint64_t perBatch,
+                    const RenderSettings& settings, StageTimes& stageMs, const std::function<void(double)>& progress);
+  // The frame block's reuse members and views for framePlan (after fillFrame and the plan).
+  void applyFramePlan(RenderResult& result);
   // The interleave of a partial re-render: only the pixels of its listed targets, whose dirty list it names in the
   // frame block (the caller clears FrameBlock::refine once the pass ran).
   void recordDirtyInterleave(PassRecorder& rec, const FrameShape& shape);

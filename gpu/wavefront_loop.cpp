@@ -127,25 +127,28 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   std::memset(counters.mapped(), 0, sizeof(GpuCounters));
   const ReuseKey key = reuseKey(settings);
   // Frame reuse is for single frames: an accumulation step keeps no reuse state (and drops what was kept).
-  framePlan = reuse.plan(key, settings.reuse && !accumulating, reusable && !accumulating, targets * settings.spp,
-                         targets, depthPasses(settings) - 1, perBatch);
-  if (framePlan.recordSegments) {
-    frameBlock().segmentMasks = reuse.segmentMasks.address();
-    frameBlock().grid = reuse.grid();
+  const auto plan = [&] {
+    framePlan = reuse.plan(key, settings.reuse && !accumulating, reusable && !accumulating, targets * settings.spp,
+                           targets, depthPasses(settings) - 1, perBatch);
+    applyFramePlan(result);
+  };
+  plan();
+  std::uint64_t dirty = 0;
+  if (framePlan.mode == FrameReuse::PartialRetrace) {
+    dirty = markMovedTargets(targets, stageMs);
+    if (static_cast<double>(dirty) > settings.reuseMaxDirtyShare * static_cast<double>(targets)) {
+      // A partial re-render of this many targets costs more than the whole frame: render that. The plan just made
+      // left the reuse state invalid until frameDone, so planning again gives a full frame that records afresh.
+      plan();
+      frameBlock().movedLo = frameBlock().movedHi = glm::vec4(0.0f);  // as fillFrame left them
+      frameBlock().moved = glm::uvec4(0u);
+    }
   }
-  if (framePlan.primaryCached) {
-    frameBlock().primaryRays = reuse.primaryRays.address();
-    frameBlock().primaryHits = reuse.primaryHits.address();
-    frameBlock().shadowOcclusion = reuse.shadowOcclusion.address();
-  }
-  bindReuseTexels(reuseTexelDummy, framePlan.primaryCached, false);  // the marking pass views the rest
-  result.reuse = framePlan.mode;
-  frameBlock().frame.w = framePlan.keptLightRays;  // after reuseKey: not part of the frame's identity
 
   if (accumulating) {
     accumulateChunk(camera, shape, band, viewFirst, viewCount, settings, perBatch, stageMs, result);
   } else {
-    renderChunkSamples(camera, shape, targets, perBatch, settings, stageMs, result);
+    renderChunkSamples(camera, shape, targets, dirty, perBatch, settings, stageMs, result);
   }
   beginCommands();
   PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
@@ -166,15 +169,28 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
   reuse.frameDone(key, framePlan);
 }
 
+void Renderer::Impl::applyFramePlan(RenderResult& result) {
+  FrameBlock& f = frameBlock();
+  f.segmentMasks = framePlan.recordSegments ? reuse.segmentMasks.address() : 0;
+  if (framePlan.recordSegments) f.grid = reuse.grid();
+  f.primaryRays = framePlan.primaryCached ? reuse.primaryRays.address() : 0;
+  f.primaryHits = framePlan.primaryCached ? reuse.primaryHits.address() : 0;
+  f.shadowOcclusion = framePlan.primaryCached ? reuse.shadowOcclusion.address() : 0;
+  bindReuseTexels(reuseTexelDummy, framePlan.primaryCached, false);  // the marking pass views the rest
+  result.reuse = framePlan.mode;
+  f.frame.w = framePlan.keptLightRays;  // after reuseKey: not part of the frame's identity
+}
+
 void Renderer::Impl::renderChunkSamples(const FrameCamera& camera, const FrameShape& shape, std::uint64_t targets,
-                                        std::uint64_t perBatch, const RenderSettings& settings, StageTimes& stageMs,
-                                        RenderResult& result) {
+                                        std::uint64_t dirty, std::uint64_t perBatch, const RenderSettings& settings,
+                                        StageTimes& stageMs, RenderResult& result) {
   const double share = settings.refineSpp > 0 ? 0.8 : 1.0;  // progress: the refinement takes the rest
   auto baseProgress = [&](double done) {
     if (settings.progress) settings.progress(done * share);
   };
   if (framePlan.mode == FrameReuse::PartialRetrace) {
-    result.tracedTargets += retraceDirty(camera, shape, targets, perBatch, settings, stageMs, baseProgress);
+    retraceDirty(camera, shape, dirty, perBatch, settings, stageMs, baseProgress);
+    result.tracedTargets += dirty;
   } else {
     tracePaths(camera, shape, settings.spp, targets * settings.spp, perBatch, TracedTargets::All, settings, stageMs,
                baseProgress);

@@ -25,9 +25,10 @@ struct JobHead {
 static_assert(std::is_trivially_copyable_v<JobHead>);
 // A field added to RenderSettings changes pixels on every rank only if the job carries it: add it to JobHead,
 // headOf() and jobOf(), then update this size. RenderSettings::reuse is not sent: a reused frame equals a full one
-// bit for bit, and a rank's units are bands or groups of views, which keep no reuse state. Nor is
-// RenderSettings::maxPathsPerBatch: batching does not change a frame's bits.
-static_assert(sizeof(gpu::RenderSettings) == 88,
+// bit for bit, and a rank's units are bands or groups of views, which keep no reuse state (nor, then, is
+// RenderSettings::reuseMaxDirtyShare). Nor is RenderSettings::maxPathsPerBatch: batching does not change a frame's
+// bits.
+static_assert(sizeof(gpu::RenderSettings) == 96,
               "gpu::RenderSettings changed: send the new field in the cluster job (server/cluster_job.cpp)");
 
 constexpr std::uint32_t kTarget = 1, kSize = 2, kObserverDistance = 4, kObserverHeight = 8;  // JobHead::present bits

@@ -45,6 +45,7 @@ gpu::RenderSettings reuseSettings() {
   s.maxDepth = 3;
   s.seed = 11;
   s.reuse = true;
+  s.reuseMaxDirtyShare = 1.0;  // partial re-renders of any size (by default a move past 3/4 renders in full)
   return s;
 }
 
@@ -269,6 +270,38 @@ TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesEqualsAFullRender) {
 
 TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesOnTheTwoLevelBvhEqualsAFullRender) {
   expectPartialRerendersEqualFullRenders(true);
+}
+
+// RenderSettings::reuseMaxDirtyShare: a move whose marking pass lists more than that share of the targets renders
+// the frame in full instead of re-rendering nearly all of it through the dirty list, which costs more. The room
+// rises: the floor and walls, seen by almost every target, move. That frame records the state afresh, so the next,
+// small move re-renders partially; with the share at 1 the same move re-renders partially too. Every frame equals a
+// full render bit for bit.
+TEST(FrameReuse, AMoveThatDirtiesMostTargetsRendersTheFrameInFull) {
+  Scene scene = loadScene("builtin:showcase");
+  for (const auto& [name, camera] : cameras(scene)) {
+    if (name == "pinhole") continue;  // it sees the room from outside, with the background around it
+    SCOPED_TRACE(name);
+    for (const double share : {gpu::RenderSettings{}.reuseMaxDirtyShare, 1.0}) {
+      SCOPED_TRACE("share " + std::to_string(share));
+      gpu::RenderSettings settings = reuseSettings();
+      settings.reuseMaxDirtyShare = share;
+      Scene edited = scene;
+      gpu::Renderer renderer(sharedContext(), edited, gpu::buildSceneBvh(edited, {}, gpu::BvhLayoutPolicy::TwoLevel));
+      ASSERT_EQ(renderer.render(camera, settings).reuse, FrameReuse::None);
+      const std::uint64_t targets = frameShape(camera).targets();
+      moveNodeOnTwoLevel(edited, "room", glm::dvec3(0.0, 0.05, 0.0), renderer);
+      const gpu::RenderResult whole = renderer.render(camera, settings);
+      EXPECT_EQ(whole.reuse, share < 1.0 ? FrameReuse::None : FrameReuse::PartialRetrace);
+      EXPECT_GT(static_cast<double>(whole.tracedTargets), gpu::RenderSettings{}.reuseMaxDirtyShare * targets);
+      EXPECT_TRUE(sameBits(whole, fullRender(edited, camera)));
+      moveNodeOnTwoLevel(edited, "glow-sphere", glm::dvec3(0.05, 0.02, 0.0), renderer);
+      const gpu::RenderResult partial = renderer.render(camera, settings);
+      EXPECT_EQ(partial.reuse, FrameReuse::PartialRetrace);
+      EXPECT_LT(static_cast<double>(partial.tracedTargets), gpu::RenderSettings{}.reuseMaxDirtyShare * targets);
+      EXPECT_TRUE(sameBits(partial, fullRender(edited, camera)));
+    }
+  }
 }
 
 // Through the staging path of a discrete GPU (VulkanContext::Options::mapDeviceMemory off: no buffer in device memory
