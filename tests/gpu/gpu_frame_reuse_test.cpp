@@ -71,25 +71,24 @@ gpu::RenderResult fullRender(const Scene& scene, const gpu::FrameCamera& camera)
   return fresh.render(camera, s);
 }
 
-// Moves `node` of `scene` by `by` and tells `renderer`, with the node's bounds before and after.
-void moveNode(Scene& scene, const std::string& node, glm::dvec3 by, gpu::Renderer& renderer) {
-  const std::size_t index = *findNode(scene, node);
-  const Bounds3 before = nodeWorldBounds(scene, index);
-  glm::dmat4 world = scene.nodes[index].world;
-  world[3] += glm::dvec4(by, 0.0);
-  setNodeWorldMatrix(scene, node, world);
-  renderer.replaceSceneAfterMove(scene, before, nodeWorldBounds(scene, index));
-}
+// How a test tells the renderer of a move: a rebuild (replaceSceneAfterMove) or the two-level BVH's refit and
+// top-level update (moveNodes, holotraced's path).
+enum class MoveThrough { Rebuild, TwoLevelUpdate };
 
-// ... the same through the two-level BVH's update (Renderer::moveNodes).
-void moveNodeOnTwoLevel(Scene& scene, const std::string& node, glm::dvec3 by, gpu::Renderer& renderer) {
+// Moves `node` of `scene` by `by` and tells `renderer`, with the node's bounds before and after.
+void moveNode(Scene& scene, const std::string& node, glm::dvec3 by, gpu::Renderer& renderer,
+              MoveThrough through = MoveThrough::Rebuild) {
   const std::size_t index = *findNode(scene, node);
   const Bounds3 before = nodeWorldBounds(scene, index);
   glm::dmat4 world = scene.nodes[index].world;
   world[3] += glm::dvec4(by, 0.0);
   setNodeWorldMatrix(scene, node, world);
-  const std::uint32_t nodes[] = {static_cast<std::uint32_t>(index)};
-  renderer.moveNodes(scene, nodes, gpu::MovedBounds{before, nodeWorldBounds(scene, index)});
+  if (through == MoveThrough::Rebuild) {
+    renderer.replaceSceneAfterMove(scene, before, nodeWorldBounds(scene, index));
+  } else {
+    const std::uint32_t nodes[] = {static_cast<std::uint32_t>(index)};
+    renderer.moveNodes(scene, nodes, gpu::MovedBounds{before, nodeWorldBounds(scene, index)});
+  }
 }
 
 // Edits light `light` of `edited`, tells `renderer` and renders the next frame, which re-shades the cached hits.
@@ -235,11 +234,7 @@ void expectPartialRerendersEqualFullRenders(bool twoLevel) {
         const std::string node = movable[rng() % movable.size()];
         nodes += node + " ";
         const glm::dvec3 by(offset(rng), offset(rng), offset(rng));
-        if (twoLevel) {
-          moveNodeOnTwoLevel(edited, node, by, renderer);
-        } else {
-          moveNode(edited, node, by, renderer);
-        }
+        moveNode(edited, node, by, renderer, twoLevel ? MoveThrough::TwoLevelUpdate : MoveThrough::Rebuild);
       }
       SCOPED_TRACE(nodes + "move " + std::to_string(move));
       const gpu::RenderResult partial = renderer.render(camera, reuseSettings());
@@ -290,12 +285,12 @@ TEST(FrameReuse, AMoveThatDirtiesMostTargetsRendersTheFrameInFull) {
       gpu::Renderer renderer(sharedContext(), edited, gpu::buildSceneBvh(edited, {}, gpu::BvhLayoutPolicy::TwoLevel));
       ASSERT_EQ(renderer.render(camera, settings).reuse, FrameReuse::None);
       const std::uint64_t targets = frameShape(camera).targets();
-      moveNodeOnTwoLevel(edited, "room", glm::dvec3(0.0, 0.05, 0.0), renderer);
+      moveNode(edited, "room", glm::dvec3(0.0, 0.05, 0.0), renderer, MoveThrough::TwoLevelUpdate);
       const gpu::RenderResult whole = renderer.render(camera, settings);
       EXPECT_EQ(whole.reuse, share < 1.0 ? FrameReuse::None : FrameReuse::PartialRetrace);
       EXPECT_GT(static_cast<double>(whole.tracedTargets), gpu::RenderSettings{}.reuseMaxDirtyShare * targets);
       EXPECT_TRUE(sameBits(whole, fullRender(edited, camera)));
-      moveNodeOnTwoLevel(edited, "glow-sphere", glm::dvec3(0.05, 0.02, 0.0), renderer);
+      moveNode(edited, "glow-sphere", glm::dvec3(0.05, 0.02, 0.0), renderer, MoveThrough::TwoLevelUpdate);
       const gpu::RenderResult partial = renderer.render(camera, settings);
       EXPECT_EQ(partial.reuse, FrameReuse::PartialRetrace);
       EXPECT_LT(static_cast<double>(partial.tracedTargets), gpu::RenderSettings{}.reuseMaxDirtyShare * targets);
