@@ -44,10 +44,11 @@ struct EditOptions {
   bool fusedFloatMath = false;
   bool freshBuffers = false;  // --fresh-buffers: no Renderer::recycle
   double maxDirtyShare = gpu::RenderSettings{}.reuseMaxDirtyShare;
+  bool alternateWalks = false;  // --alternate-walks: every other move traces its primary rays whole
   std::optional<std::string> csvPath;
 };
 
-const std::array<cli::OptionSpec, 12> kSpecs = {{
+const std::array<cli::OptionSpec, 13> kSpecs = {{
     {"--displays", "", "LIST", "comma-separated displays (default builtin:portrait,bench/configs/quality-hpo-14.json)"},
     {"--scene", "", "SPEC", "scene (default builtin:showcase)"},
     {"--node", "", "NAME", "the node moved (default green-sphere)"},
@@ -56,6 +57,9 @@ const std::array<cli::OptionSpec, 12> kSpecs = {{
     {"--spp", "", "N", "samples per target (default 1)"},
     {"--max-dirty-share", "", "F",
      "a move dirtying more than this share of the targets renders in full (default the renderer's, 0.75; 1: never)"},
+    {"--alternate-walks", "", "",
+     "every other timed move traces its primary rays whole instead of walking the moved instances alone "
+     "(Renderer::setMovedInstanceWalks), reported apart: a same-run comparison"},
     {"--runs", "", "N", "timed runs after one warm-up (default 5)"},
     {"--device", "", "N", "Vulkan device index (default: automatic)"},
     {"--csv", "", "PATH", "one row per display and quantity"},
@@ -93,6 +97,9 @@ std::optional<EditOptions> parseOptions(std::span<const std::string> args) {
   o.csvPath = parsed.text("--csv");
   o.fusedFloatMath = parsed.has("--fused-math");
   o.freshBuffers = parsed.has("--fresh-buffers");
+  o.alternateWalks = parsed.has("--alternate-walks");
+  if (o.alternateWalks && o.runs < 4)
+    throw UsageError(cli::usageMessage(kCommand, "--alternate-walks needs --runs 4 or more (they alternate in fours)"));
   return o;
 }
 
@@ -136,6 +143,10 @@ struct DisplayEdits {
   double coverage = 0.0;  // fraction of primary samples that hit the moved node (the first recorded frame)
   TimingSeries full, recording, light, move, rebuild;
   std::vector<double> lightRatio, moveRatio, recordRatio, traced, changed;
+  // --alternate-walks: the moves whose primary rays were traced whole (the others are in `move`, `moveRatio`).
+  TimingSeries moveWhole;
+  std::vector<double> moveWholeRatio;
+  std::vector<gpu::StageTiming> moveWholeStages;
   std::vector<double> movedRays;  // rays the move traced (closest + any) / rays of the full frame
   std::vector<double> lightVsRecording, moveVsRecording;  // the same edits against the reusing Renderer's full frame
   std::vector<gpu::StageTiming> fullStages, lightStages, moveStages;  // medians over the runs (appendStages)
@@ -187,7 +198,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
   std::cout << kCommand << ": " << spec << " x " << o.scale << ", " << e.targets << " targets" << std::endl;
   const glm::dvec3 step(o.move * glm::length(scene.bounds().extent()), 0.0, 0.0);
   const float intensity = scene.lights[0].intensity;
-  StageRuns stageRuns[3];  // full, light, move
+  StageRuns stageRuns[4];  // full, light, move, move with its primary rays traced whole (--alternate-walks)
   // Run 0 is the warm-up (pipeline compilation of every variant, the partial re-render's included), not recorded.
   for (std::uint32_t run = 0; run <= o.runs; ++run) {
     // The two full frames alternate in order between runs (the first of a pair ran measurably slower here).
@@ -213,6 +224,9 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     glm::dmat4 world = scene.nodes[node].world;
     world[3] += glm::dvec4(run % 2 ? -step : step, 0.0);
     setNodeWorldMatrix(scene, o.node, world);
+    // (period 4: each setting gets both move directions and both orders of the full frames)
+    const bool walks = !o.alternateWalks || (run - 1) % 4 < 2;
+    reusing.setMovedInstanceWalks(walks);
     t0 = std::chrono::steady_clock::now();
     reusing.moveNodes(scene, movedNodes, gpu::MovedBounds{before, nodeWorldBounds(scene, node)});
     const double rebuild = msSince(t0);
@@ -229,30 +243,37 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     }
     if (run == 0) continue;
 
-    if (moved.reuse == gpu::FrameReuse::None) ++e.movesInFull;
     e.full.ms.push_back(full);
     e.recording.ms.push_back(recorded.totalMs);
     e.light.ms.push_back(light);
-    e.rebuild.ms.push_back(rebuild);
-    e.move.ms.push_back(move);
     e.recordRatio.push_back(recorded.totalMs / full);
     e.lightRatio.push_back(light / full);
-    e.moveRatio.push_back(move / full);
     e.lightVsRecording.push_back(light / recorded.totalMs);
+    e.fullOutside.push_back(outsideStagesMs(fullFrame));
+    e.lightOutside.push_back(outsideStagesMs(lit));
+    appendStages(stageRuns[0], fullFrame.stages);
+    appendStages(stageRuns[1], lit.stages);
+    if (!walks) {
+      e.moveWhole.ms.push_back(move);
+      e.moveWholeRatio.push_back(move / full);
+      appendStages(stageRuns[3], moved.stages);
+      continue;
+    }
+    if (moved.reuse == gpu::FrameReuse::None) ++e.movesInFull;
+    e.rebuild.ms.push_back(rebuild);
+    e.move.ms.push_back(move);
+    e.moveRatio.push_back(move / full);
     e.moveVsRecording.push_back(move / recorded.totalMs);
     e.traced.push_back(double(moved.tracedTargets) / double(e.targets));
     e.movedRays.push_back(double(moved.raysTraced) / double(std::max<std::uint64_t>(fullFrame.raysTraced, 1)));
     e.changed.push_back(changed);
-    e.fullOutside.push_back(outsideStagesMs(fullFrame));
-    e.lightOutside.push_back(outsideStagesMs(lit));
     e.moveOutside.push_back(outsideStagesMs(moved));
-    appendStages(stageRuns[0], fullFrame.stages);
-    appendStages(stageRuns[1], lit.stages);
     appendStages(stageRuns[2], moved.stages);
   }
   e.fullStages = medianStages(stageRuns[0]);
   e.lightStages = medianStages(stageRuns[1]);
   e.moveStages = medianStages(stageRuns[2]);
+  e.moveWholeStages = medianStages(stageRuns[3]);
   return e;
 }
 
@@ -271,9 +292,19 @@ void print(const DisplayEdits& e) {
     std::printf("  %u of %zu moves dirtied too many targets for a partial re-render and rendered in full\n",
                 e.movesInFull, e.move.ms.size());
   }
+  if (!e.moveWhole.ms.empty()) {
+    std::printf(
+        "  node move, primary rays whole: %9.1f ms   ratio %.3f   (walks / whole: %.3f, medians of %zu / %zu)\n",
+        e.moveWhole.medianMs(), median(e.moveWholeRatio), median(e.moveRatio) / median(e.moveWholeRatio),
+        e.move.ms.size(), e.moveWhole.ms.size());
+  }
   std::printf("  stages, medians of the runs (GPU ms; readback: host):");
-  for (const auto* stages : {&e.fullStages, &e.lightStages, &e.moveStages}) {
-    std::printf("\n   %s", stages == &e.fullStages ? "full " : stages == &e.lightStages ? "light" : "move ");
+  for (const auto* stages : {&e.fullStages, &e.lightStages, &e.moveStages, &e.moveWholeStages}) {
+    if (stages->empty()) continue;
+    std::printf("\n   %s", stages == &e.fullStages    ? "full "
+                           : stages == &e.lightStages ? "light"
+                           : stages == &e.moveStages  ? "move "
+                                                      : "whole");
     for (const gpu::StageTiming& s : *stages) std::printf(" %s %.1f", s.name.c_str(), s.ms);
   }
   std::printf("\n  host time outside the stages (ms, medians): full %.1f, light %.1f, move %.1f\n",

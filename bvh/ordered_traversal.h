@@ -222,15 +222,23 @@ HT_INLINE HtTraceResult ht_trace_closest_ordered(HT_BVH_PARAM HT_IN(HtRay) ray, 
   return res;
 }
 
+// The least (t, id) of two hits of one ray (a miss comes after every hit).
+HT_INLINE HtHit ht_least_hit(HT_IN(HtHit) a, HT_IN(HtHit) b) {
+  if (b.triId != HT_MISS && ht_hit_precedes(b.t, b.triId, a)) return b;
+  return a;
+}
+
 #if !defined(HT_GLSL) || defined(HT_LOAD_TOP_NODE)
 // Walk of a two-level BVH: the top level over instance boxes, each instance's own BVH below; anyHit as in
 // ht_ordered_bvh. (GLSL: only where the including shader defines HT_LOAD_TOP_NODE and HT_LOAD_INSTANCE.)
-HT_INLINE HtTraceResult ht_two_level_walk(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
-                                          bool anyHit) {
+// `cull0`: the culling distance it starts from (the ray's tmax for a whole trace); `filtered`: only the bottom
+// levels of the instances whose indices are in `only` are walked (ht_trace_two_level_after_moves).
+HT_INLINE HtTraceResult ht_two_level_walk_filtered(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
+                                                   bool anyHit, float cull0, bool filtered, uvec4 only) {
   HtTraceResult res = ht_trace_miss(ray);
   if (!ht_ray_is_valid(ray)) return res;
   HtOrderedRay r = ht_make_ordered_ray(ray);
-  float cull = r.tmax;
+  float cull = cull0;
   uint stack[HT_BVH_MAX_DEPTH];
   uint sp = 0u;
   uint cur = 0u;
@@ -249,6 +257,7 @@ HT_INLINE HtTraceResult ht_two_level_walk(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(
       for (uint e = first; e < end && !overflow; e++) {
         steps++;  // this loop's iterations count too (lavapipe's loop budget, docs/TOOLCHAIN.md §0)
         uvec4 inst = HT_LOAD_INSTANCE(e);
+        if (filtered && inst.z != only.x && inst.z != only.y && inst.z != only.z && inst.z != only.w) continue;
         overflow = !ht_ordered_bvh(HT_BVH_ARG r, inst.x, inst.y, anyHit, res.hit, cull, steps, stepLimit);
         if (anyHit && res.hit.triId != HT_MISS) break;
       }
@@ -293,9 +302,30 @@ HT_INLINE HtTraceResult ht_two_level_walk(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(
   return res;
 }
 
+HT_INLINE HtTraceResult ht_two_level_walk(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
+                                          bool anyHit) {
+  return ht_two_level_walk_filtered(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, anyHit, ray.tmax, false, uvec4(0u));
+}
+
 // Least (t, id) hit of a two-level BVH.
 HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
   return ht_two_level_walk(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, false);
+}
+
+// The closest hit of a ray after some instances moved, from its closest hit before the move, `kept`, which lies on
+// none of them (docs/REUSE.md §4, "Primary rays that walk the moved instances alone"). Every triangle outside the
+// moved instances is where it was, so the least (t, id) among them is still `kept`. The least among the moved
+// instances' triangles where they are now comes from a walk that enters their bottom levels alone (`moved`: their
+// instance indices, 0xFFFFFFFF for none), culled from the start at `kept`'s distance: a moved triangle with the same
+// or a smaller t still passes the loosened culling. The closest hit is the least of the two, the same bits as a
+// whole trace of the moved scene, because the closest hit is the order-free one. With `walk` false (or `kept` a
+// miss and every instance listed) it is the whole trace.
+HT_INLINE HtTraceResult ht_trace_two_level_after_moves(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
+                                                       HT_IN(HtHit) kept, bool walk, uvec4 moved) {
+  HtTraceResult res = ht_two_level_walk_filtered(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, false,
+                                                 walk ? ht_ordered_cull_t(kept, ray.tmax) : ray.tmax, walk, moved);
+  if (walk) res.hit = ht_least_hit(kept, res.hit);
+  return res;
 }
 
 // Any hit of a two-level BVH within [tmin, tmax] (occlusion): the same triangles count as for ht_trace_any on the

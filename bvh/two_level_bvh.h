@@ -61,6 +61,7 @@ class TwoLevelBvh {
   size_t shapeCount() const { return shapes_.size(); }  // distinct bottom-level tree shapes
   const Aabb& instanceBox(uint32_t i) const { return instances_[i].box; }
   InstanceSlots instanceSlots(uint32_t i) const;
+  const InstanceRange& instanceRange(uint32_t i) const { return instances_[i].range; }
   // Whether the last updateInstances laid the bottom levels out anew (a placement needed a tree shape of its own):
   // then every instance's range may have moved, not only the moved instances'.
   bool lastUpdateRelaidOut() const { return relaidOut_; }

@@ -19,8 +19,16 @@ FrameReuseState::FrameReuseState(VulkanContext::Impl& vk, const Bounds3& sceneBo
   grid_.scale = glm::vec4(static_cast<float>(gpu_shared::HT_GRID_CELLS) / extent, 0.0f);
 }
 
-void FrameReuseState::geometryMoved(const Bounds3& oldBounds, const Bounds3& newBounds) {
+void FrameReuseState::geometryMoved(const Bounds3& oldBounds, const Bounds3& newBounds,
+                                    std::optional<std::span<const std::uint32_t>> instances) {
   moved_ = true;
+  if (instances) {
+    movedInstances_.insert(movedInstances_.end(), instances->begin(), instances->end());
+    std::sort(movedInstances_.begin(), movedInstances_.end());
+    movedInstances_.erase(std::unique(movedInstances_.begin(), movedInstances_.end()), movedInstances_.end());
+  } else {
+    movedInstancesKnown_ = false;
+  }
   for (const Bounds3& b : {oldBounds, newBounds}) {
     if (b.empty()) continue;
     movedBounds_.extend(b.lo);
@@ -33,6 +41,8 @@ void FrameReuseState::invalidate() {
   lightsEdited_ = moved_ = false;
   lightRaysChanged_ = 0;
   movedBounds_ = Bounds3{};
+  movedInstances_.clear();
+  movedInstancesKnown_ = true;
 }
 
 void FrameReuseState::ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPlace place) {
@@ -70,6 +80,8 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
     const Bounds3 padded = paddedMovedBounds(movedBounds_, grid_);
     p.movedLo = padded.lo;
     p.movedHi = padded.hi;
+    if (movedInstancesKnown_ && movedInstances_.size() <= gpu_shared::HT_MAX_WALKED_INSTANCES)
+      p.walkedInstances = movedInstances_;
   }
   p.recordHits = p.mode == FrameReuse::None && p.primaryCached;
   // The secondary cache takes at most the budget; whether the frame's bounce queues fit is known as they are traced.

@@ -54,6 +54,10 @@ struct ReusePlan {
   // PartialRetrace: the cells of the moved bounds (lo, hi words) and those bounds padded by HT_GRID_PAD cells.
   std::uint32_t gridCells[2] = {0, 0};
   glm::vec3 movedLo{0.0f}, movedHi{0.0f};
+  // PartialRetrace: the two-level BVH's instances moved since the last frame, when every move named them and they
+  // are at most HT_MAX_WALKED_INSTANCES (else empty): primary rays whose cached hit is on none of them walk only
+  // their bottom levels (FrameBlock::movedInstances).
+  std::vector<std::uint32_t> walkedInstances;
   // The shadow-occlusion cache (shadowOcclusion; docs/REUSE.md §3): a word per depth and path, bits 0-15 the
   // occlusion of the path's shadow ray to light l at that depth, bits 16-31 whether that ray was traced since its
   // hit was found. `occlusionDepths`: the depths whose words the frame writes (shade.comp OCCLUSION; 0: none).
@@ -81,7 +85,9 @@ class FrameReuseState {
     lightsEdited_ = true;
     lightRaysChanged_ |= raysChanged;
   }
-  void geometryMoved(const Bounds3& oldBounds, const Bounds3& newBounds);
+  // `instances`: the two-level BVH's instances the move changed (Renderer::moveNodes), none when not known.
+  void geometryMoved(const Bounds3& oldBounds, const Bounds3& newBounds,
+                     std::optional<std::span<const std::uint32_t>> instances = std::nullopt);
   void invalidate();
 
   // The plan of a frame with `key` of `paths` paths and `targets` targets; `wanted` = RenderSettings::reuse,
@@ -157,6 +163,8 @@ class FrameReuseState {
   bool lightsEdited_ = false, moved_ = false;
   std::uint32_t lightRaysChanged_ = 0;  // since the last frame
   Bounds3 movedBounds_;
+  std::vector<std::uint32_t> movedInstances_;  // since the last frame, ascending
+  bool movedInstancesKnown_ = true;            // every move since the last frame named its instances
 };
 
 // Words of a target's segment mask: the cells of its segments but the cached primary ones and their shadow rays

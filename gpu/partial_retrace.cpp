@@ -46,12 +46,29 @@ std::uint64_t Renderer::Impl::markMovedTargets(std::uint64_t targets, StageTimes
       list, f, framePlan.gridCells, framePlan.movedLo, framePlan.movedHi,
       framePlan.primaryCached ? static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets) : 0u,
       framePlan.secondaryExact ? static_cast<std::uint32_t>(reuse.secondaryEntries()) : 0u);
+  writeWalkedInstances(f);
   f.refine = reuse.dirtyList.address();
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
   runMarkingPass(targets, false, list, reuse.segmentMasks, stageMs, secondary);
   f.refine = 0;
   f.refineInfo = glm::uvec4(0u);
   return list[2];
+}
+
+void Renderer::Impl::writeWalkedInstances(FrameBlock& f) const {
+  static_assert(gpu_shared::HT_MAX_WALKED_INSTANCES == 4, "the instance indices fill one uvec4");
+  f.movedWalk = glm::uvec4(0u);
+  f.movedInstanceIds = glm::uvec4(~0u);
+  const bvh::TwoLevelBvh* twoLevel = scene.twoLevel();
+  if (!movedInstanceWalks || scene.layout() != bvh::BvhLayout::TwoLevel || twoLevel == nullptr) return;
+  std::uint32_t n = 0;
+  for (const std::uint32_t i : framePlan.walkedInstances) {
+    if (i >= twoLevel->instanceCount()) return;  // not this BVH's: trace those rays whole
+    const bvh::InstanceRange& range = twoLevel->instanceRange(i);
+    f.movedInstanceIds[n] = i;
+    f.movedTriangles[n++] = glm::uvec4(range.firstTriangle, range.triangleCount, 0u, 0u);
+  }
+  f.movedWalk.x = n;
 }
 
 void Renderer::Impl::retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t dirty,
@@ -171,6 +188,7 @@ void Renderer::Impl::copySecondary(std::uint32_t depth, std::uint32_t batchFirst
 }
 
 void Renderer::setBounceCacheBudget(std::uint64_t bytes) { impl_->reuse.setSecondaryBudget(bytes); }
+void Renderer::setMovedInstanceWalks(bool on) { impl_->movedInstanceWalks = on; }
 
 Renderer::ReuseSnapshot Renderer::reuseSnapshot() const {
   ReuseSnapshot snap;

@@ -201,8 +201,8 @@ void Renderer::Impl::installScene(const Scene& s, SceneBvh bvh) {
   bvhStats.fullBuilds++;
 }
 
-void Renderer::Impl::moveNodes(const Scene& s, std::span<const std::uint32_t> movedNodes,
-                               const std::optional<MovedBounds>& bounds) {
+std::vector<std::uint32_t> Renderer::Impl::moveNodes(const Scene& s, std::span<const std::uint32_t> movedNodes,
+                                                     const std::optional<MovedBounds>& bounds) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::uint32_t> moved;  // instance indices (Scene::instances order = the TwoLevelBvh's)
   const std::vector<SceneInstance> instances = s.instances();
@@ -235,6 +235,7 @@ void Renderer::Impl::moveNodes(const Scene& s, std::span<const std::uint32_t> mo
   }
   sceneChanged(changed);
   bvhStats.lastUpdateMs = msSince(start);
+  return moved;
 }
 
 void Renderer::Impl::updateLights(const Scene& s) {
@@ -367,9 +368,9 @@ void Renderer::replaceScene(const Scene& scene, BvhLayoutPolicy policy) {
 }
 void Renderer::updateLights(const Scene& scene) { impl_->updateLights(scene); }
 void Renderer::moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes, std::optional<MovedBounds> moved) {
-  impl_->moveNodes(scene, nodes, moved);
+  const std::vector<std::uint32_t> instances = impl_->moveNodes(scene, nodes, moved);
   if (moved) {
-    impl_->reuse.geometryMoved(moved->before, moved->after);
+    impl_->reuse.geometryMoved(moved->before, moved->after, instances);
   } else {
     impl_->reuse.invalidate();
   }

@@ -217,6 +217,9 @@ class Renderer {
   // kSecondaryHitCacheBudget, gpu/frame_reuse.h); from the next frame that records it on. A frame whose bounces do not
   // fit keeps no state, and the frames of its view after it record without that cache.
   void setBounceCacheBudget(std::uint64_t bytes);
+  // Whether a partial re-render's primary rays whose cached hit is on no moved instance walk the moved instances
+  // alone (default on; docs/REUSE.md §4). Off traces them whole, the same bits: for same-run comparisons.
+  void setMovedInstanceWalks(bool on);
 
   struct Impl;
 

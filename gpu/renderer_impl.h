@@ -195,7 +195,9 @@ struct Renderer::Impl {
   // New light values (same count) into the bound light buffer: no BVH build, no descriptor change.
   void updateLights(const Scene& s);
   // Renderer::moveNodes.
-  void moveNodes(const Scene& s, std::span<const std::uint32_t> nodes, const std::optional<MovedBounds>& bounds);
+  // Returns the two-level BVH's instances it moved.
+  std::vector<std::uint32_t> moveNodes(const Scene& s, std::span<const std::uint32_t> nodes,
+                                       const std::optional<MovedBounds>& bounds);
   // A new scene generation, logged with the bounds a node move changed (nullopt: a change of any kind).
   void sceneChanged(std::optional<Bounds3> moved);
   // The union of the moved bounds of every change after `generation`; nullopt when one of them was not a move or
@@ -273,6 +275,10 @@ struct Renderer::Impl {
   // re-trace of those `dirty` targets.
   ReuseKey reuseKey(const RenderSettings& settings) const;
   std::uint64_t markMovedTargets(std::uint64_t targets, StageTimes& stageMs);
+  // FrameBlock::movedInstances from ReusePlan::walkedInstances (none unless the scene is on the two-level BVH and
+  // movedInstanceWalks, Renderer::setMovedInstanceWalks).
+  void writeWalkedInstances(FrameBlock& f) const;
+  bool movedInstanceWalks = true;
   void retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t dirty, std::uint64_t perBatch,
                     const RenderSettings& settings, StageTimes& stageMs, const std::function<void(double)>& progress);
   // The frame block's reuse members and views for framePlan (after fillFrame and the plan).

@@ -22,6 +22,9 @@ using uint64_t = std::uint64_t;
 
 HT_CONST uint HT_WORKGROUP_SIZE = 64u;
 HT_CONST uint HT_MAX_LIGHTS = 16u;
+// Moved instances a partial re-render's primary rays may walk alone (FrameBlock::movedInstanceIds, one uvec4); more
+// moved instances since the last frame: those rays are traced whole.
+HT_CONST uint HT_MAX_WALKED_INSTANCES = 4u;
 // Frame reuse's shadow-occlusion cache (gpu/frame_reuse.h ReusePlan::occlusionDepths, docs/REUSE.md §3): a word per
 // depth and frame path, bit l = the path's shadow ray to light l was occluded, bit HT_OCCLUSION_TRACED_SHIFT + l =
 // that ray was traced since the path's hit at that depth was found (16 lights at most, so both fit).
@@ -129,6 +132,14 @@ struct FrameBlock {
   vec4 movedLo;
   vec4 movedHi;
   uvec4 moved;
+  // ... and, on a two-level BVH whose moves since the last frame name their instances (Renderer::moveNodes), those
+  // instances: movedWalk.x of them (0: none, or not known), their instance indices in movedInstanceIds (0xFFFFFFFF
+  // past movedWalk.x) and the scene triangles of each in movedTriangles (first, count). A primary ray whose cached hit
+  // is on none of them walks only their bottom levels (trace_closest.comp REUSE_PRIMARY, bvh/ordered_traversal.h
+  // ht_trace_two_level_after_moves).
+  uvec4 movedWalk;
+  uvec4 movedInstanceIds;
+  uvec4 movedTriangles[HT_MAX_WALKED_INSTANCES];
 };
 
 // The accumulated samples of one target (docs/REUSE.md §1-§2): the sum of its n samples in sample order, and the

@@ -20,9 +20,23 @@
 // occlusion only where the word still holds one, without testing the primary segment again. One that finds the
 // cached hit again, bit for bit (it crossed the moved bounds where the node is in neither place), keeps the word:
 // shade then builds the same surface point and the same shadow rays from it as the frame that recorded them.
+// On a two-level BVH whose moved instances are known (FrameBlock::movedInstanceIds), a ray that is traced and whose
+// cached hit is on none of them enters only their bottom levels, culled at the cached hit, and takes the least of
+// the two (ht_trace_two_level_after_moves): every other triangle is where it was when the cached hit was found.
 layout(constant_id = 0) const bool REUSE_PRIMARY = false;
 
 #include "gpu/shaders/reuse_cache.glsl"
+
+// Is the cached hit (its bits) on one of the moved instances, or are they unknown (then the ray is traced whole)?
+bool cached_hit_moved(uvec4 cachedHit) {
+  uint n = FRAME.movedWalk.x;
+  if (!TWO_LEVEL || n == 0u) return true;
+  for (uint k = 0u; k < n; k++) {
+    uvec4 tris = FRAME.movedTriangles[k];
+    if (cachedHit.y - tris.x < tris.y) return true;  // a miss (HT_MISS) is on none
+  }
+  return false;
+}
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -43,7 +57,12 @@ void main() {
   if (inQueue) {
     HtRay ray = load_ray(pc.queue, i);
     HtTraceResult r;
-    if (TWO_LEVEL) {
+    if (REUSE_PRIMARY && TWO_LEVEL) {
+      // One walk for every lane (lavapipe runs both sides of a divergent branch): whole, or the moved instances alone.
+      bool walk = !cached_hit_moved(cachedHit);
+      HtHit kept = walk ? hit_of_bits(cachedHit) : ht_trace_miss(ray).hit;
+      r = ht_trace_two_level_after_moves(ray, FRAME.scene.z, kept, walk, FRAME.movedInstanceIds);
+    } else if (TWO_LEVEL) {
       r = ht_trace_two_level_ordered(ray, FRAME.scene.z);
     } else {
       r = ht_trace_closest_ordered(ray, FRAME.scene.z);
