@@ -56,7 +56,7 @@ struct ReusePlan {
   glm::vec3 movedLo{0.0f}, movedHi{0.0f};
   // PartialRetrace: the two-level BVH's instances moved since the last frame, when every move named them and they
   // are at most HT_MAX_WALKED_INSTANCES (else empty): primary rays whose cached hit is on none of them walk only
-  // their bottom levels (FrameBlock::movedInstances).
+  // their bottom levels (FrameBlock::movedInstanceIds).
   std::vector<std::uint32_t> walkedInstances;
   // The shadow-occlusion cache (shadowOcclusion; docs/REUSE.md §3): a word per depth and path, bits 0-15 the
   // occlusion of the path's shadow ray to light l at that depth, bits 16-31 whether that ray was traced since its

@@ -275,8 +275,8 @@ struct Renderer::Impl {
   // re-trace of those `dirty` targets.
   ReuseKey reuseKey(const RenderSettings& settings) const;
   std::uint64_t markMovedTargets(std::uint64_t targets, StageTimes& stageMs);
-  // FrameBlock::movedInstances from ReusePlan::walkedInstances (none unless the scene is on the two-level BVH and
-  // movedInstanceWalks, Renderer::setMovedInstanceWalks).
+  // FrameBlock::movedInstanceIds and movedTriangles from ReusePlan::walkedInstances (none unless the scene is on the
+  // two-level BVH and movedInstanceWalks, Renderer::setMovedInstanceWalks).
   void writeWalkedInstances(FrameBlock& f) const;
   bool movedInstanceWalks = true;
   void retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t dirty, std::uint64_t perBatch,
