@@ -331,6 +331,10 @@ std::string csvRows(const DisplayEdits& e) {
                                                  {"light_edit_outside_stages_ms", median(e.lightOutside)},
                                                  {"node_move_outside_stages_ms", median(e.moveOutside)}};
   for (const auto& [name, value] : rows) csv << e.display << "," << name << "," << value << "\n";
+  if (!e.moveWhole.ms.empty()) {  // --alternate-walks
+    csv << e.display << ",node_move_primary_whole_ms," << e.moveWhole.medianMs() << "\n";
+    csv << e.display << ",ratio_node_move_primary_whole," << median(e.moveWholeRatio) << "\n";
+  }
   return csv.str();
 }
 
