@@ -57,18 +57,17 @@ std::uint64_t Renderer::Impl::markMovedTargets(std::uint64_t targets, StageTimes
 
 void Renderer::Impl::writeWalkedInstances(FrameBlock& f) const {
   static_assert(gpu_shared::HT_MAX_WALKED_INSTANCES == 4, "the instance indices fill one uvec4");
-  f.movedWalk = glm::uvec4(0u);
   f.movedInstanceIds = glm::uvec4(~0u);
   const bvh::TwoLevelBvh* twoLevel = scene.twoLevel();
   if (!movedInstanceWalks || scene.layout() != bvh::BvhLayout::TwoLevel || twoLevel == nullptr) return;
-  std::uint32_t n = 0;
-  for (const std::uint32_t i : framePlan.walkedInstances) {
-    if (i >= twoLevel->instanceCount()) return;  // not this BVH's: trace those rays whole
-    const bvh::InstanceRange& range = twoLevel->instanceRange(i);
-    f.movedInstanceIds[n] = i;
-    f.movedTriangles[n++] = glm::uvec4(range.firstTriangle, range.triangleCount, 0u, 0u);
+  const std::vector<std::uint32_t>& moved = framePlan.walkedInstances;  // at most HT_MAX_WALKED_INSTANCES
+  if (std::any_of(moved.begin(), moved.end(), [&](std::uint32_t i) { return i >= twoLevel->instanceCount(); }))
+    return;  // not this BVH's: trace those rays whole
+  for (std::size_t k = 0; k < moved.size(); ++k) {
+    const bvh::InstanceRange& range = twoLevel->instanceRange(moved[k]);
+    f.movedInstanceIds[static_cast<int>(k)] = moved[k];
+    f.movedTriangles[k] = glm::uvec4(range.firstTriangle, range.triangleCount, 0u, 0u);
   }
-  f.movedWalk.x = n;
 }
 
 void Renderer::Impl::retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t dirty,

@@ -141,7 +141,7 @@ void Renderer::Impl::renderChunk(const FrameCamera& camera, const FrameShape& sh
       // left the reuse state invalid until frameDone, so planning again gives a full frame that records afresh.
       plan();
       frameBlock().movedLo = frameBlock().movedHi = glm::vec4(0.0f);  // as fillFrame left them
-      frameBlock().moved = frameBlock().movedWalk = frameBlock().movedInstanceIds = glm::uvec4(0u);
+      frameBlock().moved = frameBlock().movedInstanceIds = glm::uvec4(0u);
     }
   }
 

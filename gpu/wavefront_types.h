@@ -133,11 +133,10 @@ struct FrameBlock {
   vec4 movedHi;
   uvec4 moved;
   // ... and, on a two-level BVH whose moves since the last frame name their instances (Renderer::moveNodes), those
-  // instances: movedWalk.x of them (0: none, or not known), their instance indices in movedInstanceIds (0xFFFFFFFF
-  // past movedWalk.x) and the scene triangles of each in movedTriangles (first, count). A primary ray whose cached hit
-  // is on none of them walks only their bottom levels (trace_closest.comp REUSE_PRIMARY, bvh/ordered_traversal.h
+  // instances: their instance indices in movedInstanceIds, 0xFFFFFFFF past the last (all: none, or not known), and
+  // the scene triangles of each in movedTriangles (first, count). A primary ray whose cached hit is on none of them
+  // walks only their bottom levels (trace_closest.comp REUSE_PRIMARY, bvh/ordered_traversal.h
   // ht_trace_two_level_after_moves).
-  uvec4 movedWalk;
   uvec4 movedInstanceIds;
   uvec4 movedTriangles[HT_MAX_WALKED_INSTANCES];
 };

@@ -27,11 +27,11 @@ layout(constant_id = 0) const bool REUSE_PRIMARY = false;
 
 #include "gpu/shaders/reuse_cache.glsl"
 
-// Is the cached hit (its bits) on one of the moved instances, or are they unknown (then the ray is traced whole)?
+// Is the cached hit (its bits) on one of the moved instances, or are they not known (then the ray is traced whole)?
 bool cached_hit_moved(uvec4 cachedHit) {
-  uint n = FRAME.movedWalk.x;
-  if (!TWO_LEVEL || n == 0u) return true;
-  for (uint k = 0u; k < n; k++) {
+  uvec4 ids = FRAME.movedInstanceIds;
+  if (ids.x == 0xFFFFFFFFu) return true;
+  for (uint k = 0u; k < HT_MAX_WALKED_INSTANCES && ids[k] != 0xFFFFFFFFu; k++) {
     uvec4 tris = FRAME.movedTriangles[k];
     if (cachedHit.y - tris.x < tris.y) return true;  // a miss (HT_MISS) is on none
   }
@@ -59,9 +59,8 @@ void main() {
     HtTraceResult r;
     if (REUSE_PRIMARY && TWO_LEVEL) {
       // One walk for every lane (lavapipe runs both sides of a divergent branch): whole, or the moved instances alone.
-      bool walk = !cached_hit_moved(cachedHit);
-      HtHit kept = walk ? hit_of_bits(cachedHit) : ht_trace_miss(ray).hit;
-      r = ht_trace_two_level_after_moves(ray, FRAME.scene.z, kept, walk, FRAME.movedInstanceIds);
+      r = ht_trace_two_level_after_moves(ray, FRAME.scene.z, hit_of_bits(cachedHit), !cached_hit_moved(cachedHit),
+                                         FRAME.movedInstanceIds);
     } else if (TWO_LEVEL) {
       r = ht_trace_two_level_ordered(ray, FRAME.scene.z);
     } else {

@@ -131,22 +131,16 @@ bool onInstances(const InstancedSoup& soup, const HtHit& hit, const std::vector<
 // Every ray whose hit before the move is on no moved instance: the kept hit and the moved instances' walks give the
 // whole trace's hit of the moved scene bit for bit. Returns how many of those rays now hit a moved instance.
 uint32_t expectWalksOfMovedInstancesMatch(const InstancedSoup& soup, const TwoLevelBvh& twoLevel,
-                                          const std::vector<HtRay>& rays, const std::vector<HtHit>& before,
+                                          const std::vector<HtRay>& rays, const std::vector<HtTraceResult>& before,
                                           const std::vector<uint32_t>& moved) {
   uint32_t nowOnMoved = 0;
   for (size_t i = 0; i < rays.size(); ++i) {
-    if (onInstances(soup, before[i], moved)) continue;
+    if (onInstances(soup, before[i].hit, moved)) continue;
     const HtHit whole = traceClosestTwoLevel(twoLevel, rays[i]).hit;
-    EXPECT_TRUE(sameHit(closestAfterMoves(twoLevel, rays[i], before[i], moved), whole)) << "ray " << i;
+    EXPECT_TRUE(sameHit(closestAfterMoves(twoLevel, rays[i], before[i].hit, moved), whole)) << "ray " << i;
     nowOnMoved += onInstances(soup, whole, moved);
   }
   return nowOnMoved;
-}
-
-std::vector<HtHit> closestHits(const TwoLevelBvh& twoLevel, const std::vector<HtRay>& rays) {
-  std::vector<HtHit> hits;
-  for (const HtRay& ray : rays) hits.push_back(traceClosestTwoLevel(twoLevel, ray).hit);
-  return hits;
 }
 
 TEST(BvhTwoLevelTest, ClosestHitAfterMovesFromTheKeptHitAndTheMovedInstancesAlone) {
@@ -157,7 +151,7 @@ TEST(BvhTwoLevelTest, ClosestHitAfterMovesFromTheKeptHitAndTheMovedInstancesAlon
     TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
     const std::vector<HtRay> rays = randomRays(rng, soup, test::scaled(1500, 300));
     for (int move = 0; move < 4; ++move) {
-      const std::vector<HtHit> before = closestHits(twoLevel, rays);
+      const std::vector<HtTraceResult> before = traceClosestTwoLevelBatch(twoLevel, rays);
       const std::vector<uint32_t> moved = moveRandomInstances(rng, soup, twoLevel, move % 2 == 1 ? 2 : 1);
       nowOnMoved += expectWalksOfMovedInstancesMatch(soup, twoLevel, rays, before, moved);
     }
@@ -179,7 +173,7 @@ TEST(BvhTwoLevelTest, ClosestHitAfterAMoveOntoAnotherInstanceKeepsTheLeastTriang
     TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
     std::mt19937 rng(9);
     const std::vector<HtRay> rays = randomRays(rng, soup, 600);
-    const std::vector<HtHit> before = closestHits(twoLevel, rays);
+    const std::vector<HtTraceResult> before = traceClosestTwoLevelBatch(twoLevel, rays);
     soup.place(movedInstance, here);
     const std::vector<uint32_t> moved{movedInstance};
     twoLevel.updateInstances(soup.positions, soup.triangles, moved);
