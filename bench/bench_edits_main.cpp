@@ -35,6 +35,8 @@ namespace {
 
 const char* const kCommand = "holotrace-bench-edits";
 
+enum class Alternate { None, Walks, BounceHits };
+
 struct EditOptions {
   std::vector<std::string> displays{"builtin:portrait", "bench/configs/quality-hpo-14.json"};
   std::string scene = "builtin:showcase", node = "green-sphere";
@@ -44,11 +46,13 @@ struct EditOptions {
   bool fusedFloatMath = false;
   bool freshBuffers = false;  // --fresh-buffers: no Renderer::recycle
   double maxDirtyShare = gpu::RenderSettings{}.reuseMaxDirtyShare;
-  bool alternateWalks = false;  // --alternate-walks: every other move traces its primary rays whole
+  // --alternate-walks / --alternate-bounce-hits: every other four timed moves run without the moved-instance walks
+  // (Renderer::setMovedInstanceWalks) or without the cached bounce hits (Renderer::setBounceHitReuse).
+  Alternate alternate = Alternate::None;
   std::optional<std::string> csvPath;
 };
 
-const std::array<cli::OptionSpec, 13> kSpecs = {{
+const std::array<cli::OptionSpec, 14> kSpecs = {{
     {"--displays", "", "LIST", "comma-separated displays (default builtin:portrait,bench/configs/quality-hpo-14.json)"},
     {"--scene", "", "SPEC", "scene (default builtin:showcase)"},
     {"--node", "", "NAME", "the node moved (default green-sphere)"},
@@ -60,6 +64,9 @@ const std::array<cli::OptionSpec, 13> kSpecs = {{
     {"--alternate-walks", "", "",
      "every other timed move traces its primary rays whole instead of walking the moved instances alone "
      "(Renderer::setMovedInstanceWalks), reported apart: a same-run comparison"},
+    {"--alternate-bounce-hits", "", "",
+     "every other timed move traces its bounce rays instead of taking their cached hits (Renderer::setBounceHitReuse), "
+     "reported apart: a same-run comparison"},
     {"--runs", "", "N", "timed runs after one warm-up (default 5)"},
     {"--device", "", "N", "Vulkan device index (default: automatic)"},
     {"--csv", "", "PATH", "one row per display and quantity"},
@@ -97,9 +104,12 @@ std::optional<EditOptions> parseOptions(std::span<const std::string> args) {
   o.csvPath = parsed.text("--csv");
   o.fusedFloatMath = parsed.has("--fused-math");
   o.freshBuffers = parsed.has("--fresh-buffers");
-  o.alternateWalks = parsed.has("--alternate-walks");
-  if (o.alternateWalks && o.runs < 4)
-    throw UsageError(cli::usageMessage(kCommand, "--alternate-walks needs --runs 4 or more (they alternate in fours)"));
+  if (parsed.has("--alternate-walks") && parsed.has("--alternate-bounce-hits"))
+    throw UsageError(cli::usageMessage(kCommand, "--alternate-walks and --alternate-bounce-hits exclude each other"));
+  if (parsed.has("--alternate-walks")) o.alternate = Alternate::Walks;
+  if (parsed.has("--alternate-bounce-hits")) o.alternate = Alternate::BounceHits;
+  if (o.alternate != Alternate::None && o.runs < 4)
+    throw UsageError(cli::usageMessage(kCommand, "--alternate-* needs --runs 4 or more (they alternate in fours)"));
   return o;
 }
 
@@ -143,7 +153,8 @@ struct DisplayEdits {
   double coverage = 0.0;  // fraction of primary samples that hit the moved node (the first recorded frame)
   TimingSeries full, recording, light, move, rebuild;
   std::vector<double> lightRatio, moveRatio, recordRatio, traced, changed;
-  // --alternate-walks: the moves whose primary rays were traced whole (the others are in `move`, `moveRatio`).
+  // --alternate-*: the moves without the walks or the cached bounce hits (the others are in `move`, `moveRatio`).
+  Alternate alternate = Alternate::None;
   TimingSeries moveWhole;
   std::vector<double> moveWholeRatio;
   std::vector<gpu::StageTiming> moveWholeStages;
@@ -195,6 +206,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
   on.reuse = true;
   on.reuseMaxDirtyShare = o.maxDirtyShare;
   DisplayEdits e{spec, frameShape(camera).targets(), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+  e.alternate = o.alternate;
   std::cout << kCommand << ": " << spec << " x " << o.scale << ", " << e.targets << " targets" << std::endl;
   const glm::dvec3 step(o.move * glm::length(scene.bounds().extent()), 0.0, 0.0);
   const float intensity = scene.lights[0].intensity;
@@ -225,8 +237,9 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     world[3] += glm::dvec4(run % 2 ? -step : step, 0.0);
     setNodeWorldMatrix(scene, o.node, world);
     // (period 4: each setting gets both move directions and both orders of the full frames)
-    const bool walks = !o.alternateWalks || (run - 1) % 4 < 2;
-    reusing.setMovedInstanceWalks(walks);
+    const bool walks = o.alternate == Alternate::None || (run - 1) % 4 < 2;
+    reusing.setMovedInstanceWalks(walks || o.alternate != Alternate::Walks);
+    reusing.setBounceHitReuse(walks || o.alternate != Alternate::BounceHits);
     t0 = std::chrono::steady_clock::now();
     reusing.moveNodes(scene, movedNodes, gpu::MovedBounds{before, nodeWorldBounds(scene, node)});
     const double rebuild = msSince(t0);
@@ -293,10 +306,11 @@ void print(const DisplayEdits& e) {
                 e.movesInFull, e.move.ms.size());
   }
   if (!e.moveWhole.ms.empty()) {
-    std::printf(
-        "  node move, primary rays whole: %9.1f ms   ratio %.3f   (walks / whole: %.3f, medians of %zu / %zu)\n",
-        e.moveWhole.medianMs(), median(e.moveWholeRatio), median(e.moveRatio) / median(e.moveWholeRatio),
-        e.move.ms.size(), e.moveWhole.ms.size());
+    const bool walks = e.alternate == Alternate::Walks;
+    std::printf("  node move, %s: %9.1f ms   ratio %.3f   (%s: %.3f, medians of %zu / %zu)\n",
+                walks ? "primary rays whole" : "bounce rays traced", e.moveWhole.medianMs(), median(e.moveWholeRatio),
+                walks ? "walks / whole" : "cached / traced", median(e.moveRatio) / median(e.moveWholeRatio),
+                e.move.ms.size(), e.moveWhole.ms.size());
   }
   std::printf("  stages, medians of the runs (GPU ms; readback: host):");
   for (const auto* stages : {&e.fullStages, &e.lightStages, &e.moveStages, &e.moveWholeStages}) {
@@ -304,7 +318,7 @@ void print(const DisplayEdits& e) {
     std::printf("\n   %s", stages == &e.fullStages    ? "full "
                            : stages == &e.lightStages ? "light"
                            : stages == &e.moveStages  ? "move "
-                                                      : "whole");
+                                                      : "off  ");
     for (const gpu::StageTiming& s : *stages) std::printf(" %s %.1f", s.name.c_str(), s.ms);
   }
   std::printf("\n  host time outside the stages (ms, medians): full %.1f, light %.1f, move %.1f\n",
@@ -331,9 +345,10 @@ std::string csvRows(const DisplayEdits& e) {
                                                  {"light_edit_outside_stages_ms", median(e.lightOutside)},
                                                  {"node_move_outside_stages_ms", median(e.moveOutside)}};
   for (const auto& [name, value] : rows) csv << e.display << "," << name << "," << value << "\n";
-  if (!e.moveWhole.ms.empty()) {  // --alternate-walks
-    csv << e.display << ",node_move_primary_whole_ms," << e.moveWhole.medianMs() << "\n";
-    csv << e.display << ",ratio_node_move_primary_whole," << median(e.moveWholeRatio) << "\n";
+  if (!e.moveWhole.ms.empty()) {  // --alternate-*
+    const std::string off = e.alternate == Alternate::Walks ? "primary_whole" : "bounces_traced";
+    csv << e.display << ",node_move_" << off << "_ms," << e.moveWhole.medianMs() << "\n";
+    csv << e.display << ",ratio_node_move_" << off << "," << median(e.moveWholeRatio) << "\n";
   }
   return csv.str();
 }

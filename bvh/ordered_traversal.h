@@ -54,6 +54,10 @@ struct TwoLevelView {
 
 // 1 + 2^-12: the loosening of the current best t used for culling (see the header comment).
 HT_CONST float HT_ORDERED_CULL_SCALE = 1.000244140625f;
+// 1 - 2^-12: the same loosening of a lower bound on the hits still to be found (ht_trace_two_level_after_moves). A
+// triangle whose rounded t is >= that bound lies in boxes whose conservative exit distance is at least the bound
+// scaled by this.
+HT_CONST float HT_ORDERED_NEAR_SCALE = 0.999755859375f;
 
 // Culling distance for the current best hit (a miss culls at the ray's own tmax).
 HT_INLINE float ht_ordered_cull_t(HT_IN(HtHit) best, float rayTmax) {
@@ -231,13 +235,16 @@ HT_INLINE HtHit ht_least_hit(HT_IN(HtHit) a, HT_IN(HtHit) b) {
 #if !defined(HT_GLSL) || defined(HT_LOAD_TOP_NODE)
 // Walk of a two-level BVH: the top level over instance boxes, each instance's own BVH below; anyHit as in
 // ht_ordered_bvh. (GLSL: only where the including shader defines HT_LOAD_TOP_NODE and HT_LOAD_INSTANCE.)
-// `cull0`: the culling distance it starts from (the ray's tmax for a whole trace); `filtered`: only the bottom
-// levels of the instances whose indices are in `only` are walked (ht_trace_two_level_after_moves).
+// `cull0`: the culling distance it starts from (the ray's tmax for a whole trace); `filtered`: the bottom levels of
+// the instances whose indices are in `only` are walked whole, the others not at all, or with `enterOthers` from
+// `othersNear` on: their boxes that end before it are culled (ht_trace_two_level_after_moves).
 HT_INLINE HtTraceResult ht_two_level_walk_filtered(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
-                                                   bool anyHit, float cull0, bool filtered, uvec4 only) {
+                                                   bool anyHit, float cull0, bool filtered, uvec4 only,
+                                                   bool enterOthers, float othersNear) {
   HtTraceResult res = ht_trace_miss(ray);
   if (!ht_ray_is_valid(ray)) return res;
   HtOrderedRay r = ht_make_ordered_ray(ray);
+  float tmin = r.slab.tmin;
   float cull = cull0;
   uint stack[HT_BVH_MAX_DEPTH];
   uint sp = 0u;
@@ -257,10 +264,13 @@ HT_INLINE HtTraceResult ht_two_level_walk_filtered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
       for (uint e = first; e < end && !overflow; e++) {
         steps++;  // this loop's iterations count too (lavapipe's loop budget, docs/TOOLCHAIN.md §0)
         uvec4 inst = HT_LOAD_INSTANCE(e);
-        if (filtered && inst.z != only.x && inst.z != only.y && inst.z != only.z && inst.z != only.w) continue;
+        bool other = filtered && inst.z != only.x && inst.z != only.y && inst.z != only.z && inst.z != only.w;
+        if (other && !enterOthers) continue;
+        r.slab.tmin = other ? max(tmin, othersNear) : tmin;
         overflow = !ht_ordered_bvh(HT_BVH_ARG r, inst.x, inst.y, anyHit, res.hit, cull, steps, stepLimit);
         if (anyHit && res.hit.triId != HT_MISS) break;
       }
+      r.slab.tmin = tmin;
       if (overflow) break;
       if (sp == 0u || (anyHit && res.hit.triId != HT_MISS)) {
         finished = true;
@@ -304,7 +314,8 @@ HT_INLINE HtTraceResult ht_two_level_walk_filtered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
 
 HT_INLINE HtTraceResult ht_two_level_walk(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
                                           bool anyHit) {
-  return ht_two_level_walk_filtered(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, anyHit, ray.tmax, false, uvec4(0u));
+  return ht_two_level_walk_filtered(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, anyHit, ray.tmax, false, uvec4(0u),
+                                    false, 0.0f);
 }
 
 // Least (t, id) hit of a two-level BVH.
@@ -312,19 +323,25 @@ HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
   return ht_two_level_walk(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, false);
 }
 
-// The closest hit of a ray after some instances moved, from its closest hit before the move, `kept`, which lies on
-// none of them (docs/REUSE.md §4, "Primary rays that walk the moved instances alone"). Every triangle outside the
-// moved instances is where it was, so the least (t, id) among them is still `kept`. The least among the moved
-// instances' triangles where they are now comes from a walk that enters their bottom levels alone (`moved`: their
-// instance indices, 0xFFFFFFFF for none), culled from the start at `kept`'s distance: a moved triangle with the same
-// or a smaller t still passes the loosened culling. The closest hit is the least of the two, the same bits as a
-// whole trace of the moved scene, because the closest hit is the order-free one. With `walk` false (or `kept` a
-// miss and every instance listed) it is the whole trace.
+// The closest hit of a ray after some instances moved (`moved`: their instance indices, 0xFFFFFFFF for none), from
+// its closest hit before the move, `kept` (docs/REUSE.md §4, "Primary rays that walk the moved instances alone").
+// Every triangle outside the moved instances is where it was, and none of them came before `kept`.
+// - `kept` on none of the moved instances (`keptMoved` false): the least (t, id) among the others is still `kept`.
+//   The least among the moved instances' triangles where they are now comes from a walk that enters their bottom
+//   levels alone, culled from the start at `kept`'s distance: a moved triangle with the same or a smaller t still
+//   passes the loosened culling. The closest hit is the least of the two.
+// - `kept` on a moved instance: the moved instances are walked whole, the others from `kept`'s distance on (loosened
+//   by HT_ORDERED_NEAR_SCALE), since none of their triangles comes before it: their boxes that end sooner, such as
+//   those around the origin of a ray leaving a surface, are culled.
+// Either way the result is a whole trace's of the moved scene, bit for bit, because the closest hit is the
+// order-free one. With `walk` false (`kept` unknown) it is the whole trace.
 HT_INLINE HtTraceResult ht_trace_two_level_after_moves(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
-                                                       HT_IN(HtHit) kept, bool walk, uvec4 moved) {
+                                                       HT_IN(HtHit) kept, bool walk, bool keptMoved, uvec4 moved) {
+  bool keptStays = walk && !keptMoved;
   HtTraceResult res = ht_two_level_walk_filtered(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, false,
-                                                 walk ? ht_ordered_cull_t(kept, ray.tmax) : ray.tmax, walk, moved);
-  if (walk) res.hit = ht_least_hit(kept, res.hit);
+                                                 keptStays ? ht_ordered_cull_t(kept, ray.tmax) : ray.tmax, walk, moved,
+                                                 keptMoved, kept.t * HT_ORDERED_NEAR_SCALE);
+  if (keptStays) res.hit = ht_least_hit(kept, res.hit);
   return res;
 }
 

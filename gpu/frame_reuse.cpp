@@ -58,7 +58,7 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
     invalidate();
     if (!wanted) {  // free the memory
       for (DeviceBuffer* b : {&primaryRays, &primaryHits, &segmentMasks, &dirtyList, &secondaryCache, &secondaryCounts,
-                              &shadowOcclusion}) {
+                              &shadowOcclusion, &bounceFirst}) {
         *b = DeviceBuffer();
       }
     }
@@ -87,18 +87,22 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
   // The secondary cache takes at most the budget; whether the frame's bounce queues fit is known as they are traced.
   // It starts at a quarter of the paths (the showcase's bounces take 5-7 % of paths x depths) and grows by doubling.
   // Its texel view (HT_BINDING_REUSE_BOUNCES) covers it whole: 16-byte texels.
-  const std::uint64_t entries = std::min(
-      {paths * secondaryDepths, secondaryBudget_ / kSecondaryBytesPerPath, maxTexels * 16 / kSecondaryBytesPerPath});
+  const std::uint64_t entries = std::min({paths * secondaryDepths, secondaryBudget_ / kSecondaryBytesPerPath,
+                                          (maxTexels * 16 - 32) / kSecondaryBytesPerPath});
   if (!sameView) secondaryTooLarge_ = false;
   const bool secondaryFits = p.primaryCached && secondaryDepths > 0 && entries > 0 && !secondaryTooLarge_;
   p.recordSecondary =
       secondaryFits && (p.mode == FrameReuse::None || (p.mode == FrameReuse::CachedPrimaryHits && !secondaryValid_));
   p.loadSecondary = p.mode == FrameReuse::CachedPrimaryHits && secondaryFits && secondaryValid_;
   p.secondaryExact = p.mode == FrameReuse::PartialRetrace && secondaryMarkable_ && cachedPaths_ == paths;
+  // Every frame that makes secondaryMarkable_ true wrote the links (recordSecondary) or kept those of the frame that
+  // did (loadSecondary, or a partial re-render, which clears its paths' first links).
+  p.bounceLinks = p.secondaryExact && bounceFirst.size() >= paths * sizeof(std::uint32_t);
   if (p.recordSecondary) {
     const std::uint64_t held = secondaryCache.size() / kSecondaryBytesPerPath;  // a buffer kept from earlier frames
     secondaryEntries_ = std::min(entries, std::max({paths / 4, std::uint64_t{1024}, held}));
-    ensure(secondaryCache, secondaryEntries_ * kSecondaryBytesPerPath, MemoryPlace::Device);
+    ensure(secondaryCache, secondaryBytes(secondaryEntries_), MemoryPlace::Device);
+    ensure(bounceFirst, paths * sizeof(std::uint32_t), MemoryPlace::Device);
     secondaryUsed_ = 0;
     secondaryOverflow_ = false;
     countsPerBatch_ = perBatch;
@@ -174,27 +178,31 @@ std::vector<FrameReuseState::SecondaryQueue> FrameReuseState::secondaryQueues() 
 
 namespace {
 
-// Where a secondary cache of `entries` entries keeps its rays, hits and path indices: in that order, so that each
-// array starts at a multiple of 16 B and the marking pass reads all three through one RGBA32UI texel view
-// (HT_BINDING_REUSE_BOUNCES, mark_dirty.comp).
+// Where a secondary cache of `entries` entries keeps its rays, hits, path indices and next links: in that order, so
+// that each array starts at a multiple of 16 B and the marking pass and trace_closest read them through one RGBA32UI
+// texel view (HT_BINDING_REUSE_BOUNCES, mark_dirty.comp, reuse_cache.glsl).
 FrameReuseState::SecondaryRegion secondaryLayout(std::uint64_t entries) {
   const VkDeviceSize rays = entries * sizeof(gpu_shared::HtRay);
-  return {0, rays + entries * sizeof(gpu_shared::HtHit), rays};
+  const VkDeviceSize paths = rays + entries * sizeof(gpu_shared::HtHit);
+  return {0, paths, rays, paths + (entries + 3) / 4 * 16};
 }
 
 }  // namespace
 
+VkDeviceSize secondaryBytes(std::uint64_t entries) { return secondaryLayout(entries).nexts + (entries + 3) / 4 * 16; }
+
 FrameReuseState::SecondaryRegion FrameReuseState::secondaryRegion() const { return secondaryLayout(secondaryEntries_); }
 
 void FrameReuseState::growSecondary(std::uint64_t entries) {
-  DeviceBuffer grown(vk_, entries * kSecondaryBytesPerPath, MemoryPlace::Device);
+  DeviceBuffer grown(vk_, secondaryBytes(entries), MemoryPlace::Device);
   if (secondaryUsed_ > 0) {  // the entries so far, each array to its place in the larger layout
     const SecondaryRegion from = secondaryRegion(), to = secondaryLayout(entries);
     const VkBufferCopy parts[] = {{from.rays, to.rays, secondaryUsed_ * sizeof(gpu_shared::HtRay)},
                                   {from.paths, to.paths, secondaryUsed_ * sizeof(std::uint32_t)},
-                                  {from.hits, to.hits, secondaryUsed_ * sizeof(gpu_shared::HtHit)}};
+                                  {from.hits, to.hits, secondaryUsed_ * sizeof(gpu_shared::HtHit)},
+                                  {from.nexts, to.nexts, secondaryUsed_ * sizeof(std::uint32_t)}};
     OneShotCommands copy(vk_);
-    vkCmdCopyBuffer(copy.cmd(), secondaryCache.handle(), grown.handle(), 3, parts);
+    vkCmdCopyBuffer(copy.cmd(), secondaryCache.handle(), grown.handle(), 4, parts);
     copy.submitAndWait();
   }
   secondaryCache = std::move(grown);
@@ -203,8 +211,9 @@ void FrameReuseState::growSecondary(std::uint64_t entries) {
 
 std::optional<std::uint32_t> FrameReuseState::reserveSecondary(std::uint64_t batchFirst, std::uint32_t depth,
                                                                std::uint32_t count) {
-  const std::uint64_t limit = std::min<std::uint64_t>(secondaryBudget_ / kSecondaryBytesPerPath,
-                                                      vk_.info.maxTexelBufferElements * 16ull / kSecondaryBytesPerPath);
+  const std::uint64_t limit =
+      std::min<std::uint64_t>(secondaryBudget_ / kSecondaryBytesPerPath,
+                              (vk_.info.maxTexelBufferElements * 16ull - 32) / kSecondaryBytesPerPath);
   if (secondaryOverflow_ || secondaryUsed_ + count > limit) {
     secondaryOverflow_ = true;
     return std::nullopt;

@@ -22,12 +22,13 @@ namespace ht::gpu {
 inline constexpr std::uint64_t kPrimaryHitCacheBudget = 1ull << 30;
 inline constexpr std::uint64_t kPrimaryHitBytesPerPath = sizeof(gpu_shared::HtRay) + sizeof(gpu_shared::HtHit);
 // The closest-hit queues of the later depths (mirror and glass bounces), which do not depend on the lights either:
-// per entry a ray, its path index and its hit (52 B); the same kind of budget. The queues are packed one after the
-// other, so the cache holds the entries the frame traced, not a batch's worth per depth: a full Portrait frame of
-// the showcase (9.4 M paths, 4 bounce depths) would need 1.96 GB for the worst case and holds 2.08 M entries (108 MB).
+// per entry a ray, its path index, its hit and the entry of its path's next bounce (56 B); the same kind of budget. The
+// queues are packed one after the other, so the cache holds the entries the frame traced, not a batch's worth per
+// depth: a full Portrait frame of the showcase (9.4 M paths, 4 bounce depths) would need 1.96 GB for the worst case and
+// holds 2.08 M entries (108 MB).
 inline constexpr std::uint64_t kSecondaryHitCacheBudget = 1ull << 30;
 inline constexpr std::uint64_t kSecondaryBytesPerPath =
-    sizeof(gpu_shared::HtRay) + sizeof(std::uint32_t) + sizeof(gpu_shared::HtHit);
+    sizeof(gpu_shared::HtRay) + 2 * sizeof(std::uint32_t) + sizeof(gpu_shared::HtHit);
 
 // The identity of a frame for reuse: its FrameBlock as filled for the base pass (camera, shape, spp, seed, filter,
 // depth, light count, region) and the settings outside that block. Two frames with equal keys trace the same
@@ -51,6 +52,10 @@ struct ReusePlan {
   // zero (recorded by a full frame of this view and still current for every target not re-traced since); the
   // marking pass tests those entries and their shadow rays exactly (mark_dirty.comp MARK_SECONDARY_ENTRIES).
   bool secondaryExact = false;
+  // PartialRetrace with secondaryExact: the bounce links (FrameReuseState::bounceFirst) hold, for every path not
+  // re-traced since the cache was filled, the entries of its bounce rays, whose hits a bounce ray of the partial
+  // re-render takes when it is the cached ray bit for bit and its cached segment avoids the padded moved bounds.
+  bool bounceLinks = false;
   // PartialRetrace: the cells of the moved bounds (lo, hi words) and those bounds padded by HT_GRID_PAD cells.
   std::uint32_t gridCells[2] = {0, 0};
   glm::vec3 movedLo{0.0f}, movedHi{0.0f};
@@ -109,9 +114,14 @@ class FrameReuseState {
   // from the queue counters by the frame that fills the secondary cache; host visible.
   // shadowOcclusion: with the primary hits, a word per path and depth (depth-major: word depth * paths + path), for
   // depth 0 and, with the secondary cache, every later depth (ReusePlan::occlusionDepths).
-  DeviceBuffer primaryRays, primaryHits, segmentMasks, dirtyList, secondaryCache, secondaryCounts, shadowOcclusion;
+  // bounceFirst: with the secondary cache, per frame path the entry of its depth-1 ray (HT_NO_BOUNCE: none), and
+  // the cache's `nexts` the entry of the next depth's ray of the entry's path, both written by the frame that fills
+  // the cache (shade.comp LINK_BOUNCES). A partial re-render sets the first link of every path it traces to
+  // HT_NO_BOUNCE once the path is done (resolve.comp CLEAR_BOUNCE_LINKS): its entries may no longer be current.
+  DeviceBuffer primaryRays, primaryHits, segmentMasks, dirtyList, secondaryCache, secondaryCounts, shadowOcclusion,
+      bounceFirst;
   struct SecondaryRegion {
-    VkDeviceSize rays, paths, hits;  // byte offsets of entry 0's ray, path index and hit
+    VkDeviceSize rays, paths, hits, nexts;  // byte offsets of entry 0's ray, path index, hit and next link
   };
   SecondaryRegion secondaryRegion() const;
   std::uint64_t secondaryEntries() const { return secondaryEntries_; }
@@ -121,6 +131,9 @@ class FrameReuseState {
   // cache's free space; none when they do not fit (the cache overflowed: the frame then keeps no state).
   std::optional<std::uint32_t> reserveSecondary(std::uint64_t batchFirst, std::uint32_t depth, std::uint32_t count);
   std::uint32_t secondaryBase(std::uint64_t batchFirst, std::uint32_t depth) const;
+  // The entry the next queue reserved will start at (the bounce links of the queue shaded before it point there).
+  std::uint32_t nextSecondaryEntry() const { return static_cast<std::uint32_t>(secondaryUsed_); }
+  bool secondaryOverflowed() const { return secondaryOverflow_; }
   // The cached queues of depths >= 1 (what the frame that filled the cache traced), for the marking pass of a frame
   // whose plan says secondaryExact; between frames, while secondaryMarkable().
   struct SecondaryQueue {
@@ -178,6 +191,10 @@ inline constexpr std::uint32_t kAccumulationBoundWords = 3;
 // The moved bounds `moved` padded by HT_GRID_PAD cells of `grid`, what the marking passes test segments against (an
 // empty box: one no segment meets).
 Bounds3 paddedMovedBounds(const Bounds3& moved, const gpu_shared::SegmentGrid& grid);
+
+// Bytes of a secondary cache of `entries` entries (its four arrays, each on a 16-byte boundary: at most
+// kSecondaryBytesPerPath per entry + 32).
+VkDeviceSize secondaryBytes(std::uint64_t entries);
 
 // CPU reference of an accumulation's marking pass (mark_dirty.comp MARK_TARGETS with RESET_ACCUMULATION, then
 // mark_accumulated.comp): the targets (ascending) whose mask words 0-1 share a cell with `cells`, or whose words

@@ -100,14 +100,14 @@ void Renderer::Impl::runMarkingPass(std::uint64_t targets, bool resetAccumulatio
   bindReuseTexels(masks, primaryCached, !secondary.empty());
   struct Unbind {
     Impl& impl;
-    bool primaryCached;
+    bool primaryCached, bouncesLinked;
     ~Unbind() {
       try {
-        impl.bindReuseTexels(impl.reuseTexelDummy, primaryCached, false);
+        impl.bindReuseTexels(impl.reuseTexelDummy, primaryCached, bouncesLinked);
       } catch (const std::exception&) {  // (unwinding from the pass's own error: that one is reported)
       }
     }
-  } unbind{*this, primaryCached};
+  } unbind{*this, primaryCached, !resetAccumulation && framePlan.bounceLinks};  // a partial re-render reads the links
   beginCommands();
   PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
   for (const FrameReuseState::SecondaryQueue& q : secondary) {  // first: they mark their targets' words 0-1
@@ -186,8 +186,20 @@ void Renderer::Impl::copySecondary(std::uint32_t depth, std::uint32_t batchFirst
   }
 }
 
+void Renderer::Impl::setBounceLinks(std::uint32_t depth, std::uint32_t batchFirst) {
+  FrameBlock& f = frameBlock();
+  if (reuse.secondaryOverflowed()) {  // the frame keeps no state: its links would point past the cache
+    f.bounceFirst = f.bounceNext = 0;
+    return;
+  }
+  f.bounceNext = reuse.secondaryCache.address() + reuse.secondaryRegion().nexts;  // the cache may have grown
+  f.bounceLinks =
+      glm::uvec4(depth > 0 ? reuse.secondaryBase(batchFirst, depth) : 0u, reuse.nextSecondaryEntry(), 0u, 0u);
+}
+
 void Renderer::setBounceCacheBudget(std::uint64_t bytes) { impl_->reuse.setSecondaryBudget(bytes); }
 void Renderer::setMovedInstanceWalks(bool on) { impl_->movedInstanceWalks = on; }
+void Renderer::setBounceHitReuse(bool on) { impl_->bounceHitReuse = on; }
 
 Renderer::ReuseSnapshot Renderer::reuseSnapshot() const {
   ReuseSnapshot snap;

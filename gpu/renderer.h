@@ -220,6 +220,10 @@ class Renderer {
   // Whether a partial re-render's primary rays whose cached hit is on no moved instance walk the moved instances
   // alone (default on; docs/REUSE.md §4). Off traces them whole, the same bits: for same-run comparisons.
   void setMovedInstanceWalks(bool on);
+  // Whether a partial re-render's bounce rays that are their paths' cached rays take the cached hits where the move
+  // cannot have changed them (default on; docs/REUSE.md §4). Off traces them, the same bits: for same-run
+  // comparisons.
+  void setBounceHitReuse(bool on);
 
   struct Impl;
 

@@ -279,6 +279,10 @@ struct Renderer::Impl {
   // two-level BVH and movedInstanceWalks, Renderer::setMovedInstanceWalks).
   void writeWalkedInstances(FrameBlock& f) const;
   bool movedInstanceWalks = true;
+  bool bounceHitReuse = true;  // Renderer::setBounceHitReuse
+  // While a frame fills the bounce cache: the frame block's links for the shade pass of `depth` of the batch from
+  // `batchFirst` (FrameBlock::bounceLinks), after that depth's queue took its entries; none once the cache overflowed.
+  void setBounceLinks(std::uint32_t depth, std::uint32_t batchFirst);
   void retraceDirty(const FrameCamera& camera, const FrameShape& shape, std::uint64_t dirty, std::uint64_t perBatch,
                     const RenderSettings& settings, StageTimes& stageMs, const std::function<void(double)>& progress);
   // The frame block's reuse members and views for framePlan (after fillFrame and the plan).

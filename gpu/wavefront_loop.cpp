@@ -176,7 +176,12 @@ void Renderer::Impl::applyFramePlan(RenderResult& result) {
   f.primaryRays = framePlan.primaryCached ? reuse.primaryRays.address() : 0;
   f.primaryHits = framePlan.primaryCached ? reuse.primaryHits.address() : 0;
   f.shadowOcclusion = framePlan.primaryCached ? reuse.shadowOcclusion.address() : 0;
-  bindReuseTexels(reuseTexelDummy, framePlan.primaryCached, false);  // the marking pass views the rest
+  // The marking pass views the rest; a partial re-render reads the bounce cache's links (trace_closest REUSE_BOUNCES).
+  bindReuseTexels(reuseTexelDummy, framePlan.primaryCached, framePlan.bounceLinks);
+  const bool linking = framePlan.recordSecondary || framePlan.bounceLinks;
+  f.bounceFirst = linking ? reuse.bounceFirst.address() : 0;
+  f.bounceNext = 0;  // set per depth while a frame fills the cache (it may grow)
+  f.bounceLinks = glm::uvec4(0u);
   result.reuse = framePlan.mode;
   f.frame.w = framePlan.keptLightRays;  // after reuseKey: not part of the frame's identity
 }
@@ -247,6 +252,13 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   if (reusePrimary) raygenConstants = withConstant(std::move(raygenConstants), 5, 1u);
   const ComputePipeline& raygen = pipeline(ShaderId::Raygen, raygenConstants);
   const ComputePipeline& tracePrimary = reusePrimary ? pipeline(ShaderId::TraceClosest, traceSpec({1u})) : traceClosest;
+  // ... and its bounce rays take their cached hits where they are the cached rays (trace_closest REUSE_BOUNCES); the
+  // first links of its paths are cleared as they are resolved (resolve CLEAR_BOUNCE_LINKS), whether or not it used
+  // them. A frame that fills the bounce cache links its entries (shade LINK_BOUNCES).
+  const bool clearLinks =
+      which == TracedTargets::Dirty && framePlan.mode == FrameReuse::PartialRetrace && framePlan.bounceLinks;
+  const ComputePipeline& traceBounce =
+      clearLinks && bounceHitReuse ? pipeline(ShaderId::TraceClosest, traceSpec({0u, 1u})) : traceClosest;
   // The shadow-occlusion cache (ReusePlan::occlusionDepths): shade.comp's OCCLUSION mode at each depth -- record, take
   // the recorded occlusion of the lights a light edit kept, or (depth 0 of a partial re-render) of the segments a
   // move kept -- and trace_any.comp's SHADOW_CACHE, which records what it traces.
@@ -265,6 +277,7 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
   const ComputePipeline& endDepth = pipeline(ShaderId::Prepare, {1u});
   std::vector<std::uint32_t> resolveSpec{shape.model, listed};
   if (progressive) resolveSpec.push_back(1u);  // PROGRESSIVE, only when set (single frames keep their pipeline)
+  if (clearLinks) resolveSpec = withConstant(std::move(resolveSpec), 3, 1u);  // CLEAR_BOUNCE_LINKS, likewise
   const ComputePipeline& resolve = pipeline(ShaderId::Resolve, resolveSpec);
 
   const VkBuffer args = counters.handle();
@@ -288,6 +301,7 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
     const VkDeviceSize rayBytes = VkDeviceSize{count} * sizeof(gpu_shared::HtRay);
     const VkDeviceSize hitBytes = VkDeviceSize{count} * sizeof(gpu_shared::HtHit);
     PassRecorder rec(cmd, layout.handle(), descriptors.set(), queryPool, kQueryCapacity);
+    if (saveSecondary) setBounceLinks(0, batchFirst);
     if (loadHits) {  // what raygen's first invocation writes: queue 0 holds the batch, the others are empty
       // (shade reads the cached rays and hits in place: HITS_FROM_CACHE)
       const std::uint32_t queues[3] = {count, 0u, 0u};
@@ -310,6 +324,7 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
         shadeConstants = withConstant(std::move(shadeConstants), 4, occlusion);
       }
       if (depth == 0 && loadHits) shadeConstants = withConstant(std::move(shadeConstants), 5, 1u);
+      if (saveSecondary) shadeConstants = withConstant(std::move(shadeConstants), 6, 1u);  // LINK_BOUNCES
       const ComputePipeline& shade = pipeline(ShaderId::Shade, depthSpec(std::move(shadeConstants), depth));
       const std::uint32_t shadowCache = occlusion == gpu_shared::HT_OCCLUSION_OFF ? gpu_shared::HT_SHADOW_CACHE_OFF
                                         : which == TracedTargets::Dirty ? gpu_shared::HT_SHADOW_CACHE_RECORD_LISTED
@@ -337,7 +352,7 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
           overQueue(pass, Stage::Record);
         }
       };
-      if (depth == 0 ? !loadHits : !loadSecondary) overQueue(depth == 0 ? tracePrimary : traceClosest, Stage::Trace);
+      if (depth == 0 ? !loadHits : !loadSecondary) overQueue(depth == 0 ? tracePrimary : traceBounce, Stage::Trace);
       if (depth == 0 && saveHits) {
         recordComputeCopy(cmd, work.rays[0], 0, reuse.primaryRays, batchFirst * sizeof(gpu_shared::HtRay), rayBytes);
         recordComputeCopy(cmd, work.hits, 0, reuse.primaryHits, batchFirst * sizeof(gpu_shared::HtHit), hitBytes);
@@ -354,6 +369,7 @@ void Renderer::Impl::tracePaths(const FrameCamera& camera, const FrameShape& sha
         beginCommands();
         rec.restart();
         copySecondary(depth, batchFirst, false);
+        setBounceLinks(depth, batchFirst);
       }
       overQueue(shade, Stage::Shade);
       rec.dispatch(afterShade, pc, 1, Stage::Queues);

@@ -25,6 +25,8 @@ HT_CONST uint HT_MAX_LIGHTS = 16u;
 // Moved instances a partial re-render's primary rays may walk alone (FrameBlock::movedInstanceIds, one uvec4); more
 // moved instances since the last frame: those rays are traced whole.
 HT_CONST uint HT_MAX_WALKED_INSTANCES = 4u;
+// A bounce link that names no entry of the bounce cache (FrameBlock::bounceFirst).
+HT_CONST uint HT_NO_BOUNCE = 0xFFFFFFFFu;
 // Frame reuse's shadow-occlusion cache (gpu/frame_reuse.h ReusePlan::occlusionDepths, docs/REUSE.md §3): a word per
 // depth and frame path, bit l = the path's shadow ray to light l was occluded, bit HT_OCCLUSION_TRACED_SHIFT + l =
 // that ray was traced since the path's hit at that depth was found (16 lights at most, so both fit).
@@ -139,6 +141,15 @@ struct FrameBlock {
   // ht_trace_two_level_after_moves).
   uvec4 movedInstanceIds;
   uvec4 movedTriangles[HT_MAX_WALKED_INSTANCES];
+  // The links of the bounce cache (gpu/frame_reuse.h FrameReuseState::bounceFirst, docs/REUSE.md §4 "Bounce rays
+  // that take their cached hits"): bounceFirst, the entry of each frame path's depth-1 ray (device address, a uint per
+  // path; 0 = none); bounceNext, the entry of the next depth's ray of the same path, per entry (the cache's `nexts`,
+  // device address; 0 = none). HT_NO_BOUNCE: the path does not go on. A frame that fills the cache writes them
+  // (shade.comp LINK_BOUNCES) with bounceLinks.x = the first entry of the shaded queue (depths >= 1), .y = the first
+  // entry the next depth's queue will take; a partial re-render reads them (trace_closest.comp REUSE_BOUNCES).
+  uint64_t bounceFirst;
+  uint64_t bounceNext;
+  uvec4 bounceLinks;
 };
 
 // The accumulated samples of one target (docs/REUSE.md §1-§2): the sum of its n samples in sample order, and the

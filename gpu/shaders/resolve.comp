@@ -16,6 +16,10 @@ layout(constant_id = 1) const bool REFINING = false;
 // target's stored sums (AccumTarget), continuing from them, so k frames of N samples make the float additions of one
 // frame of k*N; accum_show.comp then shows sum / n. Refining here means the listed targets of the adaptive policy.
 layout(constant_id = 2) const bool PROGRESSIVE = false;
+// A partial re-render over a bounce cache with links (ReusePlan::bounceLinks): once its listed target is done, the
+// first bounce link of each of its paths is cleared, since the cached entries of a re-traced path may no longer be
+// current (FrameReuseState::bounceFirst).
+layout(constant_id = 3) const bool CLEAR_BOUNCE_LINKS = false;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -23,6 +27,9 @@ void main() {
   if (i >= pc.batchCount / spp) return;
   uint entry = pc.batchFirst / spp + i;
   uint target = REFINING ? UintRef(FRAME.refine).v[FRAME.refineInfo.y + entry] : entry;  // refining: listed
+  if (CLEAR_BOUNCE_LINKS) {
+    for (uint s = 0u; s < spp; ++s) UintRef(FRAME.bounceFirst).v[target * spp + s] = HT_NO_BOUNCE;
+  }
   if (PROGRESSIVE) {
     uint globalTarget = frame_global_target(target);
     AccumTarget a = load_accum_target(globalTarget);

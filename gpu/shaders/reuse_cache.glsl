@@ -1,6 +1,7 @@
 // reuse_cache.glsl - what a partial re-render reads of the frame-reuse state on the GPU (gpu/frame_reuse.h,
 // docs/REUSE.md §4): the cached primary rays and hits of every path of the frame, the dirty list, and the padded
-// moved bounds (FrameBlock::movedLo, movedHi). Included after common.glsl and gpu/segment_cells.h.
+// moved bounds (FrameBlock::movedLo, movedHi), and the bounce cache with its links (FrameBlock::bounceFirst). Included
+// after common.glsl and gpu/segment_cells.h.
 
 // The caches are read through their uniform texel views (common.glsl HT_BINDING_REUSE_*, bound for every frame that
 // keeps them: Renderer::Impl::bindReuseTexels): lavapipe turns each 32-bit component of a device-address load into a
@@ -40,10 +41,33 @@ HtRay cached_primary_ray(uint path) {
 // bounds? If not, that hit is still the path's primary hit: every triangle of the moved node lies inside those
 // bounds, every other triangle is unchanged, and the closest hit is the order-free one.
 // `hit`: its cached hit (cached_primary_hit).
-bool cached_primary_meets_moved(uint path, uvec4 hit) {
-  HtRay ray = cached_primary_ray(path);
+// Does the segment of `ray` to `hit` (its cached hit's bits; a miss: to tmax) meet the padded moved bounds?
+bool segment_to_hit_meets_moved(HtRay ray, uvec4 hit) {
   float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : ray.tmax;
   return ht_segment_meets_box(ray.origin, ray.dir, ray.tmin, tEnd, moved_lo(), moved_hi());
+}
+bool cached_primary_meets_moved(uint path, uvec4 hit) { return segment_to_hit_meets_moved(cached_primary_ray(path), hit); }
+
+// The bounce cache (FrameReuseState::secondaryRegion) of FRAME.moved.w entries, through its texel view: entry e's ray
+// in texels 2e and 2e + 1, its hit in texel 2 * entries + e, its path index in word e from texel 3 * entries, and the
+// entry of its path's next bounce in word e from the texel after those (HT_NO_BOUNCE: none).
+uvec4 cached_bounce_hit(uint e) { return texelFetch(reuseBounceTexels, int(2u * FRAME.moved.w + e)); }
+uint cached_bounce_next(uint e) {
+  uint entries = FRAME.moved.w;
+  return texelFetch(reuseBounceTexels, int(3u * entries + (entries + 3u) / 4u + e / 4u))[e % 4u];
+}
+// Is `ray` the cached ray of entry e, bit for bit?
+bool is_cached_bounce_ray(uint e, HtRay ray) {
+  uvec4 a = texelFetch(reuseBounceTexels, int(2u * e)), b = texelFetch(reuseBounceTexels, int(2u * e + 1u));
+  return a == floatBitsToUint(vec4(ray.origin, ray.tmin)) && b == floatBitsToUint(vec4(ray.dir, ray.tmax));
+}
+// The entry of frame path `framePath`'s ray at this dispatch's depth (>= 1), from its first link (FRAME.bounceFirst)
+// along the next links; HT_NO_BOUNCE when the frame that filled the cache ended the path sooner or the path was
+// re-traced since.
+uint cached_bounce_entry(uint framePath) {
+  uint e = UintRef(FRAME.bounceFirst).v[framePath];
+  for (uint d = 1u; d < pc.depth && e != HT_NO_BOUNCE; ++d) e = cached_bounce_next(e);
+  return e;
 }
 
 // The shadow-occlusion cache's word (gpu/wavefront_types.h HT_OCCLUSION_TRACED_SHIFT) of frame path `framePath` at

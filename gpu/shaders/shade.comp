@@ -33,6 +33,11 @@ layout(constant_id = 4) const uint OCCLUSION = HT_OCCLUSION_OFF;
 // order, from pc.batchFirst) rather than copied into queue 0 and the hit buffer first (the copies cost lavapipe
 // about 10 ms on the HPO wall); no other pass of such a frame reads them at depth 0.
 layout(constant_id = 5) const bool HITS_FROM_CACHE = false;
+// A frame that fills the bounce cache (ReusePlan::recordSecondary) links each path's entries: the entry of its next
+// bounce is the first entry the next depth's queue will take (FRAME.bounceLinks.y) plus the slot shade appends it to,
+// HT_NO_BOUNCE when the path ends here; at depth 0 that link is the path's first (FRAME.bounceFirst, by frame path),
+// at depth d >= 1 the next link of the entry of queue slot i, FRAME.bounceLinks.x + i (FRAME.bounceNext).
+layout(constant_id = 6) const bool LINK_BOUNCES = false;
 
 const float HT_INV_PI = 0.31830988618379067154f;
 const float HT_RAY_FAR = 3.0e38f;
@@ -277,6 +282,14 @@ void main() {
       store_ray(out_queue, q, next);
       store_queue_path(out_queue, q, path);
       imageStore(throughputBuffer, int(path), vec4(throughput, 0.0f));
+    }
+    if (LINK_BOUNCES) {  // (addresses 0 once the cache overflowed: the frame then keeps no state)
+      uint link = continues ? FRAME.bounceLinks.y + q : HT_NO_BOUNCE;
+      if (PRIMARY_DEPTH) {
+        if (FRAME.bounceFirst != 0ul) UintRef(FRAME.bounceFirst).v[pc.batchFirst + path] = link;
+      } else if (FRAME.bounceNext != 0ul) {
+        UintRef(FRAME.bounceNext).v[FRAME.bounceLinks.x + i] = link;
+      }
     }
   }
 }

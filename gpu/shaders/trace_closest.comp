@@ -24,13 +24,21 @@
 // cached hit is on none of them enters only their bottom levels, culled at the cached hit, and takes the least of
 // the two (ht_trace_two_level_after_moves): every other triangle is where it was when the cached hit was found.
 layout(constant_id = 0) const bool REUSE_PRIMARY = false;
+// The bounce rays (depths >= 1) of a partial re-render whose bounce cache holds links (ReusePlan::bounceLinks,
+// docs/REUSE.md §4 "Bounce rays that take their cached hits"): a ray that is its path's cached ray at this depth,
+// bit for bit, takes the cached hit when its segment to that hit avoids the padded moved bounds, as a primary ray
+// does above, and walks only the moved instances from it when that hit is on none of them. A re-traced path is a
+// pure function of its target, sample and the scene, so until the first segment a move changed it rebuilds the
+// rays the cache holds; the bit test needs no reasoning about the path's history.
+layout(constant_id = 1) const bool REUSE_BOUNCES = false;
 
 #include "gpu/shaders/reuse_cache.glsl"
 
-// Is the cached hit (its bits) on one of the moved instances, or are they not known (then the ray is traced whole)?
+// Are the moved instances known (FrameBlock::movedInstanceIds; else the rays are traced whole)?
+bool moved_instances_known() { return FRAME.movedInstanceIds.x != 0xFFFFFFFFu; }
+// Is the cached hit (its bits) on one of the moved instances?
 bool cached_hit_moved(uvec4 cachedHit) {
   uvec4 ids = FRAME.movedInstanceIds;
-  if (ids.x == 0xFFFFFFFFu) return true;
   for (uint k = 0u; k < HT_MAX_WALKED_INSTANCES && ids[k] != 0xFFFFFFFFu; k++) {
     uvec4 tris = FRAME.movedTriangles[k];
     if (cachedHit.y - tris.x < tris.y) return true;  // a miss (HT_MISS) is on none
@@ -45,6 +53,7 @@ void main() {
   bool overflow = false;
   uint path = 0u;
   uvec4 cachedHit = uvec4(0u);
+  bool walk = false;  // cachedHit is the ray's hit before the move: walk from it (ht_trace_two_level_after_moves)
   if (REUSE_PRIMARY && inQueue) {  // queue 0 entry i is path i of the batch
     load_moved_view();
     path = listed_frame_path(i);
@@ -53,14 +62,28 @@ void main() {
       store_hit(i, hit_of_bits(cachedHit));
       inQueue = false;  // not traced
     }
+    walk = moved_instances_known();
+  }
+  HtRay ray;
+  if (inQueue) ray = load_ray(pc.queue, i);
+  if (REUSE_BOUNCES && inQueue) {
+    load_moved_view();
+    uint e = cached_bounce_entry(listed_frame_path(queue_path(i)));
+    if (e != HT_NO_BOUNCE && is_cached_bounce_ray(e, ray)) {
+      cachedHit = cached_bounce_hit(e);
+      if (!segment_to_hit_meets_moved(ray, cachedHit)) {
+        store_hit(i, hit_of_bits(cachedHit));
+        inQueue = false;  // not traced
+      }
+      walk = moved_instances_known();
+    }
   }
   if (inQueue) {
-    HtRay ray = load_ray(pc.queue, i);
     HtTraceResult r;
-    if (REUSE_PRIMARY && TWO_LEVEL) {
+    if ((REUSE_PRIMARY || REUSE_BOUNCES) && TWO_LEVEL) {
       // One walk for every lane (lavapipe runs both sides of a divergent branch): whole, or the moved instances alone.
-      r = ht_trace_two_level_after_moves(ray, FRAME.scene.z, hit_of_bits(cachedHit), !cached_hit_moved(cachedHit),
-                                         FRAME.movedInstanceIds);
+      r = ht_trace_two_level_after_moves(ray, FRAME.scene.z, hit_of_bits(cachedHit), walk,
+                                         cached_hit_moved(cachedHit), FRAME.movedInstanceIds);
     } else if (TWO_LEVEL) {
       r = ht_trace_two_level_ordered(ray, FRAME.scene.z);
     } else {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <random>
 
@@ -108,18 +109,18 @@ TEST(BvhTwoLevelTest, RandomScenesAndMovesMatchTheFlattenedBvhBitForBit) {
   }
 }
 
-// The closest hit after a move from the hit before it (on no moved instance) and a walk that enters the moved
-// instances alone (ordered_traversal.h ht_trace_two_level_after_moves, what trace_closest.comp does for a partial
-// re-render's primary rays).
-HtHit closestAfterMoves(const TwoLevelBvh& twoLevel, const HtRay& ray, const HtHit& kept,
-                        const std::vector<uint32_t>& moved) {
+// The closest hit after a move from the hit before it and a walk that enters the moved instances alone (the hit
+// before was on none of them) or the others only beyond it (it was on one): ordered_traversal.h
+// ht_trace_two_level_after_moves, what trace_closest.comp does for a partial re-render's rays.
+HtTraceResult closestAfterMoves(const TwoLevelBvh& twoLevel, const HtRay& ray, const HtHit& kept, bool keptMoved,
+                                const std::vector<uint32_t>& moved) {
   glm::uvec4 ids(~0u);
   for (size_t k = 0; k < moved.size(); ++k) ids[static_cast<int>(k)] = moved[k];
   const gpu_shared::TwoLevelView view = twoLevel.view();
   const HtTraceResult r = gpu_shared::ht_trace_two_level_after_moves(
-      view, view.blas, ray, gpu_shared::HT_TRAVERSAL_STEP_LIMIT, kept, true, ids);
+      view, view.blas, ray, gpu_shared::HT_TRAVERSAL_STEP_LIMIT, kept, true, keptMoved, ids);
   EXPECT_FALSE(r.overflow);
-  return r.hit;
+  return r;
 }
 
 bool onInstances(const InstancedSoup& soup, const HtHit& hit, const std::vector<uint32_t>& instances) {
@@ -128,23 +129,37 @@ bool onInstances(const InstancedSoup& soup, const HtHit& hit, const std::vector<
   });
 }
 
-// Every ray whose hit before the move is on no moved instance: the kept hit and the moved instances' walks give the
-// whole trace's hit of the moved scene bit for bit. Returns how many of those rays now hit a moved instance.
-uint32_t expectWalksOfMovedInstancesMatch(const InstancedSoup& soup, const TwoLevelBvh& twoLevel,
-                                          const std::vector<HtRay>& rays, const std::vector<HtTraceResult>& before,
-                                          const std::vector<uint32_t>& moved) {
-  uint32_t nowOnMoved = 0;
+struct WalkCounts {
+  uint32_t nowOnMoved = 0;  // rays whose hit before was on no moved instance and now is on one
+  uint32_t keptMoved = 0;   // rays whose hit before was on a moved instance
+  uint64_t walkSteps = 0;   // ... their steps from that hit
+  uint64_t wholeSteps = 0;  // ... and in a whole trace
+};
+
+// Every ray: the walk from its hit before the move gives the whole trace's hit of the moved scene bit for bit.
+WalkCounts expectWalksOfMovedInstancesMatch(const InstancedSoup& soup, const TwoLevelBvh& twoLevel,
+                                            const std::vector<HtRay>& rays, const std::vector<HtTraceResult>& before,
+                                            const std::vector<uint32_t>& moved) {
+  WalkCounts counts;
   for (size_t i = 0; i < rays.size(); ++i) {
-    if (onInstances(soup, before[i].hit, moved)) continue;
-    const HtHit whole = traceClosestTwoLevel(twoLevel, rays[i]).hit;
-    EXPECT_TRUE(sameHit(closestAfterMoves(twoLevel, rays[i], before[i].hit, moved), whole)) << "ray " << i;
-    nowOnMoved += onInstances(soup, whole, moved);
+    const bool keptMoved = onInstances(soup, before[i].hit, moved);
+    const HtTraceResult whole = traceClosestTwoLevel(twoLevel, rays[i]);
+    const HtTraceResult walked = closestAfterMoves(twoLevel, rays[i], before[i].hit, keptMoved, moved);
+    EXPECT_TRUE(sameHit(walked.hit, whole.hit))
+        << "ray " << i << (keptMoved ? " (hit before on a moved instance)" : "");
+    if (keptMoved) {
+      ++counts.keptMoved;
+      counts.walkSteps += walked.steps;
+      counts.wholeSteps += whole.steps;
+    } else {
+      counts.nowOnMoved += onInstances(soup, whole.hit, moved);
+    }
   }
-  return nowOnMoved;
+  return counts;
 }
 
 TEST(BvhTwoLevelTest, ClosestHitAfterMovesFromTheKeptHitAndTheMovedInstancesAlone) {
-  uint32_t nowOnMoved = 0;
+  WalkCounts all;
   for (uint32_t seed = 1; seed <= 4; ++seed) {
     std::mt19937 rng(100 + seed);
     InstancedSoup soup = randomScene(rng, 6 + 2 * seed);
@@ -153,11 +168,20 @@ TEST(BvhTwoLevelTest, ClosestHitAfterMovesFromTheKeptHitAndTheMovedInstancesAlon
     for (int move = 0; move < 4; ++move) {
       const std::vector<HtTraceResult> before = traceClosestTwoLevelBatch(twoLevel, rays);
       const std::vector<uint32_t> moved = moveRandomInstances(rng, soup, twoLevel, move % 2 == 1 ? 2 : 1);
-      nowOnMoved += expectWalksOfMovedInstancesMatch(soup, twoLevel, rays, before, moved);
+      const WalkCounts c = expectWalksOfMovedInstancesMatch(soup, twoLevel, rays, before, moved);
+      all.nowOnMoved += c.nowOnMoved;
+      all.keptMoved += c.keptMoved;
+      all.walkSteps += c.walkSteps;
+      all.wholeSteps += c.wholeSteps;
     }
   }
   // The walks found hits in front of kept ones (736 of them with 1,500 rays, 100 with 300).
-  EXPECT_GT(nowOnMoved, test::scaled(300, 40));
+  EXPECT_GT(all.nowOnMoved, test::scaled(300, 40));
+  // Rays whose hit was on a moved instance walked the others beyond it, in fewer steps than whole traces.
+  EXPECT_GT(all.keptMoved, test::scaled(300, 40));
+  EXPECT_LT(all.walkSteps, all.wholeSteps);
+  std::printf("[ walks ] %u rays from a hit on a moved instance: %llu steps, %llu traced whole\n", all.keptMoved,
+              static_cast<unsigned long long>(all.walkSteps), static_cast<unsigned long long>(all.wholeSteps));
 }
 
 // A moved instance placed exactly onto an unmoved one of the same mesh: every hit is a tie in t, and the least
@@ -177,7 +201,7 @@ TEST(BvhTwoLevelTest, ClosestHitAfterAMoveOntoAnotherInstanceKeepsTheLeastTriang
     soup.place(movedInstance, here);
     const std::vector<uint32_t> moved{movedInstance};
     twoLevel.updateInstances(soup.positions, soup.triangles, moved);
-    const uint32_t nowOnMoved = expectWalksOfMovedInstancesMatch(soup, twoLevel, rays, before, moved);
+    const uint32_t nowOnMoved = expectWalksOfMovedInstancesMatch(soup, twoLevel, rays, before, moved).nowOnMoved;
     // Instance 0 has the lower triangle ids: moved onto instance 1 it takes every tie; moved onto by it, none.
     if (movedInstance == 0) {
       EXPECT_GT(nowOnMoved, 50u);
@@ -185,6 +209,32 @@ TEST(BvhTwoLevelTest, ClosestHitAfterAMoveOntoAnotherInstanceKeepsTheLeastTriang
       EXPECT_EQ(nowOnMoved, 0u);
     }
   }
+}
+
+// Two coincident instances of one mesh, the one with the lower triangle ids then moved away: every hit before the
+// move was on it (ties go to the least id), and every hit after it is on the other instance at the same t. The walk
+// enters the unmoved instance only beyond the hit before the move, so that bound must not cull a hit at equal t.
+TEST(BvhTwoLevelTest, ClosestHitAfterAMoveOffACoincidentInstanceFindsTheOtherAtTheSameT) {
+  InstancedSoup soup;
+  soup.meshes.push_back(test::closedSphere(glm::vec3(0.0f), 1.0f, 8, 12));
+  const glm::dmat4 here = glm::translate(glm::dmat4(1.0), glm::dvec3(0.5, -0.25, 0.125));
+  soup.add(0, here);
+  soup.add(0, here);
+  TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
+  std::mt19937 rng(11);
+  const std::vector<HtRay> rays = randomRays(rng, soup, 600);
+  const std::vector<HtTraceResult> before = traceClosestTwoLevelBatch(twoLevel, rays);
+  soup.place(0, glm::translate(glm::dmat4(1.0), glm::dvec3(40.0, 0.0, 0.0)));
+  const std::vector<uint32_t> moved{0u};
+  twoLevel.updateInstances(soup.positions, soup.triangles, moved);
+  const WalkCounts c = expectWalksOfMovedInstancesMatch(soup, twoLevel, rays, before, moved);
+  EXPECT_GT(c.keptMoved, 50u);
+  uint32_t sameT = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    if (onInstances(soup, before[i].hit, moved))
+      sameT += traceClosestTwoLevel(twoLevel, rays[i]).hit.t == before[i].hit.t;
+  }
+  EXPECT_EQ(sameT, c.keptMoved) << "the other instance lies exactly where the moved one was";
 }
 
 TEST(BvhTwoLevelTest, CoincidentInstancesTieAndTheLeastTriangleIdWins) {

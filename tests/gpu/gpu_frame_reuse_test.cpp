@@ -267,6 +267,46 @@ TEST(FrameReuse, PartialRerenderAfterRandomNodeMovesOnTheTwoLevelBvhEqualsAFullR
   expectPartialRerendersEqualFullRenders(true);
 }
 
+// A partial re-render's bounce rays that are their paths' cached rays, bit for bit, take the cached hits where their
+// segments avoid the moved bounds, and walk only the moved instances from them where those hits are on none of them
+// (docs/REUSE.md §4 "Bounce rays that take their cached hits"). The red box is seen in the mirror sphere and through
+// the glass sphere, so the paths re-traced for it rebuild cached bounce rays. Moved back and forth, every frame
+// equals a full render and the frame of a renderer that traces its bounce rays, bit for bit, and the cached hits
+// spare rays.
+TEST(FrameReuse, BounceRaysTakeTheirCachedHitsWhereTheMoveCannotHaveChangedThem) {
+  Scene scene = loadScene("builtin:showcase");
+  const std::size_t box = *findNode(scene, "red-box");
+  for (const auto& [name, camera] : cameras(scene)) {
+    SCOPED_TRACE(name);
+    gpu::Renderer reusing(sharedContext(), scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::TwoLevel));
+    gpu::Renderer tracing(sharedContext(), scene, gpu::buildSceneBvh(scene, {}, gpu::BvhLayoutPolicy::TwoLevel));
+    tracing.setBounceHitReuse(false);
+    Scene edited = scene;
+    ASSERT_EQ(reusing.render(camera, reuseSettings()).reuse, FrameReuse::None);
+    ASSERT_EQ(tracing.render(camera, reuseSettings()).reuse, FrameReuse::None);
+    std::uint64_t reusedRays = 0, tracedRays = 0;
+    for (int move = 0; move < 4; ++move) {
+      SCOPED_TRACE("move " + std::to_string(move));
+      const Bounds3 before = nodeWorldBounds(edited, box);
+      glm::dmat4 world = edited.nodes[box].world;
+      world[3] += glm::dvec4(move % 2 ? -0.12 : 0.15, 0.0, move < 2 ? 0.04 : -0.03, 0.0);
+      setNodeWorldMatrix(edited, "red-box", world);
+      const std::uint32_t nodes[] = {static_cast<std::uint32_t>(box)};
+      for (gpu::Renderer* r : {&reusing, &tracing})
+        r->moveNodes(edited, nodes, gpu::MovedBounds{before, nodeWorldBounds(edited, box)});
+      const gpu::RenderResult reused = reusing.render(camera, reuseSettings());
+      const gpu::RenderResult traced = tracing.render(camera, reuseSettings());
+      ASSERT_EQ(reused.reuse, FrameReuse::PartialRetrace);
+      EXPECT_EQ(reused.tracedTargets, traced.tracedTargets);
+      EXPECT_TRUE(sameBits(reused, traced));
+      EXPECT_TRUE(sameBits(reused, fullRender(edited, camera)));
+      reusedRays += reused.raysTraced;
+      tracedRays += traced.raysTraced;
+    }
+    EXPECT_LT(reusedRays, tracedRays) << "no bounce ray took its cached hit";
+  }
+}
+
 // RenderSettings::reuseMaxDirtyShare: a move whose marking pass lists more than that share of the targets renders
 // the frame in full instead of re-rendering nearly all of it through the dirty list, which costs more. The room
 // rises: the floor and walls, seen by almost every target, move. That frame records the state afresh, so the next,
