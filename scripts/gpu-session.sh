@@ -70,6 +70,8 @@ benches() {
   step 120 traversal holotrace-bench-traversal --meshes "$meshes" --json "$out/traversal.json"
   # (--alternate-walks: the moved-instance walks of a partial re-render on and off in the same run, REUSE.md §4)
   step 60 edits-green holotrace-bench-edits --runs 8 --node green-sphere --alternate-walks
+  # (--alternate-bounce-hits: the cached bounce hits on and off; the red box is seen through the glass sphere)
+  step 60 edits-red holotrace-bench-edits --runs 8 --node red-box --alternate-bounce-hits
   step 45 edits-glow holotrace-bench-edits --runs 5 --node glow-sphere
   step 60 bvh2-gpu holotrace-bench-bvh2 --gpu --runs 5 --meshes "$meshes"
   step 30 skipping holotrace-bench-skipping --scenes "builtin:plain,$bunny,builtin:showcase"
