@@ -136,9 +136,9 @@ struct FrameBlock {
   uvec4 moved;
   // ... and, on a two-level BVH whose moves since the last frame name their instances (Renderer::moveNodes), those
   // instances: their instance indices in movedInstanceIds, 0xFFFFFFFF past the last (all: none, or not known), and
-  // the scene triangles of each in movedTriangles (first, count). A primary ray whose cached hit is on none of them
-  // walks only their bottom levels (trace_closest.comp REUSE_PRIMARY, bvh/ordered_traversal.h
-  // ht_trace_two_level_after_moves).
+  // the scene triangles of each in movedTriangles (first, count). A traced ray of a partial re-render walks from its
+  // cached hit: only their bottom levels when that hit is on none of them, the others' only beyond it when it is on
+  // one (trace_closest.comp REUSE_PRIMARY and REUSE_BOUNCES, bvh/ordered_traversal.h ht_trace_two_level_after_moves).
   uvec4 movedInstanceIds;
   uvec4 movedTriangles[HT_MAX_WALKED_INSTANCES];
   // The links of the bounce cache (gpu/frame_reuse.h FrameReuseState::bounceFirst, docs/REUSE.md §4 "Bounce rays

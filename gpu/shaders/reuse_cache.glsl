@@ -37,15 +37,14 @@ HtRay cached_primary_ray(uint path) {
   return HtRay(a.xyz, a.w, b.xyz, b.w);
 }
 
-// Does the cached primary segment of frame path `path`, to its cached hit (a miss: to tmax), meet the padded moved
-// bounds? If not, that hit is still the path's primary hit: every triangle of the moved node lies inside those
-// bounds, every other triangle is unchanged, and the closest hit is the order-free one.
-// `hit`: its cached hit (cached_primary_hit).
-// Does the segment of `ray` to `hit` (its cached hit's bits; a miss: to tmax) meet the padded moved bounds?
+// Does the segment of `ray` to `hit` (its cached hit's bits; a miss: to tmax) meet the padded moved bounds? If not,
+// that hit is still the ray's hit: every triangle of the moved node lies inside those bounds, every other triangle
+// is unchanged, and the closest hit is the order-free one.
 bool segment_to_hit_meets_moved(HtRay ray, uvec4 hit) {
   float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : ray.tmax;
   return ht_segment_meets_box(ray.origin, ray.dir, ray.tmin, tEnd, moved_lo(), moved_hi());
 }
+// ... for the cached primary segment of frame path `path`; `hit`: its cached hit (cached_primary_hit).
 bool cached_primary_meets_moved(uint path, uvec4 hit) { return segment_to_hit_meets_moved(cached_primary_ray(path), hit); }
 
 // The bounce cache (FrameReuseState::secondaryRegion) of FRAME.moved.w entries, through its texel view: entry e's ray

@@ -20,16 +20,17 @@
 // occlusion only where the word still holds one, without testing the primary segment again. One that finds the
 // cached hit again, bit for bit (it crossed the moved bounds where the node is in neither place), keeps the word:
 // shade then builds the same surface point and the same shadow rays from it as the frame that recorded them.
-// On a two-level BVH whose moved instances are known (FrameBlock::movedInstanceIds), a ray that is traced and whose
-// cached hit is on none of them enters only their bottom levels, culled at the cached hit, and takes the least of
-// the two (ht_trace_two_level_after_moves): every other triangle is where it was when the cached hit was found.
+// On a two-level BVH whose moved instances are known (FrameBlock::movedInstanceIds), a ray that is traced walks from
+// its cached hit (ht_trace_two_level_after_moves): every other triangle is where it was when that hit was found.
+// Cached hit on none of them: only their bottom levels, culled at the cached hit, and the least of the two. On one
+// of them: theirs whole, the others' only beyond the cached hit.
 layout(constant_id = 0) const bool REUSE_PRIMARY = false;
 // The bounce rays (depths >= 1) of a partial re-render whose bounce cache holds links (ReusePlan::bounceLinks,
 // docs/REUSE.md §4 "Bounce rays that take their cached hits"): a ray that is its path's cached ray at this depth,
-// bit for bit, takes the cached hit when its segment to that hit avoids the padded moved bounds, as a primary ray
-// does above, and walks only the moved instances from it when that hit is on none of them. A re-traced path is a
-// pure function of its target, sample and the scene, so until the first segment a move changed it rebuilds the
-// rays the cache holds; the bit test needs no reasoning about the path's history.
+// bit for bit, takes the cached hit when its segment to that hit avoids the padded moved bounds, and else walks
+// from that hit, as a primary ray does. A re-traced path is a pure function of its target, sample and the scene, so
+// until the first segment a move changed it rebuilds the rays the cache holds; the bit test needs no reasoning
+// about the path's history.
 layout(constant_id = 1) const bool REUSE_BOUNCES = false;
 
 #include "gpu/shaders/reuse_cache.glsl"
@@ -81,7 +82,7 @@ void main() {
   if (inQueue) {
     HtTraceResult r;
     if ((REUSE_PRIMARY || REUSE_BOUNCES) && TWO_LEVEL) {
-      // One walk for every lane (lavapipe runs both sides of a divergent branch): whole, or the moved instances alone.
+      // One walk for every lane (lavapipe runs both sides of a divergent branch): whole, or from the cached hit.
       r = ht_trace_two_level_after_moves(ray, FRAME.scene.z, hit_of_bits(cachedHit), walk,
                                          cached_hit_moved(cachedHit), FRAME.movedInstanceIds);
     } else if (TWO_LEVEL) {
