@@ -62,7 +62,7 @@ const std::array<cli::OptionSpec, 14> kSpecs = {{
     {"--max-dirty-share", "", "F",
      "a move dirtying more than this share of the targets renders in full (default the renderer's, 0.75; 1: never)"},
     {"--alternate-walks", "", "",
-     "every other timed move traces its primary rays whole instead of walking the moved instances alone "
+     "every other timed move traces its rays whole instead of walking from their cached hits "
      "(Renderer::setMovedInstanceWalks), reported apart: a same-run comparison"},
     {"--alternate-bounce-hits", "", "",
      "every other timed move traces its bounce rays instead of taking their cached hits (Renderer::setBounceHitReuse), "

@@ -87,8 +87,8 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
   // The secondary cache takes at most the budget; whether the frame's bounce queues fit is known as they are traced.
   // It starts at a quarter of the paths (the showcase's bounces take 5-7 % of paths x depths) and grows by doubling.
   // Its texel view (HT_BINDING_REUSE_BOUNCES) covers it whole: 16-byte texels.
-  const std::uint64_t entries = std::min({paths * secondaryDepths, secondaryBudget_ / kSecondaryBytesPerPath,
-                                          (maxTexels * 16 - 32) / kSecondaryBytesPerPath});
+  const std::uint64_t entries =
+      std::min({paths * secondaryDepths, secondaryBudget_ / kSecondaryBytesPerPath, secondaryTexelLimit()});
   if (!sameView) secondaryTooLarge_ = false;
   const bool secondaryFits = p.primaryCached && secondaryDepths > 0 && entries > 0 && !secondaryTooLarge_;
   p.recordSecondary =
@@ -193,6 +193,11 @@ VkDeviceSize secondaryBytes(std::uint64_t entries) { return secondaryLayout(entr
 
 FrameReuseState::SecondaryRegion FrameReuseState::secondaryRegion() const { return secondaryLayout(secondaryEntries_); }
 
+std::uint64_t FrameReuseState::secondaryTexelLimit() const {
+  // secondaryBytes(entries) <= entries * kSecondaryBytesPerPath + 32 must fit the view's 16-byte texels.
+  return (std::uint64_t{vk_.info.maxTexelBufferElements} * 16 - 32) / kSecondaryBytesPerPath;
+}
+
 void FrameReuseState::growSecondary(std::uint64_t entries) {
   DeviceBuffer grown(vk_, secondaryBytes(entries), MemoryPlace::Device);
   if (secondaryUsed_ > 0) {  // the entries so far, each array to its place in the larger layout
@@ -211,9 +216,7 @@ void FrameReuseState::growSecondary(std::uint64_t entries) {
 
 std::optional<std::uint32_t> FrameReuseState::reserveSecondary(std::uint64_t batchFirst, std::uint32_t depth,
                                                                std::uint32_t count) {
-  const std::uint64_t limit =
-      std::min<std::uint64_t>(secondaryBudget_ / kSecondaryBytesPerPath,
-                              (vk_.info.maxTexelBufferElements * 16ull - 32) / kSecondaryBytesPerPath);
+  const std::uint64_t limit = std::min(secondaryBudget_ / kSecondaryBytesPerPath, secondaryTexelLimit());
   if (secondaryOverflow_ || secondaryUsed_ + count > limit) {
     secondaryOverflow_ = true;
     return std::nullopt;

@@ -60,8 +60,8 @@ struct ReusePlan {
   std::uint32_t gridCells[2] = {0, 0};
   glm::vec3 movedLo{0.0f}, movedHi{0.0f};
   // PartialRetrace: the two-level BVH's instances moved since the last frame, when every move named them and they
-  // are at most HT_MAX_WALKED_INSTANCES (else empty): primary rays whose cached hit is on none of them walk only
-  // their bottom levels (FrameBlock::movedInstanceIds).
+  // are at most HT_MAX_WALKED_INSTANCES (else empty): traced rays walk from their cached hits
+  // (FrameBlock::movedInstanceIds).
   std::vector<std::uint32_t> walkedInstances;
   // The shadow-occlusion cache (shadowOcclusion; docs/REUSE.md §3): a word per depth and path, bits 0-15 the
   // occlusion of the path's shadow ray to light l at that depth, bits 16-31 whether that ray was traced since its
@@ -156,6 +156,8 @@ class FrameReuseState {
 
  private:
   void ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPlace place);
+  // The most entries a secondary cache may hold within its texel view (HT_BINDING_REUSE_BOUNCES).
+  std::uint64_t secondaryTexelLimit() const;
   // Moves the secondary cache to a buffer of `entries` entries, with the entries used so far (between submits).
   void growSecondary(std::uint64_t entries);
   VulkanContext::Impl& vk_;
