@@ -36,7 +36,7 @@ uint path_target(uint path) {
 // SHADOWS_ONLY: the cells of shadow-queue entry i's ray, into words 2-3 for the shadow rays of cached primary hits.
 void record_traced_shadow_ray(uint i) {
   if (i >= COUNTERS.shadowCount) return;
-  uint slot = imageLoad(shadowQueueBuffer, int(i)).x;
+  uint slot = imageLoad(shadowQueueBuffer, int(i)).x & ~HT_SHADOW_MOVED_ONLY;
   uint target = path_target(slot / FRAME.scene.x);
   HtRay shadow = load_shadow_ray(slot);
   uvec2 cells = ht_segment_cells(shadow.origin, shadow.dir, shadow.tmin, shadow.tmax, FRAME.grid);

@@ -17,6 +17,9 @@ void load_moved_view() {
   gMovedHi = FRAME.movedHi.xyz;
 }
 vec3 moved_lo() { return gMovedLo; }
+// Are the moved instances since the last frame known (FrameBlock::movedInstanceIds, set on a two-level BVH only)?
+// If not, rays are traced whole.
+bool moved_instances_known() { return FRAME.movedInstanceIds.x != 0xFFFFFFFFu; }
 vec3 moved_hi() { return gMovedHi; }
 
 // Word `w` of the segment masks (and what follows them, common.glsl accum_reach_word), through the marking pass's

@@ -27,7 +27,8 @@ layout(constant_id = 3) const bool HAS_TEXTURES = true;
 //     to a light in FRAME.frame.w (its position and direction unchanged) is the recorded ray, in unchanged geometry.
 //   KEPT_SEGMENTS (depth 0 of a partial re-render after a node move): a ray whose path kept its cached primary hit
 //     (the same surface point and lights, so the same ray) and whose segment avoids the padded moved bounds (no moved
-//     triangle can meet it).
+//     triangle can meet it). One whose segment meets them and that was unoccluded is queued with HT_SHADOW_MOVED_ONLY
+//     where the moved instances are known: no unmoved triangle meets it, so trace_any walks the moved ones alone.
 layout(constant_id = 4) const uint OCCLUSION = HT_OCCLUSION_OFF;
 // Depth 0 of a frame re-shaded from cached hits: the primary rays and hits are read from the cache in place (path
 // order, from pc.batchFirst) rather than copied into queue 0 and the hit buffer first (the copies cost lavapipe
@@ -158,8 +159,12 @@ uint emit_shadow_rays(uint path, SurfacePoint s, vec3 weight, uint occlusionInde
     vec3 contrib = weight * e * max(cosTheta, 0.0f);
     bool want = cosTheta > 0.0f && dot(s.nFace, wi) > 0.0f && max(contrib.x, max(contrib.y, contrib.z)) > 0.0f;
     bool recorded = want && (holding & (1u << l)) != 0u;
+    uint movedOnly = 0u;  // HT_SHADOW_MOVED_ONLY: trace_any walks the moved instances alone
     if (OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS && recorded) {
-      recorded = !ht_segment_meets_box(origin, wi, 0.0f, dist, moved_lo(), moved_hi());
+      bool meets = ht_segment_meets_box(origin, wi, 0.0f, dist, moved_lo(), moved_hi());
+      // The same ray, unoccluded before the move: no unmoved triangle meets it, so only a moved one can now.
+      if (meets && (word & (1u << l)) == 0u && moved_instances_known()) movedOnly = HT_SHADOW_MOVED_ONLY;
+      recorded = !meets;
     }
     uint q = append_slot(want && !recorded, 2u);
     if (want) {
@@ -172,7 +177,7 @@ uint emit_shadow_rays(uint path, SurfacePoint s, vec3 weight, uint occlusionInde
         imageStore(shadowContribBuffer, int(slot), occluded ? vec4(0.0f, 0.0f, 0.0f, 2.0f) : vec4(contrib, 2.0f));
       } else {
         imageStore(shadowContribBuffer, int(slot), vec4(contrib, 1.0f));
-        imageStore(shadowQueueBuffer, int(q), uvec4(slot));
+        imageStore(shadowQueueBuffer, int(q), uvec4(slot | movedOnly));
       }
     }
   }

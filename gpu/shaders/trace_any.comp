@@ -14,7 +14,8 @@ layout(constant_id = 0) const uint SHADOW_QUEUE = 1u;
 // Frame reuse (docs/REUSE.md §3-4): records each traced ray's occlusion in the occlusion cache (HT_SHADOW_CACHE_*,
 // gpu/wavefront_types.h), whose word shade.comp (OCCLUSION) wrote for this depth: RECORD for a frame's own paths,
 // RECORD_LISTED for the listed targets of a partial re-render. Shade queued only the rays whose recorded occlusion
-// does not hold.
+// does not hold. In a partial re-render (RECORD_LISTED), a queue entry marked HT_SHADOW_MOVED_ONLY (the recorded ray,
+// unoccluded before the move) walks the moved instances alone (ht_trace_two_level_any_after_moves).
 layout(constant_id = 1) const uint SHADOW_CACHE = HT_SHADOW_CACHE_OFF;
 
 #include "gpu/shaders/reuse_cache.glsl"
@@ -26,7 +27,10 @@ void main() {
   uint steps = 0u;
   bool overflow = false;
   if (inQueue) {
-    uint slot = SHADOW_QUEUE == 1u ? imageLoad(shadowQueueBuffer, int(i)).x : i;
+    uint entry = SHADOW_QUEUE == 1u ? imageLoad(shadowQueueBuffer, int(i)).x : i;
+    // (only a partial re-render's shade sets HT_SHADOW_MOVED_ONLY, and only where the moved instances are known)
+    bool movedOnly = SHADOW_CACHE == HT_SHADOW_CACHE_RECORD_LISTED && (entry & HT_SHADOW_MOVED_ONLY) != 0u;
+    uint slot = SHADOW_CACHE == HT_SHADOW_CACHE_RECORD_LISTED ? entry & ~HT_SHADOW_MOVED_ONLY : entry;
     // (if/else, not ?: -- glslang 12 emits an invalid OpStore for a ternary over buffer-reference structs)
     HtRay ray;
     if (SHADOW_QUEUE == 1u) {
@@ -35,7 +39,10 @@ void main() {
       ray = load_ray(0u, i);
     }
     HtTraceResult r;
-    if (TWO_LEVEL) {
+    if (TWO_LEVEL && SHADOW_CACHE == HT_SHADOW_CACHE_RECORD_LISTED) {
+      // One walk for every lane (lavapipe runs both sides of a divergent branch): whole, or the moved instances alone.
+      r = ht_trace_two_level_any_after_moves(ray, FRAME.scene.z, movedOnly, FRAME.movedInstanceIds);
+    } else if (TWO_LEVEL) {
       r = ht_trace_two_level_any(ray, FRAME.scene.z);
     } else {
       r = ht_trace_any(ray, FRAME.scene.z);

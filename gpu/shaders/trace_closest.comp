@@ -35,8 +35,6 @@ layout(constant_id = 1) const bool REUSE_BOUNCES = false;
 
 #include "gpu/shaders/reuse_cache.glsl"
 
-// Are the moved instances known (FrameBlock::movedInstanceIds; else the rays are traced whole)?
-bool moved_instances_known() { return FRAME.movedInstanceIds.x != 0xFFFFFFFFu; }
 // Is the cached hit (its bits) on one of the moved instances?
 bool cached_hit_moved(uvec4 cachedHit) {
   uvec4 ids = FRAME.movedInstanceIds;

@@ -184,6 +184,52 @@ TEST(BvhTwoLevelTest, ClosestHitAfterMovesFromTheKeptHitAndTheMovedInstancesAlon
               static_cast<unsigned long long>(all.walkSteps), static_cast<unsigned long long>(all.wholeSteps));
 }
 
+// A partial re-render's shadow rays that were unoccluded before a move walk the moved instances alone
+// (ht_trace_two_level_any_after_moves, trace_any.comp): occluded exactly when the whole any-hit walk of the moved scene
+// is, in fewer steps.
+TEST(BvhTwoLevelTest, OcclusionAfterMovesOfRaysUnoccludedBeforeComesFromTheMovedInstancesAlone) {
+  uint32_t unoccludedBefore = 0, nowOccluded = 0;
+  uint64_t walkSteps = 0, wholeSteps = 0;
+  for (uint32_t seed = 1; seed <= 4; ++seed) {
+    std::mt19937 rng(300 + seed);
+    InstancedSoup soup = randomScene(rng, 6 + 2 * seed);
+    TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
+    const std::vector<HtRay> rays = randomRays(rng, soup, test::scaled(1500, 300));
+    for (int move = 0; move < 4; ++move) {
+      std::vector<bool> wasOccluded(rays.size());
+      for (size_t i = 0; i < rays.size(); ++i) {
+        const gpu_shared::TwoLevelView view = twoLevel.view();
+        wasOccluded[i] =
+            gpu_shared::ht_trace_two_level_any(view, view.blas, rays[i], gpu_shared::HT_TRAVERSAL_STEP_LIMIT)
+                .hit.triId != gpu_shared::HT_MISS;
+      }
+      const std::vector<uint32_t> moved = moveRandomInstances(rng, soup, twoLevel, move % 2 == 1 ? 2 : 1);
+      glm::uvec4 ids(~0u);
+      for (size_t k = 0; k < moved.size(); ++k) ids[static_cast<int>(k)] = moved[k];
+      const gpu_shared::TwoLevelView view = twoLevel.view();
+      for (size_t i = 0; i < rays.size(); ++i) {
+        if (wasOccluded[i]) continue;
+        ++unoccludedBefore;
+        const HtTraceResult whole =
+            gpu_shared::ht_trace_two_level_any(view, view.blas, rays[i], gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
+        const HtTraceResult walked = gpu_shared::ht_trace_two_level_any_after_moves(
+            view, view.blas, rays[i], gpu_shared::HT_TRAVERSAL_STEP_LIMIT, true, ids);
+        ASSERT_FALSE(whole.overflow || walked.overflow) << "ray " << i;
+        EXPECT_EQ(walked.hit.triId != gpu_shared::HT_MISS, whole.hit.triId != gpu_shared::HT_MISS) << "ray " << i;
+        nowOccluded += whole.hit.triId != gpu_shared::HT_MISS;
+        walkSteps += walked.steps;
+        wholeSteps += whole.steps;
+      }
+    }
+  }
+  EXPECT_GT(unoccludedBefore, test::scaled(1000, 200));
+  EXPECT_GT(nowOccluded, test::scaled(100, 10));  // the moves occluded some of them
+  EXPECT_LT(walkSteps, wholeSteps);
+  std::printf("[ walks ] %u rays unoccluded before a move, %u occluded after: %llu steps, %llu walked whole\n",
+              unoccludedBefore, nowOccluded, static_cast<unsigned long long>(walkSteps),
+              static_cast<unsigned long long>(wholeSteps));
+}
+
 // A moved instance placed exactly onto an unmoved one of the same mesh: every hit is a tie in t, and the least
 // triangle id must win whether it belongs to the kept hit or to the walk.
 TEST(BvhTwoLevelTest, ClosestHitAfterAMoveOntoAnotherInstanceKeepsTheLeastTriangleId) {
