@@ -62,7 +62,7 @@ const std::array<cli::OptionSpec, 14> kSpecs = {{
     {"--max-dirty-share", "", "F",
      "a move dirtying more than this share of the targets renders in full (default the renderer's, 0.75; 1: never)"},
     {"--alternate-walks", "", "",
-     "every other timed move traces its rays whole instead of walking from their cached hits "
+     "every other timed move traces its rays whole instead of walking from their cached hits or recorded occlusion "
      "(Renderer::setMovedInstanceWalks), reported apart: a same-run comparison"},
     {"--alternate-bounce-hits", "", "",
      "every other timed move traces its bounce rays instead of taking their cached hits (Renderer::setBounceHitReuse), "
@@ -308,7 +308,7 @@ void print(const DisplayEdits& e) {
   if (!e.moveWhole.ms.empty()) {
     const bool walks = e.alternate == Alternate::Walks;
     std::printf("  node move, %s: %9.1f ms   ratio %.3f   (%s: %.3f, medians of %zu / %zu)\n",
-                walks ? "primary rays whole" : "bounce rays traced", e.moveWhole.medianMs(), median(e.moveWholeRatio),
+                walks ? "rays traced whole" : "bounce rays traced", e.moveWhole.medianMs(), median(e.moveWholeRatio),
                 walks ? "walks / whole" : "cached / traced", median(e.moveRatio) / median(e.moveWholeRatio),
                 e.move.ms.size(), e.moveWhole.ms.size());
   }

@@ -218,8 +218,9 @@ class Renderer {
   // fit keeps no state, and the frames of its view after it record without that cache.
   void setBounceCacheBudget(std::uint64_t bytes);
   // Whether a partial re-render's traced rays walk from their cached hits on the two-level BVH: the moved instances
-  // alone when that hit is on none of them, the others only beyond it when it is on one (default on; docs/REUSE.md
-  // §4). Off traces them whole, the same bits: for same-run comparisons.
+  // alone when that hit is on none of them, the others only beyond it when it is on one; and whether its shadow rays
+  // that were unoccluded before the move walk the moved instances alone (default on; docs/REUSE.md §4). Off traces
+  // them whole, the same bits: for same-run comparisons.
   void setMovedInstanceWalks(bool on);
   // Whether a partial re-render's bounce rays that are their paths' cached rays take the cached hits where the move
   // cannot have changed them (default on; docs/REUSE.md §4). Off traces them, the same bits: for same-run
