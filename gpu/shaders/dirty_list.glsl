@@ -33,10 +33,14 @@ void append_bits(uint bits, uint countWord, uint first, uint firstTarget) {
   append_values(n, values, countWord, first);
 }
 
-// What starts over for a dirty target: its mask, cleared for the re-trace to record again; in an accumulation
-// (`resetAccumulation`) its sums and what bounds its primary segments too.
+// What starts over for a dirty target: its mask words 0-1, cleared for the re-trace to record again; in an
+// accumulation (`resetAccumulation`) words 2-3, its sums and what bounds its primary segments too. A single frame's
+// words 2-3 (the cells of its cached primary segments and their shadow rays) only pick the candidates of the exact
+// tests, which read the cached rays and hits themselves, so a superset of the current segments' cells is as safe: the
+// re-trace adds the cells of the paths whose primary hit changed and skips those that kept it (record_segments.comp).
 void clear_dirty_target(uint target, bool resetAccumulation) {
-  for (uint w = 0u; w < 4u; ++w) UintRef(FRAME.segmentMasks).v[4u * target + w] = 0u;
+  uint words = resetAccumulation ? 4u : 2u;
+  for (uint w = 0u; w < words; ++w) UintRef(FRAME.segmentMasks).v[4u * target + w] = 0u;
   if (resetAccumulation) {
     store_accum_target(frame_global_target(target), AccumTarget(vec3(0.0f), 0u, vec3(0.0f), 0u));
     UintRef(FRAME.segmentMasks).v[accum_reach_word(target)] = 0u;

@@ -80,7 +80,11 @@ void main() {
     primaryCells = cells;
     cells = uvec2(0u);
     if (LISTED) {
-      HitCacheRef(FRAME.primaryHits).h[target * spp + (pc.batchFirst + path) % spp] = hit_bits(hit);
+      // A partial re-render's path that found its cached hit again has the same primary segment and shadow rays,
+      // whose cells the marking pass kept in words 2-3 (dirty_list.glsl clear_dirty_target): nothing to add.
+      uint framePath = target * spp + (pc.batchFirst + path) % spp;
+      if (texelFetch(reusePrimaryHitTexels, int(framePath)) == hit_bits(hit)) return;
+      HitCacheRef(FRAME.primaryHits).h[framePath] = hit_bits(hit);
     }
   }
   uint lightCount = FRAME.scene.x;
