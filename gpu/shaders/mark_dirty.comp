@@ -9,7 +9,8 @@
 //   filled) are left to those cells.
 // - MARK_TARGETS: one invocation per HT_MARK_TARGETS_PER_INVOCATION (4) targets of the frame. A target whose mask
 //   words 0-1 meet the moved bounds' cells (FRAME.moved.xy) is appended to the dirty list (count in word 2,
-//   entries from word FRAME.refineInfo.y) and its mask cleared for the re-trace to record again. With the primary
+//   entries from word FRAME.refineInfo.y) and its mask cleared for the re-trace to record again (dirty_list.glsl
+//   clear_dirty_target: words 0-1; 2-3 too in an accumulation). With the primary
 //   rays and hits cached (FRAME.primaryHits != 0), a target whose words 2-3 (the cells of its primary segments and
 //   their shadow rays) meet those cells is a candidate: appended to the candidate list (count in word 3, entries
 //   from word FRAME.moved.z). So is one of a progressive accumulation (RESET_ACCUMULATION), whose words 2-3 hold the
