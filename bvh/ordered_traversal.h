@@ -352,9 +352,10 @@ HT_INLINE HtTraceResult ht_trace_two_level_any(HT_TWO_LEVEL_PARAM HT_BVH_PARAM H
 }
 
 // The occlusion of a ray after some instances moved (`moved` as for ht_trace_two_level_after_moves), for a ray that
-// was unoccluded before the move (`wasUnoccluded`; docs/REUSE.md §4 "Their shadow rays"): no unmoved triangle meets
-// it and none has moved, so only the moved instances' bottom levels are walked. Otherwise the whole any-hit walk.
-// Either way occluded exactly when the whole walk of the moved scene finds a hit (which hit may differ).
+// was unoccluded before the move (`wasUnoccluded`; docs/REUSE.md §4 "Shadow rays unoccluded before the move"): no
+// unmoved triangle meets it and none has moved, so only the moved instances' bottom levels are walked. Otherwise the
+// whole any-hit walk. Either way occluded exactly when the whole walk of the moved scene finds a hit (which hit may
+// differ).
 HT_INLINE HtTraceResult ht_trace_two_level_any_after_moves(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray,
                                                            uint stepLimit, bool wasUnoccluded, uvec4 moved) {
   return ht_two_level_walk_filtered(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, true, ray.tmax, wasUnoccluded, moved,

@@ -42,7 +42,8 @@ HT_CONST uint HT_SHADOW_CACHE_OFF = 0u;
 HT_CONST uint HT_SHADOW_CACHE_RECORD = 1u;
 HT_CONST uint HT_SHADOW_CACHE_RECORD_LISTED = 2u;
 // A shadow-queue entry with this bit (over its slot) was unoccluded when recorded and its path kept its hit: only the
-// moved instances can occlude it now, so trace_any walks their bottom levels alone (shade.comp KEPT_SEGMENTS).
+// moved instances can occlude it now, so trace_any walks their bottom levels alone (shade.comp KEPT_SEGMENTS). Slots
+// (path x lights + light) stay far below 2^31: a batch's shadow rays fit one storage buffer (32 B each).
 HT_CONST uint HT_SHADOW_MOVED_ONLY = 0x80000000u;
 
 // Material kinds (scene.h MaterialKind) and light types (scene.h Light::Type).
