@@ -158,23 +158,39 @@ WalkCounts expectWalksOfMovedInstancesMatch(const InstancedSoup& soup, const Two
   return counts;
 }
 
-TEST(BvhTwoLevelTest, ClosestHitAfterMovesFromTheKeptHitAndTheMovedInstancesAlone) {
-  WalkCounts all;
+// Four random instanced scenes from seeds seedBase + 1..4, each moved four times (one random instance, then two, in
+// turn): `before(twoLevel, rays)` runs before each move, `after(soup, twoLevel, rays, what before returned, moved)`
+// after it.
+template <class Before, class After>
+void forEachRandomMove(uint32_t seedBase, const Before& before, const After& after) {
   for (uint32_t seed = 1; seed <= 4; ++seed) {
-    std::mt19937 rng(100 + seed);
+    std::mt19937 rng(seedBase + seed);
     InstancedSoup soup = randomScene(rng, 6 + 2 * seed);
     TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
     const std::vector<HtRay> rays = randomRays(rng, soup, test::scaled(1500, 300));
     for (int move = 0; move < 4; ++move) {
-      const std::vector<HtTraceResult> before = traceClosestTwoLevelBatch(twoLevel, rays);
+      const auto state = before(twoLevel, rays);
       const std::vector<uint32_t> moved = moveRandomInstances(rng, soup, twoLevel, move % 2 == 1 ? 2 : 1);
-      const WalkCounts c = expectWalksOfMovedInstancesMatch(soup, twoLevel, rays, before, moved);
-      all.nowOnMoved += c.nowOnMoved;
-      all.keptMoved += c.keptMoved;
-      all.walkSteps += c.walkSteps;
-      all.wholeSteps += c.wholeSteps;
+      after(soup, twoLevel, rays, state, moved);
     }
   }
+}
+
+TEST(BvhTwoLevelTest, ClosestHitAfterMovesFromTheKeptHitAndTheMovedInstancesAlone) {
+  WalkCounts all;
+  forEachRandomMove(
+      100,
+      [](const TwoLevelBvh& twoLevel, const std::vector<HtRay>& rays) {
+        return traceClosestTwoLevelBatch(twoLevel, rays);
+      },
+      [&](const InstancedSoup& soup, const TwoLevelBvh& twoLevel, const std::vector<HtRay>& rays,
+          const std::vector<HtTraceResult>& before, const std::vector<uint32_t>& moved) {
+        const WalkCounts c = expectWalksOfMovedInstancesMatch(soup, twoLevel, rays, before, moved);
+        all.nowOnMoved += c.nowOnMoved;
+        all.keptMoved += c.keptMoved;
+        all.walkSteps += c.walkSteps;
+        all.wholeSteps += c.wholeSteps;
+      });
   // The walks found hits in front of kept ones (736 of them with 1,500 rays, 100 with 300).
   EXPECT_GT(all.nowOnMoved, test::scaled(300, 40));
   // Rays whose hit was on a moved instance walked the others beyond it, in fewer steps than whole traces.
@@ -190,38 +206,36 @@ TEST(BvhTwoLevelTest, ClosestHitAfterMovesFromTheKeptHitAndTheMovedInstancesAlon
 TEST(BvhTwoLevelTest, OcclusionAfterMovesOfRaysUnoccludedBeforeComesFromTheMovedInstancesAlone) {
   uint32_t unoccludedBefore = 0, nowOccluded = 0;
   uint64_t walkSteps = 0, wholeSteps = 0;
-  for (uint32_t seed = 1; seed <= 4; ++seed) {
-    std::mt19937 rng(300 + seed);
-    InstancedSoup soup = randomScene(rng, 6 + 2 * seed);
-    TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
-    const std::vector<HtRay> rays = randomRays(rng, soup, test::scaled(1500, 300));
-    for (int move = 0; move < 4; ++move) {
-      std::vector<bool> wasOccluded(rays.size());
-      for (size_t i = 0; i < rays.size(); ++i) {
+  auto occluded = [](const TwoLevelBvh& twoLevel, const HtRay& ray) {
+    const gpu_shared::TwoLevelView view = twoLevel.view();
+    return gpu_shared::ht_trace_two_level_any(view, view.blas, ray, gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
+  };
+  forEachRandomMove(
+      300,
+      [&](const TwoLevelBvh& twoLevel, const std::vector<HtRay>& rays) {
+        std::vector<bool> wasOccluded(rays.size());
+        for (size_t i = 0; i < rays.size(); ++i)
+          wasOccluded[i] = occluded(twoLevel, rays[i]).hit.triId != gpu_shared::HT_MISS;
+        return wasOccluded;
+      },
+      [&](const InstancedSoup&, const TwoLevelBvh& twoLevel, const std::vector<HtRay>& rays,
+          const std::vector<bool>& wasOccluded, const std::vector<uint32_t>& moved) {
+        glm::uvec4 ids(~0u);
+        for (size_t k = 0; k < moved.size(); ++k) ids[static_cast<int>(k)] = moved[k];
         const gpu_shared::TwoLevelView view = twoLevel.view();
-        wasOccluded[i] =
-            gpu_shared::ht_trace_two_level_any(view, view.blas, rays[i], gpu_shared::HT_TRAVERSAL_STEP_LIMIT)
-                .hit.triId != gpu_shared::HT_MISS;
-      }
-      const std::vector<uint32_t> moved = moveRandomInstances(rng, soup, twoLevel, move % 2 == 1 ? 2 : 1);
-      glm::uvec4 ids(~0u);
-      for (size_t k = 0; k < moved.size(); ++k) ids[static_cast<int>(k)] = moved[k];
-      const gpu_shared::TwoLevelView view = twoLevel.view();
-      for (size_t i = 0; i < rays.size(); ++i) {
-        if (wasOccluded[i]) continue;
-        ++unoccludedBefore;
-        const HtTraceResult whole =
-            gpu_shared::ht_trace_two_level_any(view, view.blas, rays[i], gpu_shared::HT_TRAVERSAL_STEP_LIMIT);
-        const HtTraceResult walked = gpu_shared::ht_trace_two_level_any_after_moves(
-            view, view.blas, rays[i], gpu_shared::HT_TRAVERSAL_STEP_LIMIT, true, ids);
-        ASSERT_FALSE(whole.overflow || walked.overflow) << "ray " << i;
-        EXPECT_EQ(walked.hit.triId != gpu_shared::HT_MISS, whole.hit.triId != gpu_shared::HT_MISS) << "ray " << i;
-        nowOccluded += whole.hit.triId != gpu_shared::HT_MISS;
-        walkSteps += walked.steps;
-        wholeSteps += whole.steps;
-      }
-    }
-  }
+        for (size_t i = 0; i < rays.size(); ++i) {
+          if (wasOccluded[i]) continue;
+          ++unoccludedBefore;
+          const HtTraceResult whole = occluded(twoLevel, rays[i]);
+          const HtTraceResult walked = gpu_shared::ht_trace_two_level_any_after_moves(
+              view, view.blas, rays[i], gpu_shared::HT_TRAVERSAL_STEP_LIMIT, true, ids);
+          ASSERT_FALSE(whole.overflow || walked.overflow) << "ray " << i;
+          EXPECT_EQ(walked.hit.triId != gpu_shared::HT_MISS, whole.hit.triId != gpu_shared::HT_MISS) << "ray " << i;
+          nowOccluded += whole.hit.triId != gpu_shared::HT_MISS;
+          walkSteps += walked.steps;
+          wholeSteps += whole.steps;
+        }
+      });
   EXPECT_GT(unoccludedBefore, test::scaled(1000, 200));
   EXPECT_GT(nowOccluded, test::scaled(100, 10));  // the moves occluded some of them
   EXPECT_LT(walkSteps, wholeSteps);
