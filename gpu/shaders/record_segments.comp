@@ -13,6 +13,7 @@
 // hit distances into the target's reach and range of hits (common.glsl accum_reach_word).
 #include "gpu/shaders/common.glsl"
 #include "gpu/segment_cells.h"
+#include "gpu/shaders/reuse_cache.glsl"
 
 layout(constant_id = 0) const bool LISTED = false;  // paths of listed targets (a partial re-render)
 // A frame re-shaded from cached hits (a light edit): its closest-hit segments are those already in the masks, so only
@@ -83,7 +84,7 @@ void main() {
       // A partial re-render's path that found its cached hit again has the same primary segment and shadow rays,
       // whose cells the marking pass kept in words 2-3 (dirty_list.glsl clear_dirty_target): nothing to add.
       uint framePath = target * spp + (pc.batchFirst + path) % spp;
-      if (texelFetch(reusePrimaryHitTexels, int(framePath)) == hit_bits(hit)) return;
+      if (cached_primary_hit(framePath) == hit_bits(hit)) return;
       HitCacheRef(FRAME.primaryHits).h[framePath] = hit_bits(hit);
     }
   }
