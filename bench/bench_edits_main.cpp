@@ -45,6 +45,7 @@ struct EditOptions {
   int deviceIndex = -1;
   bool fusedFloatMath = false;
   bool freshBuffers = false;  // --fresh-buffers: no Renderer::recycle
+  bool convexSkip = true;     // --no-convex-skip: clears the scene's convex marks (SceneNode::convexSides)
   double maxDirtyShare = gpu::RenderSettings{}.reuseMaxDirtyShare;
   // --alternate-walks / --alternate-bounce-hits: every other four timed moves run without the moved-instance walks
   // (Renderer::setMovedInstanceWalks) or without the cached bounce hits (Renderer::setBounceHitReuse).
@@ -52,7 +53,7 @@ struct EditOptions {
   std::optional<std::string> csvPath;
 };
 
-const std::array<cli::OptionSpec, 14> kSpecs = {{
+const std::array<cli::OptionSpec, 15> kSpecs = {{
     {"--displays", "", "LIST", "comma-separated displays (default builtin:portrait,bench/configs/quality-hpo-14.json)"},
     {"--scene", "", "SPEC", "scene (default builtin:showcase)"},
     {"--node", "", "NAME", "the node moved (default green-sphere)"},
@@ -67,6 +68,9 @@ const std::array<cli::OptionSpec, 14> kSpecs = {{
     {"--alternate-bounce-hits", "", "",
      "every other timed move traces its bounce rays instead of taking their cached hits (Renderer::setBounceHitReuse), "
      "reported apart: a same-run comparison"},
+    {"--no-convex-skip", "", "",
+     "clear the scene's convex marks: shadow rays walk the convex node they leave (docs/BVH.md §9.6), for a "
+     "comparison"},
     {"--runs", "", "N", "timed runs after one warm-up (default 5)"},
     {"--device", "", "N", "Vulkan device index (default: automatic)"},
     {"--csv", "", "PATH", "one row per display and quantity"},
@@ -104,6 +108,7 @@ std::optional<EditOptions> parseOptions(std::span<const std::string> args) {
   o.csvPath = parsed.text("--csv");
   o.fusedFloatMath = parsed.has("--fused-math");
   o.freshBuffers = parsed.has("--fresh-buffers");
+  o.convexSkip = !parsed.has("--no-convex-skip");
   if (parsed.has("--alternate-walks") && parsed.has("--alternate-bounce-hits"))
     throw UsageError(cli::usageMessage(kCommand, "--alternate-walks and --alternate-bounce-hits exclude each other"));
   if (parsed.has("--alternate-walks")) o.alternate = Alternate::Walks;
@@ -192,6 +197,8 @@ std::vector<gpu::StageTiming> medianStages(const StageRuns& runs) {
 
 DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const EditOptions& o) {
   Scene scene = loadScene(o.scene);
+  if (!o.convexSkip)
+    for (SceneNode& n : scene.nodes) n.convexSides = 0;
   const std::size_t node = findNode(scene, o.node).value_or(scene.nodes.size());
   if (node == scene.nodes.size())
     throw UsageError(cli::usageMessage(kCommand, "--node: " + o.scene + " has no node '" + o.node + "'"));

@@ -107,9 +107,16 @@ HT_INLINE HtTraceResult ht_trace_miss(HT_IN(HtRay) ray) {
 // Packed child reference k (0 or 1) of a node: (count << 27) | index.
 HT_INLINE uint ht_child_ref(uint index, uint count) { return (count << HT_REF_COUNT_SHIFT) | index; }
 
+// Is triangle slot `slot` (its first vec4's index) one of convex part `part`'s (never for part 0)? Read only for a
+// triangle the ray meets: vertex 1's .w holds the part (gpu_node.h), a float, exact below 2^24.
+HT_INLINE bool ht_slot_in_part(HT_BVH_PARAM uint slot, uint part) {
+  return part != 0u && HT_LOAD_TRI(slot + 1u).w == float(part);
+}
+
 // Shared body of closest-hit (anyHit = false) and early-exit any-hit (anyHit = true) traversal.
 // The GLSL compiler inlines it with a constant anyHit, so each variant keeps only its own branch.
-HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, bool anyHit) {
+// `leaves`: the convex part the ray leaves (ht_trace_any_leaving), whose triangles do not count; 0 for none.
+HT_INLINE HtTraceResult ht_trace_leaving(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, bool anyHit, uint leaves) {
   HtTraceResult res = ht_trace_miss(ray);
   if (!ht_ray_is_valid(ray)) return res;
   HtSlabRay slabRay = ht_make_slab_ray(ray.origin, ray.dir, ray.tmin);
@@ -189,7 +196,7 @@ HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, 
       float t;
       float u;
       float v;
-      if (ht_intersect_triangle(triRay, v0, v1, v2, tmax, t, u, v)) {
+      if (ht_intersect_triangle(triRay, v0, v1, v2, tmax, t, u, v) && !ht_slot_in_part(HT_BVH_ARG slot, leaves)) {
         tmax = t;
         res.hit.t = t;
         res.hit.triId = slot;  // slot of the hit for now; replaced by the triangle id below
@@ -220,6 +227,10 @@ HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, 
   return res;
 }
 
+HT_INLINE HtTraceResult ht_trace(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, bool anyHit) {
+  return ht_trace_leaving(HT_BVH_ARG ray, stepLimit, anyHit, 0u);
+}
+
 // Closest hit along [ray.tmin, ray.tmax].
 HT_INLINE HtTraceResult ht_trace_closest(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
   return ht_trace(HT_BVH_ARG ray, stepLimit, false);
@@ -228,6 +239,13 @@ HT_INLINE HtTraceResult ht_trace_closest(HT_BVH_PARAM HT_IN(HtRay) ray, uint ste
 // Any hit along [ray.tmin, ray.tmax] (occlusion): hit.triId != HT_MISS when occluded; stops at the first hit.
 HT_INLINE HtTraceResult ht_trace_any(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
   return ht_trace(HT_BVH_ARG ray, stepLimit, true);
+}
+
+// Any hit of a ray that leaves the surface of convex part `leaves` (the tag in its slots: vertex 1's .w, gpu_node.h;
+// docs/BVH.md §9.6) on the outside: the part's triangles do not count. The part cannot meet such a ray, so the
+// occlusion is the same, less any rounding self-hit; the two-level walk skips the part's bottom level instead.
+HT_INLINE HtTraceResult ht_trace_any_leaving(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, uint leaves) {
+  return ht_trace_leaving(HT_BVH_ARG ray, stepLimit, true, leaves);
 }
 
 HT_SHARED_END

@@ -116,4 +116,13 @@ GpuBvh buildGpuBvh(std::span<const glm::vec3> positions, std::span<const glm::uv
   return toGpuLayout(buildBinnedSah(positions, triangles, options), positions, triangles);
 }
 
+void tagTriangleParts(GpuBvh& bvh, std::span<const uint32_t> partOfTriangle) {
+  constexpr size_t kStride = gpu_shared::HT_TRI_STRIDE;
+  for (size_t slot = 0; slot + kStride <= bvh.triangles.size(); slot += kStride) {
+    const uint32_t id = glm::floatBitsToUint(bvh.triangles[slot].w);
+    if (id >= partOfTriangle.size()) throwLayout("triangle id " + std::to_string(id) + " has no part");
+    bvh.triangles[slot + 1].w = static_cast<float>(partOfTriangle[id]);
+  }
+}
+
 }  // namespace ht::bvh

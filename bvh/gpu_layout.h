@@ -26,6 +26,10 @@ GpuBvh toGpuLayout(const Bvh2& bvh, std::span<const glm::vec3> positions, std::s
 // The node part of toGpuLayout alone (leaf references index bvh.primIndex): the top level of a two-level BVH.
 std::vector<gpu_shared::GpuBvhNode> toGpuNodes(const Bvh2& bvh);
 
+// Writes each slot's convex part (bvh/gpu_node.h: vertex 1's .w, a float value) from partOfTriangle[triangle id]
+// (0 = none; below 2^24), for ht_trace_any_leaving. Throws ht::SceneError if a slot's id is out of its range.
+void tagTriangleParts(GpuBvh& bvh, std::span<const uint32_t> partOfTriangle);
+
 // buildBinnedSah + toGpuLayout.
 GpuBvh buildGpuBvh(std::span<const glm::vec3> positions, std::span<const glm::uvec3> triangles,
                    const BuildOptions& options);

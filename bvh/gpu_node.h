@@ -9,7 +9,8 @@
 //          count k  > 0 -> child k is a leaf of `count` triangles starting at triangle slot ref k.
 // An absent child (only when the whole tree is one leaf) has an empty box (lo = +inf, hi = -inf).
 // Triangles are stored in leaf order as 3 x vec4 per slot (HT_TRI_STRIDE); vertex 0's .w holds the
-// original triangle id as uint bits (floatBitsToUint / glm::floatBitsToUint).
+// original triangle id as uint bits (floatBitsToUint / glm::floatBitsToUint); vertex 1's .w the convex part the
+// triangle belongs to, as a float value (0 = none; a ray leaving that part skips it, docs/BVH.md §9.6).
 #ifndef HT_GPU_NODE_H
 #define HT_GPU_NODE_H
 #include "common/glsl_cpp.h"

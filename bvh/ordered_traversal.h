@@ -86,14 +86,16 @@ HT_INLINE void ht_resolve_slot_id(HT_BVH_PARAM HT_INOUT(HtHit) best) {
 struct HtOrderedRay {
   HtSlabRay slab;
   HtWatertightRay tri;
-  float tmax;  // the ray's own tmax
+  float tmax;   // the ray's own tmax
+  uint leaves;  // the convex part the ray leaves on its outside, whose triangles do not count (0: none; §9.6)
 };
 
-HT_INLINE HtOrderedRay ht_make_ordered_ray(HT_IN(HtRay) ray) {
+HT_INLINE HtOrderedRay ht_make_ordered_ray(HT_IN(HtRay) ray, uint leaves) {
   HtOrderedRay r;
   r.slab = ht_make_slab_ray(ray.origin, ray.dir, ray.tmin);
   r.tri = ht_make_watertight_ray(ray.origin, ray.dir, ray.tmin);
   r.tmax = ray.tmax;
+  r.leaves = leaves;
   return r;
 }
 
@@ -132,7 +134,8 @@ HT_INLINE void ht_ordered_leaf(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint slot0, u
     float t;
     float u;
     float v;
-    if (ht_intersect_triangle(r.tri, v0, v1, v2, cull, t, u, v) && ht_slot_hit_precedes(HT_BVH_ARG t, slot, best)) {
+    if (ht_intersect_triangle(r.tri, v0, v1, v2, cull, t, u, v) && ht_slot_hit_precedes(HT_BVH_ARG t, slot, best) &&
+        !ht_slot_in_part(HT_BVH_ARG slot, r.leaves)) {
       best.t = t;
       best.triId = slot;  // the id is looked up once the walk ends (ht_resolve_slot_id)
       best.u = u;
@@ -212,11 +215,12 @@ HT_INLINE bool ht_ordered_bvh(HT_BVH_PARAM HT_IN(HtOrderedRay) r, uint nodeBase,
   return finished;
 }
 
-// Least (t, id) hit of a single BVH (nodes and slots from index 0).
-HT_INLINE HtTraceResult ht_trace_closest_ordered(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
+// Least (t, id) hit of a single BVH (nodes and slots from index 0) among the triangles outside convex part `leaves`
+// (the part a ray leaving a surface leaves on its outside, tagged in the slots: bvh/gpu_node.h; 0 for none).
+HT_INLINE HtTraceResult ht_trace_closest_ordered_leaving(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit, uint leaves) {
   HtTraceResult res = ht_trace_miss(ray);
   if (!ht_ray_is_valid(ray)) return res;
-  HtOrderedRay r = ht_make_ordered_ray(ray);
+  HtOrderedRay r = ht_make_ordered_ray(ray, leaves);
   float cull = r.tmax;
   uint steps = 0u;
   bool finished = ht_ordered_bvh(HT_BVH_ARG r, 0u, 0u, false, res.hit, cull, steps, stepLimit);
@@ -224,6 +228,11 @@ HT_INLINE HtTraceResult ht_trace_closest_ordered(HT_BVH_PARAM HT_IN(HtRay) ray, 
   res.steps = steps;
   res.overflow = !finished;
   return res;
+}
+
+// Least (t, id) hit of a single BVH (nodes and slots from index 0).
+HT_INLINE HtTraceResult ht_trace_closest_ordered(HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
+  return ht_trace_closest_ordered_leaving(HT_BVH_ARG ray, stepLimit, 0u);
 }
 
 // The least (t, id) of two hits of one ray (a miss comes after every hit).
@@ -237,13 +246,14 @@ HT_INLINE HtHit ht_least_hit(HT_IN(HtHit) a, HT_IN(HtHit) b) {
 // ht_ordered_bvh. (GLSL: only where the including shader defines HT_LOAD_TOP_NODE and HT_LOAD_INSTANCE.)
 // `cull0`: the culling distance it starts from (the ray's tmax for a whole trace); `filtered`: the bottom levels of
 // the instances whose indices are in `only` are walked whole, the others not at all, or with `enterOthers` from
-// `othersNear` on: their boxes that end before it are culled (ht_trace_two_level_after_moves).
+// `othersNear` on: their boxes that end before it are culled (ht_trace_two_level_after_moves). Instance
+// `leaves` - 1 is never entered (a ray leaving that convex part, ht_trace_two_level_any_leaving; 0 for none).
 HT_INLINE HtTraceResult ht_two_level_walk_filtered(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
                                                    bool anyHit, float cull0, bool filtered, uvec4 only,
-                                                   bool enterOthers, float othersNear) {
+                                                   bool enterOthers, float othersNear, uint leaves) {
   HtTraceResult res = ht_trace_miss(ray);
   if (!ht_ray_is_valid(ray)) return res;
-  HtOrderedRay r = ht_make_ordered_ray(ray);
+  HtOrderedRay r = ht_make_ordered_ray(ray, leaves);
   float tmin = r.slab.tmin;
   float cull = cull0;
   uint stack[HT_BVH_MAX_DEPTH];
@@ -265,7 +275,7 @@ HT_INLINE HtTraceResult ht_two_level_walk_filtered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
         steps++;  // this loop's iterations count too (lavapipe's loop budget, docs/TOOLCHAIN.md §0)
         uvec4 inst = HT_LOAD_INSTANCE(e);
         bool other = filtered && inst.z != only.x && inst.z != only.y && inst.z != only.z && inst.z != only.w;
-        if (other && !enterOthers) continue;
+        if ((other && !enterOthers) || inst.z + 1u == leaves) continue;  // (leaves: instance index + 1)
         r.slab.tmin = other ? max(tmin, othersNear) : tmin;
         overflow = !ht_ordered_bvh(HT_BVH_ARG r, inst.x, inst.y, anyHit, res.hit, cull, steps, stepLimit);
         if (anyHit && res.hit.triId != HT_MISS) break;
@@ -315,12 +325,19 @@ HT_INLINE HtTraceResult ht_two_level_walk_filtered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
 HT_INLINE HtTraceResult ht_two_level_walk(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
                                           bool anyHit) {
   return ht_two_level_walk_filtered(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, anyHit, ray.tmax, false, uvec4(0u),
-                                    false, 0.0f);
+                                    false, 0.0f, 0u);
 }
 
 // Least (t, id) hit of a two-level BVH.
 HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit) {
   return ht_two_level_walk(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, false);
+}
+
+// ht_trace_closest_ordered_leaving on a two-level BVH: the instance of part `leaves` (its index + 1) is not entered.
+HT_INLINE HtTraceResult ht_trace_two_level_ordered_leaving(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray,
+                                                           uint stepLimit, uint leaves) {
+  return ht_two_level_walk_filtered(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, false, ray.tmax, false, uvec4(0u),
+                                    false, 0.0f, leaves);
 }
 
 // The closest hit of a ray after some instances moved (`moved`: their instance indices, 0xFFFFFFFF for none), from
@@ -334,13 +351,15 @@ HT_INLINE HtTraceResult ht_trace_two_level_ordered(HT_TWO_LEVEL_PARAM HT_BVH_PAR
 //   by HT_ORDERED_NEAR_SCALE), since none of their triangles comes before it: their boxes that end sooner, such as
 //   those around the origin of a ray leaving a surface, are culled.
 // Either way the result is a whole trace's of the moved scene, bit for bit, because the closest hit is the
-// order-free one. With `walk` false (`kept` unknown) it is the whole trace.
+// order-free one. With `walk` false (`kept` unknown) it is the whole trace. `leaves` as for
+// ht_trace_two_level_ordered_leaving (`kept` was found with the same).
 HT_INLINE HtTraceResult ht_trace_two_level_after_moves(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
-                                                       HT_IN(HtHit) kept, bool walk, bool keptMoved, uvec4 moved) {
+                                                       HT_IN(HtHit) kept, bool walk, bool keptMoved, uvec4 moved,
+                                                       uint leaves) {
   bool keptStays = walk && !keptMoved;
   HtTraceResult res = ht_two_level_walk_filtered(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, false,
                                                  keptStays ? ht_ordered_cull_t(kept, ray.tmax) : ray.tmax, walk, moved,
-                                                 keptMoved, kept.t * HT_ORDERED_NEAR_SCALE);
+                                                 keptMoved, kept.t * HT_ORDERED_NEAR_SCALE, leaves);
   if (keptStays) res.hit = ht_least_hit(kept, res.hit);
   return res;
 }
@@ -351,15 +370,25 @@ HT_INLINE HtTraceResult ht_trace_two_level_any(HT_TWO_LEVEL_PARAM HT_BVH_PARAM H
   return ht_two_level_walk(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, true);
 }
 
+// ht_trace_any_leaving on a two-level BVH: a ray leaving convex part `leaves` (instance index + 1: a part is one
+// instance) on the outside does not enter that instance's bottom level (docs/BVH.md §9.6). Occluded exactly when
+// ht_trace_any_leaving finds a hit on the flattened BVH of the same tagged triangles.
+HT_INLINE HtTraceResult ht_trace_two_level_any_leaving(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray, uint stepLimit,
+                                                       uint leaves) {
+  return ht_two_level_walk_filtered(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, true, ray.tmax, false, uvec4(0u), false,
+                                    0.0f, leaves);
+}
+
 // The occlusion of a ray after some instances moved (`moved` as for ht_trace_two_level_after_moves), for a ray that
 // was unoccluded before the move (`wasUnoccluded`; docs/REUSE.md §4 "Shadow rays unoccluded before the move"): no
 // unmoved triangle meets it and none has moved, so only the moved instances' bottom levels are walked. Otherwise the
 // whole any-hit walk. Either way occluded exactly when the whole walk of the moved scene finds a hit (which hit may
-// differ).
+// differ). `leaves` as for ht_trace_two_level_any_leaving, before and after the move.
 HT_INLINE HtTraceResult ht_trace_two_level_any_after_moves(HT_TWO_LEVEL_PARAM HT_BVH_PARAM HT_IN(HtRay) ray,
-                                                           uint stepLimit, bool wasUnoccluded, uvec4 moved) {
+                                                           uint stepLimit, bool wasUnoccluded, uvec4 moved,
+                                                           uint leaves) {
   return ht_two_level_walk_filtered(HT_TWO_LEVEL_ARG HT_BVH_ARG ray, stepLimit, true, ray.tmax, wasUnoccluded, moved,
-                                    false, 0.0f);
+                                    false, 0.0f, leaves);
 }
 #endif
 

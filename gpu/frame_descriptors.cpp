@@ -23,7 +23,7 @@ VkDescriptorType FrameDescriptors::bindingType(std::uint32_t binding) {
   using namespace gpu_shared;
   if (binding == HT_BINDING_FRAME) return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   if ((binding >= HT_BINDING_STORAGE_FIRST && binding <= HT_BINDING_STORAGE_LAST) || binding == HT_BINDING_ACCUM_SUMS ||
-      binding == HT_BINDING_ACCUM_HALVES)
+      binding == HT_BINDING_ACCUM_HALVES || binding == HT_BINDING_QUEUE_LEAVES)
     return VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
   return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "gpu/convex_parts.h"
 #include "gpu/wavefront_types.h"
 
 namespace ht::gpu {
@@ -89,6 +90,7 @@ GpuScene::GpuScene(VulkanContext::Impl& vk, const Scene& scene, SceneBvh bvh) : 
     instances = DeviceBuffer(vk, std::max<size_t>(count, 1) * sizeof(glm::uvec4), MemoryPlace::Device);
     uploadTopLevel();
   } else {
+    tagConvexParts(bvh.flattened, scene);  // (the two-level walk skips a convex part's instance instead)
     nodes = uploadVector(vk, bvh.flattened.nodes);
     bvhTriangles = uploadVector(vk, bvh.flattened.triangles);
     topNodes = uploadVector(vk, std::vector<gpu_shared::GpuBvhNode>(1));  // never read
@@ -101,7 +103,15 @@ void GpuScene::uploadRecords(const Scene& scene) {
   VulkanContext::Impl& vk = *vk_;
   std::vector<glm::vec4> positions;
   positions.reserve(scene.positions.size());
-  for (const glm::vec3& p : scene.positions) positions.emplace_back(p, 1.0f);
+  for (const glm::vec3& p : scene.positions) positions.emplace_back(p, 0.0f);
+  const std::vector<SceneInstance> instances = scene.instances();
+  for (std::size_t i = 0; i < instances.size(); ++i) {  // .w: the convex part tag (gpu/convex_parts.h)
+    if (instances[i].node < 0) continue;
+    const SceneNode& node = scene.nodes[static_cast<std::size_t>(instances[i].node)];
+    const float tag = convexVertexTag(node, i);
+    for (std::uint32_t v = node.firstVertex; tag != 0.0f && v < node.firstVertex + node.vertexCount; ++v)
+      positions[v].w = tag;
+  }
   vertices = uploadVector(vk, positions);
 
   hasNormals = !scene.normals.empty() && scene.normals.size() == scene.positions.size();
@@ -152,7 +162,8 @@ bool GpuScene::uploadTopLevel(UploadBatch* batch) {
   return reallocated;
 }
 
-void GpuScene::uploadInstanceRecords(const Scene& scene, const SceneInstance& instance, UploadBatch& batch) {
+void GpuScene::uploadInstanceRecords(const Scene& scene, const SceneInstance& instance, std::size_t index,
+                                     UploadBatch& batch) {
   if (instance.triangleCount == 0) return;
   const size_t first = instance.firstTriangle, end = first + instance.triangleCount;
   std::vector<glm::uvec4> tris;
@@ -169,7 +180,9 @@ void GpuScene::uploadInstanceRecords(const Scene& scene, const SceneInstance& in
   // The node's vertices: the span its triangles index (a node's vertices are contiguous in a loaded scene).
   std::vector<glm::vec4> values;
   values.reserve(hi - lo + 1);
-  for (std::uint32_t v = lo; v <= hi; ++v) values.emplace_back(scene.positions[v], 1.0f);
+  const float tag =
+      instance.node < 0 ? 0.0f : convexVertexTag(scene.nodes[static_cast<std::size_t>(instance.node)], index);
+  for (std::uint32_t v = lo; v <= hi; ++v) values.emplace_back(scene.positions[v], tag);
   batch.add(vertices, values.data(), values.size() * sizeof(glm::vec4), lo * sizeof(glm::vec4));
   if (!hasNormals) return;
   values.clear();
@@ -213,7 +226,7 @@ bool GpuScene::moveInstances(const Scene& scene, std::span<const std::uint32_t> 
   }
   const auto start = std::chrono::steady_clock::now();
   reallocated |= uploadTopLevel(&batch);
-  for (std::uint32_t i : moved) uploadInstanceRecords(scene, sceneInstances[i], batch);
+  for (std::uint32_t i : moved) uploadInstanceRecords(scene, sceneInstances[i], i, batch);
   batch.submit();
   lastUploadMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return reallocated;

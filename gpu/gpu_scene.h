@@ -58,7 +58,7 @@ class GpuScene {
   // Uploads the two-level BVH's top level and instance table (through `batch` when given), reallocating a buffer that
   // is too small; true then.
   bool uploadTopLevel(UploadBatch* batch = nullptr);
-  void uploadInstanceRecords(const Scene& scene, const SceneInstance& instance, UploadBatch& batch);
+  void uploadInstanceRecords(const Scene& scene, const SceneInstance& instance, std::size_t index, UploadBatch& batch);
   VulkanContext::Impl* vk_;
   StagingBuffer moveStaging_;  // the uploads of node moves (moveInstances), reused from move to move
   bvh::BvhLayout layout_ = bvh::BvhLayout::Flattened;

@@ -16,17 +16,18 @@ void PathBuffers::ensure(VulkanContext::Impl& vk, std::uint32_t paths, std::uint
     rays[q] = DeviceBuffer(vk, n * sizeof(gpu_shared::HtRay), MemoryPlace::Device);
     queuePath[q] = DeviceBuffer(vk, n * 4, MemoryPlace::Device);
   }
+  queueLeaves = DeviceBuffer(vk, 2 * n * 4, MemoryPlace::Device);  // both queues' (shader_interface.h)
   hits = DeviceBuffer(vk, n * sizeof(gpu_shared::HtHit), MemoryPlace::Device);
   radiance = DeviceBuffer(vk, n * 16, MemoryPlace::Device);
   throughput = DeviceBuffer(vk, n * 16, MemoryPlace::Device);
   shadowRays = DeviceBuffer(vk, s * sizeof(gpu_shared::HtRay), MemoryPlace::Device);
   shadowContrib = DeviceBuffer(vk, s * 16, MemoryPlace::Device);
-  shadowQueue = DeviceBuffer(vk, s * 4, MemoryPlace::Device);
+  shadowQueue = DeviceBuffer(vk, s * 8, MemoryPlace::Device);  // slot, convex part left (shade.comp)
 }
 
 std::uint64_t PathBuffers::bytesPerPath(std::uint32_t lights) {
-  return 2 * (sizeof(gpu_shared::HtRay) + 4) + sizeof(gpu_shared::HtHit) + 32 +
-         std::max(lights, 1u) * (sizeof(gpu_shared::HtRay) + 16 + 4);
+  return 2 * (sizeof(gpu_shared::HtRay) + 4 + 4) + sizeof(gpu_shared::HtHit) + 32 +
+         std::max(lights, 1u) * (sizeof(gpu_shared::HtRay) + 16 + 8);
 }
 
 void OutputBuffers::ensure(VulkanContext::Impl& vk, std::uint32_t w, std::uint32_t h) {

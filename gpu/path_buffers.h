@@ -15,7 +15,7 @@ struct PathBuffers {
   std::uint32_t capacity = 0;
   std::uint32_t lightSlots = 0;  // shadow slots per path
   std::uint64_t generation = 0;  // bumped on every reallocation
-  DeviceBuffer rays[2], queuePath[2], hits, radiance, throughput, shadowRays, shadowContrib, shadowQueue;
+  DeviceBuffer rays[2], queuePath[2], queueLeaves, hits, radiance, throughput, shadowRays, shadowContrib, shadowQueue;
 
   // Grows (never shrinks) to at least `paths` paths with `lights` shadow slots each.
   void ensure(VulkanContext::Impl& vk, std::uint32_t paths, std::uint32_t lights);

@@ -286,12 +286,13 @@ void Renderer::Impl::bindState() {
                                 {HT_BINDING_RAY_QUEUE_1, &work.rays[1], VK_FORMAT_R32G32B32A32_SFLOAT},
                                 {HT_BINDING_QUEUE_PATH_0, &work.queuePath[0], VK_FORMAT_R32_UINT},
                                 {HT_BINDING_QUEUE_PATH_1, &work.queuePath[1], VK_FORMAT_R32_UINT},
+                                {HT_BINDING_QUEUE_LEAVES, &work.queueLeaves, VK_FORMAT_R32_UINT},
                                 {HT_BINDING_HITS, &work.hits, VK_FORMAT_R32G32B32A32_UINT},
                                 {HT_BINDING_RADIANCE, &work.radiance, VK_FORMAT_R32G32B32A32_SFLOAT},
                                 {HT_BINDING_THROUGHPUT, &work.throughput, VK_FORMAT_R32G32B32A32_SFLOAT},
                                 {HT_BINDING_SHADOW_RAYS, &work.shadowRays, VK_FORMAT_R32G32B32A32_SFLOAT},
                                 {HT_BINDING_SHADOW_CONTRIB, &work.shadowContrib, VK_FORMAT_R32G32B32A32_SFLOAT},
-                                {HT_BINDING_SHADOW_QUEUE, &work.shadowQueue, VK_FORMAT_R32_UINT}};
+                                {HT_BINDING_SHADOW_QUEUE, &work.shadowQueue, VK_FORMAT_R32G32_UINT}};
   for (const TexelBinding& s : state) descriptors.setStorageTexels(s.binding, *s.buffer, s.format, freshWork);
   const bool freshOutputs = boundOutputGeneration != outputs.generation;
   boundOutputGeneration = outputs.generation;

@@ -25,7 +25,7 @@ HT_CONST uint HT_BINDING_RADIANCE = 10u;        // RGBA32F
 HT_CONST uint HT_BINDING_THROUGHPUT = 11u;      // RGBA32F
 HT_CONST uint HT_BINDING_SHADOW_RAYS = 12u;     // RGBA32F, 2 texels per slot
 HT_CONST uint HT_BINDING_SHADOW_CONTRIB = 13u;  // RGBA32F
-HT_CONST uint HT_BINDING_SHADOW_QUEUE = 14u;    // R32UI
+HT_CONST uint HT_BINDING_SHADOW_QUEUE = 14u;    // RG32UI: slot (| HT_SHADOW_MOVED_ONLY), convex part it leaves
 HT_CONST uint HT_BINDING_SUBPIXELS = 15u;       // R32F: one value per target
 HT_CONST uint HT_BINDING_OUTPUT_IMAGE = 16u;    // RGBA32F: the views, read back by the host
 // Scene records, uniform texel buffers.
@@ -55,7 +55,10 @@ HT_CONST uint HT_BINDING_REUSE_BOUNCES = 33u;       // RGBA32UI view of the boun
 // frame; a 1-texel dummy outside accumulations.
 HT_CONST uint HT_BINDING_ACCUM_SUMS = 34u;    // RGBA32UI: AccumTarget sum (float bits), n
 HT_CONST uint HT_BINDING_ACCUM_HALVES = 35u;  // RGBA32UI: AccumTarget halfSum (float bits), halfN
-HT_CONST uint HT_BINDING_COUNT = 36u;
+// The convex part each bounce ray of ray queue q leaves (shade.comp writes it, trace_closest reads it; 0 for none):
+// R32UI, entry q * batchCount + slot.
+HT_CONST uint HT_BINDING_QUEUE_LEAVES = 36u;
+HT_CONST uint HT_BINDING_COUNT = 37u;
 // The storage texel buffers are the bindings [FIRST, LAST] and the accumulation's two.
 HT_CONST uint HT_BINDING_STORAGE_FIRST = HT_BINDING_RAY_QUEUE_0;
 HT_CONST uint HT_BINDING_STORAGE_LAST = HT_BINDING_OUTPUT_IMAGE;

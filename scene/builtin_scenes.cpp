@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/error.h"
+#include "scene/convex_sides.h"
 #include "scene/mesh_generators.h"
 
 namespace ht {
@@ -104,6 +105,7 @@ Scene makeShowcaseScene() {
   sun.color = {0.8f, 0.85f, 1.0f};
   sun.intensity = 0.8f;  // lux
   s.lights.push_back(sun);
+  markConvexNodes(s);
   return s;
 }
 
@@ -128,6 +130,7 @@ Scene makePlainScene() {
   addNode(s, "yellow-box", [&] {
     makeBox(s, {-0.35f, -0.65f, 0.6f}, glm::vec3(0.15f), addMaterial(s, diffuse("yellow", {0.9f, 0.85f, 0.2f})));
   });
+  markConvexNodes(s);
   return s;
 }
 
@@ -136,6 +139,7 @@ Scene makeSphereScene() {
   s.name = "builtin:sphere";
   addNode(s, "sphere",
           [&] { makeIcosphere(s, glm::vec3(0.0f), 1.0f, 5, addMaterial(s, diffuse("sphere", glm::vec3(0.8f)))); });
+  markConvexNodes(s);
   return s;
 }
 
@@ -159,6 +163,7 @@ Scene makeMirrorTestScene() {
     makeIcosphere(s, {0.0f, 2.5f, 0.0f}, 0.75f, kSphereSubdivisions,
                   addMaterial(s, emitter("magenta", {1.0f, 0.1f, 0.8f})));
   });
+  markConvexNodes(s);
   return s;
 }
 

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/error.h"
+#include "scene/convex_sides.h"
 #include "scene/gltf_accessor.h"
 #include "scene/gltf_file.h"
 #include "scene/gltf_lights.h"
@@ -331,6 +332,7 @@ Scene loadGltf(const SceneSource& source, SceneLoadReport* reportOut, const Scen
                      "the scene has no triangles (nothing to render; check that the default scene contains "
                      "meshes with triangle primitives)");
   if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
+  markConvexNodes(scene);
 
   report.triangles = scene.triangles.size();
   report.vertices = scene.positions.size();

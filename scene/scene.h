@@ -55,10 +55,12 @@ struct SceneNode {
   std::string name;  // glTF node name ("node<i>" if unnamed), built-in object name
   std::uint32_t firstVertex = 0, vertexCount = 0;
   std::uint32_t firstTriangle = 0, triangleCount = 0;
-  glm::dmat4 world{1.0};   // the world matrix the vertices are currently transformed by (identity for
-                           // built-in objects, whose vertices are generated in world space)
-  std::int32_t mesh = -1;  // the glTF mesh this node instances (nodes with the same mesh have the same
-                           // triangles in the same order under different matrices); -1 = its own
+  glm::dmat4 world{1.0};         // the world matrix the vertices are currently transformed by (identity for
+                                 // built-in objects, whose vertices are generated in world space)
+  std::int32_t mesh = -1;        // the glTF mesh this node instances (nodes with the same mesh have the same
+                                 // triangles in the same order under different matrices); -1 = its own
+  std::uint8_t convexSides = 0;  // the sides of its triangles a ray leaves without meeting it again
+                                 // (kConvexFront | kConvexBack, scene/convex_sides.h; set by the loaders)
 };
 
 // A contiguous range of Scene::triangles placed by one node (or, with node = -1, triangles that belong to no

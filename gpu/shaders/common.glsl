@@ -38,12 +38,13 @@ layout(set = 0, binding = HT_BINDING_RAY_QUEUE_0, rgba32f) uniform imageBuffer r
 layout(set = 0, binding = HT_BINDING_RAY_QUEUE_1, rgba32f) uniform imageBuffer rayQueue1;
 layout(set = 0, binding = HT_BINDING_QUEUE_PATH_0, r32ui) uniform uimageBuffer queuePath0;
 layout(set = 0, binding = HT_BINDING_QUEUE_PATH_1, r32ui) uniform uimageBuffer queuePath1;
+layout(set = 0, binding = HT_BINDING_QUEUE_LEAVES, r32ui) uniform uimageBuffer queueLeaves;  // both queues'
 layout(set = 0, binding = HT_BINDING_HITS, rgba32ui) uniform uimageBuffer hitBuffer;        // t bits, triId, u bits, v bits
 layout(set = 0, binding = HT_BINDING_RADIANCE, rgba32f) uniform imageBuffer radianceBuffer;
 layout(set = 0, binding = HT_BINDING_THROUGHPUT, rgba32f) uniform imageBuffer throughputBuffer;
 layout(set = 0, binding = HT_BINDING_SHADOW_RAYS, rgba32f) uniform imageBuffer shadowRayBuffer;   // 2 texels per slot
 layout(set = 0, binding = HT_BINDING_SHADOW_CONTRIB, rgba32f) uniform imageBuffer shadowContribBuffer;
-layout(set = 0, binding = HT_BINDING_SHADOW_QUEUE, r32ui) uniform uimageBuffer shadowQueueBuffer;
+layout(set = 0, binding = HT_BINDING_SHADOW_QUEUE, rg32ui) uniform uimageBuffer shadowQueueBuffer;
 layout(set = 0, binding = HT_BINDING_SUBPIXELS, r32f) uniform imageBuffer subpixelBuffer;
 layout(set = 0, binding = HT_BINDING_OUTPUT_IMAGE, rgba32f) uniform imageBuffer outputImage;
 // Scene records (uniform texel buffers).
@@ -124,6 +125,9 @@ void store_ray(uint q, uint i, HtRay r) {
 uint load_queue_path(uint q, uint i) {
   return q == 0u ? imageLoad(queuePath0, int(i)).x : imageLoad(queuePath1, int(i)).x;
 }
+// The convex part the ray in slot i of queue q leaves on its outside (0: none; gpu/convex_parts.h).
+uint load_queue_leaves(uint q, uint i) { return imageLoad(queueLeaves, int(q * pc.batchCount + i)).x; }
+void store_queue_leaves(uint q, uint i, uint part) { imageStore(queueLeaves, int(q * pc.batchCount + i), uvec4(part)); }
 void store_queue_path(uint q, uint i, uint path) {
   if (q == 0u) imageStore(queuePath0, int(i), uvec4(path));
   else imageStore(queuePath1, int(i), uvec4(path));
@@ -162,6 +166,8 @@ void store_shadow_ray(uint slot, HtRay r) {
 }
 
 vec3 scene_vertex(uint i) { return texelFetch(vertexTexels, int(i)).xyz; }
+// Position and convex part tag (.w, gpu/convex_parts.h) of vertex i.
+vec4 scene_vertex_tagged(uint i) { return texelFetch(vertexTexels, int(i)); }
 vec3 scene_normal(uint i) { return texelFetch(normalTexels, int(i)).xyz; }
 vec2 scene_texcoord(uint i) { return texelFetch(texcoordTexels, int(i)).xy; }
 uvec4 scene_triangle(uint i) { return texelFetch(triangleTexels, int(i)); }

@@ -11,6 +11,7 @@
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_ballot : require
 #include "bvh/offset_ray.h"
+#include "gpu/convex_parts.h"
 #include "gpu/segment_cells.h"
 #include "gpu/shaders/reuse_cache.glsl"
 
@@ -81,11 +82,13 @@ struct SurfacePoint {
   bool front;    // the ray hit the side the triangle's winding faces
   vec2 uv;
   uint material;
+  float convexTag;  // its convex part and the sides outside it (gpu/convex_parts.h; 0: none)
 };
 
 SurfacePoint surface_point(HtHit hit, vec3 dir) {
   uvec4 tri = scene_triangle(hit.triId);
-  vec3 p0 = scene_vertex(tri.x), p1 = scene_vertex(tri.y), p2 = scene_vertex(tri.z);
+  vec4 tagged0 = scene_vertex_tagged(tri.x);
+  vec3 p0 = tagged0.xyz, p1 = scene_vertex(tri.y), p2 = scene_vertex(tri.z);
   float w0 = 1.0f - hit.u - hit.v;
   SurfacePoint s;
   s.p = w0 * p0 + hit.u * p1 + hit.v * p2;
@@ -106,7 +109,18 @@ SurfacePoint surface_point(HtHit hit, vec3 dir) {
     s.uv = w0 * scene_texcoord(tri.x) + hit.u * scene_texcoord(tri.y) + hit.v * scene_texcoord(tri.z);
   }
   s.material = tri.w;
+  s.convexTag = tagged0.w;
   return s;
+}
+
+// The convex part (gpu/convex_parts.h) a ray from `s` leaves on its outside, 0 for none: one whose origin is offset to
+// nFace's side (`sameSide`, a reflection or a shadow ray) or to the other side (a refraction) and whose direction
+// moves away from the triangle's plane on that side. (The shading normal can turn a glass ray across the plane: such a
+// ray crosses the surface and may meet its part.)
+uint leaves_surface(SurfacePoint s, vec3 dir, bool sameSide) {
+  float away = dot(dir, s.nFace);
+  bool leaving = sameSide ? away > 0.0f : away < 0.0f;
+  return leaving ? ht_convex_part_left(s.convexTag, sameSide == s.front) : 0u;
 }
 
 // Incident radiance scale and direction of light l at p (KHR_lights_punctual recommended falloffs).
@@ -140,6 +154,7 @@ vec3 light_incidence(GpuLight light, vec3 p, out vec3 wi, out float dist) {
 uint emit_shadow_rays(uint path, SurfacePoint s, vec3 weight, uint occlusionIndex) {
   uint lightCount = FRAME.scene.x;
   vec3 origin = ht_offset_ray(s.p, s.nFace);
+  uint leaves = ht_convex_part_left(s.convexTag, s.front);  // the rays leave on nFace's side, the incoming ray's
   uint word = 0u;      // the path's recorded word
   uint holding = 0u;   // bit l: light l's recorded occlusion holds (if the ray's segment allows, KEPT_SEGMENTS)
   if (OCCLUSION == HT_OCCLUSION_KEPT_LIGHTS || OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS) {
@@ -177,7 +192,7 @@ uint emit_shadow_rays(uint path, SurfacePoint s, vec3 weight, uint occlusionInde
         imageStore(shadowContribBuffer, int(slot), occluded ? vec4(0.0f, 0.0f, 0.0f, 2.0f) : vec4(contrib, 2.0f));
       } else {
         imageStore(shadowContribBuffer, int(slot), vec4(contrib, 1.0f));
-        imageStore(shadowQueueBuffer, int(q), uvec4(slot | movedOnly));
+        imageStore(shadowQueueBuffer, int(q), uvec4(slot | movedOnly, leaves, 0u, 0u));
       }
     }
   }
@@ -228,6 +243,7 @@ void main() {
   bool continues = false;
   vec3 dir = normalize(ray.dir);
   HtRay next;
+  uint nextLeaves = 0u;  // the convex part `next` leaves on its outside (trace_closest skips it)
   SurfacePoint s;
   vec3 albedo = vec3(0.0f);
   if (!hitSurface) {
@@ -245,6 +261,7 @@ void main() {
       vec3 r = reflect(dir, s.nShade);
       if (dot(r, s.nFace) <= 0.0f) r = reflect(dir, s.nFace);
       next = HtRay(ht_offset_ray(s.p, s.nFace), 0.0f, r, HT_RAY_FAR);
+      nextLeaves = leaves_surface(s, next.dir, true);
       throughput *= albedo;
     } else if (HAS_GLASS && kind == HT_MATERIAL_GLASS) {
       continues = !last;
@@ -263,6 +280,7 @@ void main() {
         vec3 t = eta * dir + (eta * cosI - cosT) * s.nShade;
         next = HtRay(ht_offset_ray(s.p, -s.nFace), 0.0f, normalize(t), HT_RAY_FAR);
       }
+      nextLeaves = leaves_surface(s, next.dir, reflectRay);
       throughput *= albedo;
     } else {
       radiance += throughput * albedo * FRAME.ambient.xyz;
@@ -286,6 +304,7 @@ void main() {
     if (continues) {
       store_ray(out_queue, q, next);
       store_queue_path(out_queue, q, path);
+      store_queue_leaves(out_queue, q, nextLeaves);
       imageStore(throughputBuffer, int(path), vec4(throughput, 0.0f));
     }
     if (LINK_BOUNCES) {  // (addresses 0 once the cache overflowed: the frame then keeps no state)

@@ -3,7 +3,9 @@
 // trace_any: early-exit occlusion test, one ray per invocation.
 //   SHADOW_QUEUE = 1: entry i of the shadow queue names a slot; an occluded slot's contribution is zeroed.
 //   SHADOW_QUEUE = 0: plain batch (Renderer::traceOccluded): ray i of queue 0, result in hits[i].triId.
-// Occlusion is the same on the flattened and the two-level BVH (the same triangle test with the ray's tmax).
+// Occlusion is the same on the flattened and the two-level BVH (the same triangle test with the ray's tmax). A shadow
+// ray that leaves a convex part on its outside (the queue entry's .y, shade.comp) skips that part: its instance on a
+// two-level BVH, its tagged triangles on a flattened one (docs/BVH.md §9.6).
 #include "gpu/shaders/common.glsl"
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #include "gpu/shaders/bvh_access.glsl"
@@ -27,7 +29,9 @@ void main() {
   uint steps = 0u;
   bool overflow = false;
   if (inQueue) {
-    uint entry = SHADOW_QUEUE == 1u ? imageLoad(shadowQueueBuffer, int(i)).x : i;
+    uvec2 queued = SHADOW_QUEUE == 1u ? imageLoad(shadowQueueBuffer, int(i)).xy : uvec2(i, 0u);
+    uint entry = queued.x;
+    uint leaves = queued.y;  // the convex part the ray leaves on its outside (shade.comp), 0 for none
     // (only a partial re-render's shade sets HT_SHADOW_MOVED_ONLY, and only where the moved instances are known)
     bool movedOnly = SHADOW_CACHE == HT_SHADOW_CACHE_RECORD_LISTED && (entry & HT_SHADOW_MOVED_ONLY) != 0u;
     uint slot = SHADOW_CACHE == HT_SHADOW_CACHE_RECORD_LISTED ? entry & ~HT_SHADOW_MOVED_ONLY : entry;
@@ -41,11 +45,11 @@ void main() {
     HtTraceResult r;
     if (TWO_LEVEL && SHADOW_CACHE == HT_SHADOW_CACHE_RECORD_LISTED) {
       // One walk for every lane (lavapipe runs both sides of a divergent branch): whole, or the moved instances alone.
-      r = ht_trace_two_level_any_after_moves(ray, FRAME.scene.z, movedOnly, FRAME.movedInstanceIds);
+      r = ht_trace_two_level_any_after_moves(ray, FRAME.scene.z, movedOnly, FRAME.movedInstanceIds, leaves);
     } else if (TWO_LEVEL) {
-      r = ht_trace_two_level_any(ray, FRAME.scene.z);
+      r = ht_trace_two_level_any_leaving(ray, FRAME.scene.z, leaves);
     } else {
-      r = ht_trace_any(ray, FRAME.scene.z);
+      r = ht_trace_any_leaving(ray, FRAME.scene.z, leaves);
     }
     steps = r.steps;
     overflow = r.overflow;

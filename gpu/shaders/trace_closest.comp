@@ -78,15 +78,17 @@ void main() {
     }
   }
   if (inQueue) {
+    // A bounce ray that leaves a convex part on its outside skips it (shade.comp; docs/BVH.md §9.6).
+    uint leaves = pc.depth == 0u ? 0u : load_queue_leaves(pc.queue, i);  // (primary rays, ray batches: none)
     HtTraceResult r;
     if ((REUSE_PRIMARY || REUSE_BOUNCES) && TWO_LEVEL) {
       // One walk for every lane (lavapipe runs both sides of a divergent branch): whole, or from the cached hit.
       r = ht_trace_two_level_after_moves(ray, FRAME.scene.z, hit_of_bits(cachedHit), walk,
-                                         cached_hit_moved(cachedHit), FRAME.movedInstanceIds);
+                                         cached_hit_moved(cachedHit), FRAME.movedInstanceIds, leaves);
     } else if (TWO_LEVEL) {
-      r = ht_trace_two_level_ordered(ray, FRAME.scene.z);
+      r = ht_trace_two_level_ordered_leaving(ray, FRAME.scene.z, leaves);
     } else {
-      r = ht_trace_closest_ordered(ray, FRAME.scene.z);
+      r = ht_trace_closest_ordered_leaving(ray, FRAME.scene.z, leaves);
     }
     store_hit(i, r.hit);
     steps = r.steps;

@@ -13,6 +13,7 @@
 #include "bvh/build_primitives.h"
 #include "bvh/bvh_layout_choice.h"
 #include "bvh/cpu_traversal.h"
+#include "bvh/offset_ray.h"
 #include "bvh/two_level_bvh.h"
 #include "bvh_test_util.h"
 #include "common/error.h"
@@ -118,7 +119,7 @@ HtTraceResult closestAfterMoves(const TwoLevelBvh& twoLevel, const HtRay& ray, c
   for (size_t k = 0; k < moved.size(); ++k) ids[static_cast<int>(k)] = moved[k];
   const gpu_shared::TwoLevelView view = twoLevel.view();
   const HtTraceResult r = gpu_shared::ht_trace_two_level_after_moves(
-      view, view.blas, ray, gpu_shared::HT_TRAVERSAL_STEP_LIMIT, kept, true, keptMoved, ids);
+      view, view.blas, ray, gpu_shared::HT_TRAVERSAL_STEP_LIMIT, kept, true, keptMoved, ids, 0u);
   EXPECT_FALSE(r.overflow);
   return r;
 }
@@ -228,7 +229,7 @@ TEST(BvhTwoLevelTest, OcclusionAfterMovesOfRaysUnoccludedBeforeComesFromTheMoved
           ++unoccludedBefore;
           const HtTraceResult whole = occluded(twoLevel, rays[i]);
           const HtTraceResult walked = gpu_shared::ht_trace_two_level_any_after_moves(
-              view, view.blas, rays[i], gpu_shared::HT_TRAVERSAL_STEP_LIMIT, true, ids);
+              view, view.blas, rays[i], gpu_shared::HT_TRAVERSAL_STEP_LIMIT, true, ids, 0u);
           ASSERT_FALSE(whole.overflow || walked.overflow) << "ray " << i;
           EXPECT_EQ(walked.hit.triId != gpu_shared::HT_MISS, whole.hit.triId != gpu_shared::HT_MISS) << "ray " << i;
           nowOccluded += whole.hit.triId != gpu_shared::HT_MISS;
@@ -242,6 +243,98 @@ TEST(BvhTwoLevelTest, OcclusionAfterMovesOfRaysUnoccludedBeforeComesFromTheMoved
   std::printf("[ walks ] %u rays unoccluded before a move, %u occluded after: %llu steps, %llu walked whole\n",
               unoccludedBefore, nowOccluded, static_cast<unsigned long long>(walkSteps),
               static_cast<unsigned long long>(wholeSteps));
+}
+
+// A ray leaving the surface of one of `soup`'s instances `instance` (a sphere, convex) from a random point, offset
+// as shade.comp offsets shadow rays, on the outside (`outward`) or into it; half run to infinity, half stop short.
+HtRay rayLeavingInstance(std::mt19937& rng, const InstancedSoup& soup, uint32_t instance, bool outward) {
+  const InstanceRange& range = soup.ranges[instance];
+  const size_t vertices = soup.meshes[static_cast<size_t>(range.mesh)].positions.size();
+  glm::dvec3 centroid(0.0);
+  for (size_t v = 0; v < vertices; ++v) centroid += glm::dvec3(soup.positions[soup.firstVertex[instance] + v]);
+  centroid /= static_cast<double>(vertices);
+  std::uniform_int_distribution<uint32_t> pick(range.firstTriangle, range.firstTriangle + range.triangleCount - 1);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), length(0.05f, 6.0f);
+  const glm::uvec3 tri = soup.triangles[pick(rng)];
+  const glm::vec3 p0 = soup.positions[tri.x], p1 = soup.positions[tri.y], p2 = soup.positions[tri.z];
+  float u = unit(rng), v = unit(rng);
+  if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+  const glm::vec3 p = (1.0f - u - v) * p0 + u * p1 + v * p2;
+  glm::vec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+  if ((glm::dot(glm::dvec3(n), glm::dvec3(p) - centroid) < 0.0) == outward) n = -n;
+  glm::vec3 dir = test::randomUnitVector(rng);
+  if (glm::dot(dir, n) < 0.0f) dir = -dir;
+  return test::makeRay(gpu_shared::ht_offset_ray(p, n), dir, 0.0f, unit(rng) < 0.5f ? INFINITY : length(rng));
+}
+
+// Rays that leave a convex instance on its outside skip it (shade.comp marks shadow and bounce rays; docs/BVH.md
+// §9.6): its bottom level on the two-level BVH (ht_trace_two_level_any_leaving, _ordered_leaving), its tagged
+// triangles on the flattened one (ht_trace_any_leaving, ht_trace_closest_ordered_leaving). No point of a convex
+// instance lies beyond the plane such a ray leaves, so the occlusion and the closest hit are the whole walk's, bit for
+// bit, in fewer steps. Rays into the instance (which shade never marks) show that the skip is real: the whole walk
+// meets the instance, the skipping walks never do.
+TEST(BvhTwoLevelTest, RaysLeavingAConvexInstanceOnItsOutsideSkipItWithTheSameHits) {
+  std::mt19937 rng(606);
+  uint32_t outward = 0, occluded = 0, inward = 0;
+  uint64_t skippingSteps = 0, wholeSteps = 0;
+  const uint32_t raysPerInstance = test::scaled(150, 30);
+  for (int scene = 0; scene < 4; ++scene) {
+    const InstancedSoup soup = test::randomScene(rng, 24);
+    const TwoLevelBvh twoLevel(soup.positions, soup.triangles, soup.ranges);
+    GpuBvh flat = buildGpuBvh(soup.positions, soup.triangles, BuildOptions{});
+    std::vector<uint32_t> parts(soup.triangles.size(), 0u);  // the spheres (mesh 1 is a random soup)
+    for (uint32_t i = 0; i < soup.ranges.size(); ++i)
+      if (soup.ranges[i].mesh != 1)
+        std::fill_n(parts.begin() + soup.ranges[i].firstTriangle, soup.ranges[i].triangleCount, i + 1);
+    tagTriangleParts(flat, parts);
+    const gpu_shared::TwoLevelView view = twoLevel.view();
+    const gpu_shared::BvhView flatView{flat.nodes.data(), flat.triangles.data()};
+    constexpr uint32_t kLimit = gpu_shared::HT_TRAVERSAL_STEP_LIMIT;
+    for (uint32_t i = 0; i < soup.ranges.size(); ++i) {
+      if (soup.ranges[i].mesh == 1) continue;
+      const auto onInstance = [&](const HtTraceResult& r) {
+        return r.hit.triId != gpu_shared::HT_MISS && parts[r.hit.triId] == i + 1;
+      };
+      for (uint32_t k = 0; k < raysPerInstance; ++k) {
+        const bool out = k % 4 != 0;
+        const HtRay ray = rayLeavingInstance(rng, soup, i, out);
+        const HtTraceResult whole = gpu_shared::ht_trace_two_level_any(view, view.blas, ray, kLimit);
+        const HtTraceResult skipping = gpu_shared::ht_trace_two_level_any_leaving(view, view.blas, ray, kLimit, i + 1);
+        const HtTraceResult flatSkipping = gpu_shared::ht_trace_any_leaving(flatView, ray, kLimit, i + 1);
+        const HtTraceResult closest = gpu_shared::ht_trace_two_level_ordered(view, view.blas, ray, kLimit);
+        const HtTraceResult closestSkipping =
+            gpu_shared::ht_trace_two_level_ordered_leaving(view, view.blas, ray, kLimit, i + 1);
+        const HtTraceResult flatClosestSkipping =
+            gpu_shared::ht_trace_closest_ordered_leaving(flatView, ray, kLimit, i + 1);
+        ASSERT_FALSE(whole.overflow || skipping.overflow || flatSkipping.overflow || closest.overflow ||
+                     closestSkipping.overflow || flatClosestSkipping.overflow)
+            << "instance " << i << " ray " << k;
+        EXPECT_FALSE(onInstance(skipping) || onInstance(flatSkipping) || onInstance(closestSkipping) ||
+                     onInstance(flatClosestSkipping))
+            << "instance " << i << " ray " << k;
+        EXPECT_EQ(std::memcmp(&closestSkipping.hit, &flatClosestSkipping.hit, sizeof(HtHit)), 0)
+            << "instance " << i << " ray " << k;
+        if (!out) {  // into the sphere: the whole walk meets it (where the ray is long enough)
+          inward += onInstance(whole);
+          continue;
+        }
+        ++outward;
+        const bool isOccluded = whole.hit.triId != gpu_shared::HT_MISS;
+        EXPECT_EQ(skipping.hit.triId != gpu_shared::HT_MISS, isOccluded) << "instance " << i << " ray " << k;
+        EXPECT_EQ(flatSkipping.hit.triId != gpu_shared::HT_MISS, isOccluded) << "instance " << i << " ray " << k;
+        EXPECT_EQ(std::memcmp(&closestSkipping.hit, &closest.hit, sizeof(HtHit)), 0)
+            << "instance " << i << " ray " << k;
+        occluded += isOccluded;
+        skippingSteps += skipping.steps + closestSkipping.steps;
+        wholeSteps += whole.steps + closest.steps;
+      }
+    }
+  }
+  EXPECT_GT(occluded, outward / 20);  // other instances stand in the way of some
+  EXPECT_GT(inward, test::scaled(400, 80));
+  EXPECT_LT(skippingSteps, wholeSteps);
+  std::printf("[ convex ] %u rays leaving a sphere, %u occluded: %llu steps skipping it, %llu walking it\n", outward,
+              occluded, static_cast<unsigned long long>(skippingSteps), static_cast<unsigned long long>(wholeSteps));
 }
 
 // A moved instance placed exactly onto an unmoved one of the same mesh: every hit is a tie in t, and the least

@@ -1,6 +1,7 @@
 // gpu_two_level_render_test.cpp - the renderer on the two-level BVH (docs/BVH.md §9, docs/REUSE.md §3): frames equal
-// the flattened BVH's frames bit for bit (mirrors, glass, shadows, several instances of one mesh), before and after
-// random node moves served by Renderer::moveNodes without a rebuild; its closest hits equal the CPU reference's.
+// the flattened BVH's frames bit for bit (mirrors, glass, shadows, several instances of one mesh, shadow rays that
+// skip the convex node they leave), before and after random node moves served by Renderer::moveNodes without a
+// rebuild; its closest hits equal the CPU reference's.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -13,6 +14,7 @@
 #include "bvh/cpu_traversal.h"
 #include "gpu/scene_bvh.h"
 #include "gpu_test_util.h"
+#include "scene/convex_sides.h"
 #include "scene/mesh_generators.h"
 #include "scene/scene_edits.h"
 
@@ -55,6 +57,7 @@ Scene instancedScene() {
   lamp.position = glm::vec3(0.3f, 0.8f, 0.6f);
   lamp.intensity = 1.5f;
   s.lights.push_back(lamp);
+  markConvexNodes(s);  // the balls: their shadow rays skip them (docs/BVH.md §9.6)
   return s;
 }
 
@@ -123,6 +126,49 @@ TEST(GpuTwoLevelRender, FramesEqualTheFlattenedBvhBeforeAndAfterRandomMovesWitho
   const gpu::BvhStats stats = twoLevel.bvhStats();
   EXPECT_EQ(stats.fullBuilds, 1u) << "a node move on the two-level BVH must not rebuild";
   EXPECT_EQ(stats.instanceUpdates, 3u);
+}
+
+// A node marked convex lets the rays that leave it on its outside skip it, on both layouts (the bottom level, the
+// tagged triangles): shadow rays, reflections, refractions out of the glass ball. On the instanced scene the marks
+// change no bit: no ball can shadow or reflect itself. A false mark shows that the skip is real: a floor and a roof
+// over it in one node, marked convex, lose the roof's shadow.
+TEST(GpuTwoLevelRender, RaysSkipTheConvexNodeTheyLeaveOnBothLayouts) {
+  const Scene marked = instancedScene();
+  ASSERT_EQ(marked.nodes[0].convexSides, kConvexFront);
+  Scene unmarked = marked;
+  for (SceneNode& node : unmarked.nodes) node.convexSides = 0;
+  expectSameBits(renderFlattened(marked), renderFlattened(unmarked), "the marks, flattened");
+
+  Scene shelter;
+  shelter.name = "test:shelter";
+  const std::uint32_t d = addDiffuseMirrorGlass(shelter).diffuse;
+  SceneNode node;
+  node.name = "shelter";
+  makeQuad(shelter, glm::vec3(0.0f, -0.3f, 0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, -1.0f), d);
+  makeQuad(shelter, glm::vec3(0.0f, 0.1f, 0.0f), glm::vec3(0.25f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, -0.25f), d);
+  node.vertexCount = static_cast<std::uint32_t>(shelter.positions.size());
+  node.triangleCount = static_cast<std::uint32_t>(shelter.triangles.size());
+  shelter.nodes.push_back(node);
+  Light sun;
+  sun.type = Light::Type::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.6f, -1.0f, 0.2f));  // the roof's shadow falls beside it
+  sun.intensity = 2.0f;
+  shelter.lights.push_back(sun);
+  markConvexNodes(shelter);
+  ASSERT_EQ(shelter.nodes[0].convexSides, 0);
+  const gpu::RenderResult truthful = renderFlattened(shelter);
+  shelter.nodes[0].convexSides = kConvexFront;  // false: the floor's shadow rays now skip the roof
+  const gpu::RenderResult flattened = renderFlattened(shelter);
+  gpu::Renderer twoLevel(sharedContext(), shelter, gpu::buildSceneBvh(shelter, {}, gpu::BvhLayoutPolicy::TwoLevel));
+  expectSameBits(twoLevel.render(kCamera, settings()), flattened, "the false mark, two-level");
+  ASSERT_EQ(truthful.rgba.size(), flattened.rgba.size());
+  size_t lit = 0, darker = 0;
+  for (size_t i = 0; i < truthful.rgba.size(); ++i) {
+    lit += flattened.rgba[i] > truthful.rgba[i];
+    darker += flattened.rgba[i] < truthful.rgba[i];
+  }
+  EXPECT_GT(lit, truthful.rgba.size() / 50) << "the roof's shadow should be gone";
+  EXPECT_EQ(darker, 0u);
 }
 
 TEST(GpuTwoLevelRender, AMoveOnTheFlattenedBvhSwitchesToTwoLevelOnceThenUpdates) {
