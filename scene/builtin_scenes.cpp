@@ -45,11 +45,15 @@ void addRoom(Scene& scene, std::uint32_t floorMaterial, std::uint32_t wallMateri
   makeQuad(scene, {0.0f, 0.0f, -1.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 0.8f, 0.0f}, wallMaterial);   // faces +z
 }
 
-// Appends what `add` generates as the movable node `name` (holotraced UpdateScene moves it by name).
+// Appends what `add` generates as the movable node `name` (holotraced UpdateScene moves it by name). `convex`: the
+// sides outside it (SceneNode::convexSides), known by construction -- generated spheres and boxes are convex with
+// their winding outwards, the room's floor and back wall meet in an inner corner -- so a built-in scene does not pay
+// for convexSides' plane tests at every load (ConvexSides.BuiltinMarksAreWhatTheTestFinds checks them).
 template <class Add>
-void addNode(Scene& scene, std::string name, Add add) {
+void addNode(Scene& scene, std::string name, std::uint8_t convex, Add add) {
   SceneNode node;
   node.name = std::move(name);
+  node.convexSides = convex;
   node.firstVertex = static_cast<std::uint32_t>(scene.positions.size());
   node.firstTriangle = static_cast<std::uint32_t>(scene.triangles.size());
   add();
@@ -70,24 +74,24 @@ Scene makeShowcaseScene() {
   floor.baseColorTexture = checker;
   const std::uint32_t floorMat = addMaterial(s, floor);
   const std::uint32_t wallMat = addMaterial(s, diffuse("wall", {0.7f, 0.72f, 0.75f}));
-  addNode(s, "room", [&] { addRoom(s, floorMat, wallMat); });
+  addNode(s, "room", kConvexBack, [&] { addRoom(s, floorMat, wallMat); });
 
   // Behind the focal plane (z < 0): a mirror sphere, and a red box carrying a green sphere.
-  addNode(s, "mirror-sphere", [&] {
+  addNode(s, "mirror-sphere", kConvexFront, [&] {
     makeIcosphere(s, {-0.35f, -0.35f, -0.45f}, 0.45f, kSphereSubdivisions, addMaterial(s, mirror("mirror")));
   });
-  addNode(s, "red-box", [&] {
+  addNode(s, "red-box", kConvexFront, [&] {
     makeBox(s, {0.38f, -0.55f, -0.5f}, glm::vec3(0.25f), addMaterial(s, diffuse("red", {0.8f, 0.12f, 0.1f})));
   });
-  addNode(s, "green-sphere", [&] {
+  addNode(s, "green-sphere", kConvexFront, [&] {
     makeIcosphere(s, {0.38f, -0.05f, -0.5f}, 0.25f, kSphereSubdivisions,
                   addMaterial(s, diffuse("green", {0.15f, 0.7f, 0.2f})));
   });
   // In front of it (z > 0): a glass sphere and a small glowing sphere.
-  addNode(s, "glass-sphere", [&] {
+  addNode(s, "glass-sphere", kConvexFront, [&] {
     makeIcosphere(s, {0.28f, -0.45f, 0.45f}, 0.35f, kSphereSubdivisions, addMaterial(s, glass("glass", 1.5f)));
   });
-  addNode(s, "glow-sphere", [&] {
+  addNode(s, "glow-sphere", kConvexFront, [&] {
     makeIcosphere(s, {-0.38f, -0.65f, 0.55f}, 0.15f, kSphereSubdivisions,
                   addMaterial(s, emitter("glow", {3.0f, 1.8f, 0.5f})));
   });
@@ -105,41 +109,38 @@ Scene makeShowcaseScene() {
   sun.color = {0.8f, 0.85f, 1.0f};
   sun.intensity = 0.8f;  // lux
   s.lights.push_back(sun);
-  markConvexNodes(s);
   return s;
 }
 
 Scene makePlainScene() {
   Scene s;
   s.name = "builtin:plain";
-  addNode(s, "room", [&] {
+  addNode(s, "room", kConvexBack, [&] {
     addRoom(s, addMaterial(s, diffuse("floor", {0.6f, 0.6f, 0.55f})),
             addMaterial(s, diffuse("wall", {0.45f, 0.5f, 0.6f})));
   });
-  addNode(s, "orange-sphere", [&] {
+  addNode(s, "orange-sphere", kConvexFront, [&] {
     makeIcosphere(s, {-0.3f, -0.4f, -0.45f}, 0.4f, kSphereSubdivisions,
                   addMaterial(s, diffuse("orange", {0.9f, 0.45f, 0.1f})));
   });
-  addNode(s, "teal-box", [&] {
+  addNode(s, "teal-box", kConvexFront, [&] {
     makeBox(s, {0.38f, -0.55f, -0.4f}, glm::vec3(0.25f), addMaterial(s, diffuse("teal", {0.1f, 0.6f, 0.6f})));
   });
-  addNode(s, "violet-sphere", [&] {
+  addNode(s, "violet-sphere", kConvexFront, [&] {
     makeIcosphere(s, {0.25f, -0.5f, 0.5f}, 0.3f, kSphereSubdivisions,
                   addMaterial(s, diffuse("violet", {0.55f, 0.3f, 0.8f})));
   });
-  addNode(s, "yellow-box", [&] {
+  addNode(s, "yellow-box", kConvexFront, [&] {
     makeBox(s, {-0.35f, -0.65f, 0.6f}, glm::vec3(0.15f), addMaterial(s, diffuse("yellow", {0.9f, 0.85f, 0.2f})));
   });
-  markConvexNodes(s);
   return s;
 }
 
 Scene makeSphereScene() {
   Scene s;
   s.name = "builtin:sphere";
-  addNode(s, "sphere",
+  addNode(s, "sphere", kConvexFront,
           [&] { makeIcosphere(s, glm::vec3(0.0f), 1.0f, 5, addMaterial(s, diffuse("sphere", glm::vec3(0.8f)))); });
-  markConvexNodes(s);
   return s;
 }
 
@@ -156,14 +157,13 @@ Scene makeSphereScene() {
 Scene makeMirrorTestScene() {
   Scene s;
   s.name = "builtin:mirror-test";
-  addNode(s, "mirror", [&] {
+  addNode(s, "mirror", kConvexFront | kConvexBack, [&] {
     makeQuad(s, glm::vec3(0.0f), {1.0f, 0.0f, 0.0f}, {0.0f, 3.25f, -3.25f}, addMaterial(s, mirror("mirror")));
   });
-  addNode(s, "emitter", [&] {
+  addNode(s, "emitter", kConvexFront, [&] {
     makeIcosphere(s, {0.0f, 2.5f, 0.0f}, 0.75f, kSphereSubdivisions,
                   addMaterial(s, emitter("magenta", {1.0f, 0.1f, 0.8f})));
   });
-  markConvexNodes(s);
   return s;
 }
 
