@@ -8,7 +8,7 @@
 
 namespace ht {
 
-std::uint8_t convexSides(const Scene& scene, const SceneNode& node) {
+std::uint8_t convexSides(const Scene& scene, const SceneNode& node, std::uint64_t* planeTests) {
   const std::uint64_t first = node.firstTriangle, end = first + node.triangleCount;
   const std::uint64_t v0 = node.firstVertex, v1 = v0 + node.vertexCount;
   if (node.triangleCount == 0 || end > scene.triangles.size() || v1 > scene.positions.size()) return 0;
@@ -44,6 +44,7 @@ std::uint8_t convexSides(const Scene& scene, const SceneNode& node) {
       most = std::max(most, d);
       least = std::min(least, d);
     }
+    if (planeTests) *planeTests += xs.size();
     if (most > tolerance) sides &= static_cast<std::uint8_t>(~kConvexFront);
     if (least < -tolerance) sides &= static_cast<std::uint8_t>(~kConvexBack);
   }
@@ -74,14 +75,24 @@ std::uint8_t outsideOfAffineImage(const Scene& scene, const SceneNode& node) {
 
 }  // namespace
 
-void markConvexNodes(Scene& scene) {
+std::size_t markConvexNodes(Scene& scene) {
   std::vector<std::uint8_t> meshSides;  // by glTF mesh: 0xFF = not checked yet
+  std::uint64_t spent = 0;
+  std::size_t unmarked = 0;
+  // The node's test within the budget, or 0 (not marked) where its worst case would overrun it.
+  const auto test = [&](const SceneNode& node) -> std::uint8_t {
+    if (std::uint64_t{node.triangleCount} * node.vertexCount > kMaxConvexPlaneTestsPerScene - spent) {
+      unmarked += std::uint64_t{node.triangleCount} * node.vertexCount <= kMaxConvexPlaneTests;
+      return 0;
+    }
+    return convexSides(scene, node, &spent);
+  };
   for (SceneNode& node : scene.nodes) {
     const bool shared = node.mesh >= 0 && node.vertexCount > 0;
     const std::size_t mesh = shared ? static_cast<std::size_t>(node.mesh) : 0;
     if (shared && mesh >= meshSides.size()) meshSides.resize(mesh + 1, 0xFF);
     if (!shared || meshSides[mesh] == 0xFF) {
-      node.convexSides = convexSides(scene, node);
+      node.convexSides = test(node);
       if (shared) meshSides[mesh] = node.convexSides;
       continue;
     }
@@ -89,8 +100,9 @@ void markConvexNodes(Scene& scene) {
     // mesh convex: only the outside may have turned, where a mirroring matrix kept the winding.
     const std::uint8_t sides = meshSides[mesh];
     const bool oneSide = sides == kConvexFront || sides == kConvexBack;
-    node.convexSides = oneSide ? outsideOfAffineImage(scene, node) : convexSides(scene, node);
+    node.convexSides = oneSide ? outsideOfAffineImage(scene, node) : test(node);
   }
+  return unmarked;
 }
 
 }  // namespace ht

@@ -332,7 +332,11 @@ Scene loadGltf(const SceneSource& source, SceneLoadReport* reportOut, const Scen
                      "the scene has no triangles (nothing to render; check that the default scene contains "
                      "meshes with triangle primitives)");
   if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
-  markConvexNodes(scene);
+  if (const std::size_t unmarked = markConvexNodes(scene)) {
+    report.warnings.push_back(std::to_string(unmarked) +
+                              " nodes were not tested for convexity (the load's budget of plane tests is spent); rays "
+                              "that leave them walk them (docs/BVH.md §9.6)");
+  }
 
   report.triangles = scene.triangles.size();
   report.vertices = scene.positions.size();

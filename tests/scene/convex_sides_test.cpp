@@ -86,6 +86,29 @@ TEST(ConvexSides, ADentASharedVertexOrTooManyPlaneTestsIsNotConvex) {
   EXPECT_EQ(convexSides(big, big.nodes[0]), 0);
 }
 
+TEST(ConvexSides, AScenePastItsBudgetOfPlaneTestsLeavesTheRestUnmarked) {
+  Scene s;
+  s.materials.push_back(Material{"m"});
+  const auto add = [&s](auto generate) {
+    SceneNode node;
+    node.name = "n" + std::to_string(s.nodes.size());
+    node.firstVertex = static_cast<std::uint32_t>(s.positions.size());
+    node.firstTriangle = static_cast<std::uint32_t>(s.triangles.size());
+    generate();
+    node.vertexCount = static_cast<std::uint32_t>(s.positions.size()) - node.firstVertex;
+    node.triangleCount = static_cast<std::uint32_t>(s.triangles.size()) - node.firstTriangle;
+    s.nodes.push_back(node);
+  };
+  // Eleven spheres of 5,120 triangles x 2,562 vertices (13.1 M plane tests each): ten fit in the scene's budget.
+  for (int k = 0; k < 11; ++k) add([&] { makeIcosphere(s, {2.0f * float(k), 0.0f, 0.0f}, 0.5f, 4, 0); });
+  add([&] { makeBox(s, {0.0f, 3.0f, 0.0f}, glm::vec3(0.5f), 0); });  // 96 tests: still fits
+  ASSERT_GT(11 * std::uint64_t{s.nodes[0].triangleCount} * s.nodes[0].vertexCount, kMaxConvexPlaneTestsPerScene);
+  EXPECT_EQ(markConvexNodes(s), 1u);
+  for (int k = 0; k < 10; ++k) EXPECT_EQ(s.nodes[static_cast<std::size_t>(k)].convexSides, kConvexFront) << k;
+  EXPECT_EQ(s.nodes[10].convexSides, 0);
+  EXPECT_EQ(s.nodes[11].convexSides, kConvexFront);
+}
+
 TEST(ConvexSides, MovesKeepTheMarksTrue) {
   Scene s = makeBuiltinScene("showcase");
   const glm::dmat4 mirrored = glm::dmat4(glm::dvec4(-1.5, 0, 0, 0), glm::dvec4(0, 0.5, 0.2, 0), glm::dvec4(0, 0, 2, 0),
