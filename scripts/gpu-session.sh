@@ -78,6 +78,8 @@ benches() {
   step 20 raygen holotrace-bench-raygen
   step 20 encode holotrace-bench-encode  # the frame encoding's threads on the device's 16 vCPUs
   step 150 quality holotrace-bench-quality --runs 5 --csv "$out/quality.csv" --summary-csv "$out/quality_summary.csv"
+  # (--no-convex-skip: rays walk the convex node they leave, BVH.md §9.6; compare with edits-green's full frame)
+  step 45 edits-green-walk-convex holotrace-bench-edits --runs 5 --node green-sphere --no-convex-skip
 }
 # PARTS: which of tests, fused_ab, recycle_ab, benches run, in the order given (default all four, most needed first).
 for part in ${PARTS:-tests fused_ab recycle_ab benches}; do "$part"; done
