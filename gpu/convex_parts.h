@@ -40,6 +40,8 @@ namespace ht::gpu {
 float convexVertexTag(const SceneNode& node, std::size_t instance);
 // The part of every triangle of `scene` (0: none), in triangle order.
 std::vector<std::uint32_t> convexPartOfTriangles(const Scene& scene);
+// The tag of every vertex of `scene` (0: on no convex part), in vertex order.
+std::vector<float> convexVertexTags(const Scene& scene);
 // Tags the slots of a flattened BVH of `scene` with their triangles' parts (bvh/gpu_node.h).
 void tagConvexParts(bvh::GpuBvh& bvh, const Scene& scene);
 

@@ -103,15 +103,8 @@ void GpuScene::uploadRecords(const Scene& scene) {
   VulkanContext::Impl& vk = *vk_;
   std::vector<glm::vec4> positions;
   positions.reserve(scene.positions.size());
-  for (const glm::vec3& p : scene.positions) positions.emplace_back(p, 0.0f);
-  const std::vector<SceneInstance> instances = scene.instances();
-  for (std::size_t i = 0; i < instances.size(); ++i) {  // .w: the convex part tag (gpu/convex_parts.h)
-    if (instances[i].node < 0) continue;
-    const SceneNode& node = scene.nodes[static_cast<std::size_t>(instances[i].node)];
-    const float tag = convexVertexTag(node, i);
-    for (std::uint32_t v = node.firstVertex; tag != 0.0f && v < node.firstVertex + node.vertexCount; ++v)
-      positions[v].w = tag;
-  }
+  const std::vector<float> tags = convexVertexTags(scene);  // .w: the convex part tag (gpu/convex_parts.h)
+  for (std::size_t v = 0; v < scene.positions.size(); ++v) positions.emplace_back(scene.positions[v], tags[v]);
   vertices = uploadVector(vk, positions);
 
   hasNormals = !scene.normals.empty() && scene.normals.size() == scene.positions.size();
