@@ -4,7 +4,7 @@
 // scene/convex_sides.h): on a two-level BVH that instance's bottom level (its index + 1 is the part), on a flattened
 // one the triangles whose slots carry p (bvh/gpu_node.h, vertex 1's .w). Each vertex of the part carries
 // (p << 2) | sides in its .w (the vertex buffer, GpuScene), so shade learns from the hit triangle's first vertex,
-// which it loads anyway, which part a shadow ray leaves and whether it leaves on the outside.
+// which it loads anyway, which part a shadow ray or a bounce leaves and whether it leaves on the outside.
 #ifndef HT_CONVEX_PARTS_H
 #define HT_CONVEX_PARTS_H
 #include "common/glsl_cpp.h"
@@ -28,7 +28,6 @@ HT_INLINE uint ht_convex_part_left(float vertexTag, bool front) {
 HT_SHARED_END
 
 #ifndef HT_GLSL
-#include <span>
 #include <vector>
 
 #include "bvh/gpu_layout.h"
