@@ -154,7 +154,6 @@ vec3 light_incidence(GpuLight light, vec3 p, out vec3 wi, out float dist) {
 uint emit_shadow_rays(uint path, SurfacePoint s, vec3 weight, uint occlusionIndex) {
   uint lightCount = FRAME.scene.x;
   vec3 origin = ht_offset_ray(s.p, s.nFace);
-  uint leaves = ht_convex_part_left(s.convexTag, s.front);  // the rays leave on nFace's side, the incoming ray's
   uint word = 0u;      // the path's recorded word
   uint holding = 0u;   // bit l: light l's recorded occlusion holds (if the ray's segment allows, KEPT_SEGMENTS)
   if (OCCLUSION == HT_OCCLUSION_KEPT_LIGHTS || OCCLUSION == HT_OCCLUSION_KEPT_SEGMENTS) {
@@ -192,7 +191,7 @@ uint emit_shadow_rays(uint path, SurfacePoint s, vec3 weight, uint occlusionInde
         imageStore(shadowContribBuffer, int(slot), occluded ? vec4(0.0f, 0.0f, 0.0f, 2.0f) : vec4(contrib, 2.0f));
       } else {
         imageStore(shadowContribBuffer, int(slot), vec4(contrib, 1.0f));
-        imageStore(shadowQueueBuffer, int(q), uvec4(slot | movedOnly, leaves, 0u, 0u));
+        imageStore(shadowQueueBuffer, int(q), uvec4(slot | movedOnly, leaves_surface(s, wi, true), 0u, 0u));
       }
     }
   }
