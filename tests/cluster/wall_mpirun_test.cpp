@@ -154,9 +154,10 @@ TEST_F(WallMpirun, ADelayedRankIsReportedLateAndTheJobFinishesOnTheSameLastFrame
   const std::vector<RankWindow> windows = {{{0, 1}, {0, 0, 64, 24}}, {{2}, {64, 0, 32, 24}}, {{3}, {96, 0, 32, 24}}};
   const std::string layout = setUpScreens(xvfb, windows);
   std::vector<bool> matched;
-  // Rank 1 sleeps 300 ms after rendering frame 1; the others wait at most 50 ms per frame.
+  // Rank 1 sleeps 900 ms after rendering frame 1; the others wait at most 200 ms per frame. (With a 50 ms wait, a
+  // loaded machine -- two ctest jobs beside two busy loops on two cores -- made rank 0 late on its own by 16 ms.)
   const ProcessResult m = runWatching(
-      xvfb, windows, {"--layout", layout, "--frames", "12", "--swap-timeout", "50", "--debug-rank-delay", "1:1:300"},
+      xvfb, windows, {"--layout", layout, "--frames", "12", "--swap-timeout", "200", "--debug-rank-delay", "1:1:900"},
       matched);
   ASSERT_EQ(m.exitCode, 0) << m.err << m.out;
   EXPECT_THAT(m.out, HasSubstr("late: rank 1, frame 1, by "));
