@@ -46,6 +46,7 @@ struct EditOptions {
   bool fusedFloatMath = false;
   bool freshBuffers = false;  // --fresh-buffers: no Renderer::recycle
   bool convexSkip = true;     // --no-convex-skip: clears the scene's convex marks (SceneNode::convexSides)
+  bool noBalls = false;       // --no-balls: the move gives the renderer its bounds alone (gpu::MovedBounds)
   double maxDirtyShare = gpu::RenderSettings{}.reuseMaxDirtyShare;
   // --alternate-walks / --alternate-bounce-hits: every other four timed moves run without the moved-instance walks
   // (Renderer::setMovedInstanceWalks) or without the cached bounce hits (Renderer::setBounceHitReuse).
@@ -53,7 +54,7 @@ struct EditOptions {
   std::optional<std::string> csvPath;
 };
 
-const std::array<cli::OptionSpec, 15> kSpecs = {{
+const std::array<cli::OptionSpec, 16> kSpecs = {{
     {"--displays", "", "LIST", "comma-separated displays (default builtin:portrait,bench/configs/quality-hpo-14.json)"},
     {"--scene", "", "SPEC", "scene (default builtin:showcase)"},
     {"--node", "", "NAME", "the node moved (default green-sphere)"},
@@ -71,6 +72,8 @@ const std::array<cli::OptionSpec, 15> kSpecs = {{
     {"--no-convex-skip", "", "",
      "clear the scene's convex marks: shadow rays walk the convex node they leave (docs/BVH.md §9.6), for a "
      "comparison"},
+    {"--no-balls", "", "",
+     "give moves their bounds alone, not the balls around the moved node (docs/REUSE.md §4), for a comparison"},
     {"--runs", "", "N", "timed runs after one warm-up (default 5)"},
     {"--device", "", "N", "Vulkan device index (default: automatic)"},
     {"--csv", "", "PATH", "one row per display and quantity"},
@@ -109,6 +112,7 @@ std::optional<EditOptions> parseOptions(std::span<const std::string> args) {
   o.fusedFloatMath = parsed.has("--fused-math");
   o.freshBuffers = parsed.has("--fresh-buffers");
   o.convexSkip = !parsed.has("--no-convex-skip");
+  o.noBalls = parsed.has("--no-balls");
   if (parsed.has("--alternate-walks") && parsed.has("--alternate-bounce-hits"))
     throw UsageError(cli::usageMessage(kCommand, "--alternate-walks and --alternate-bounce-hits exclude each other"));
   if (parsed.has("--alternate-walks")) o.alternate = Alternate::Walks;
@@ -240,6 +244,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     if (lit.reuse != gpu::FrameReuse::CachedPrimaryHits) throw GpuError("the light edit did not reuse the cache");
 
     const Bounds3 before = nodeWorldBounds(scene, node);
+    const glm::vec4 beforeBall = o.noBalls ? glm::vec4(0.0f, 0.0f, 0.0f, -1.0f) : nodeWorldBall(scene, node);
     glm::dmat4 world = scene.nodes[node].world;
     world[3] += glm::dvec4(run % 2 ? -step : step, 0.0);
     setNodeWorldMatrix(scene, o.node, world);
@@ -248,7 +253,9 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     reusing.setMovedInstanceWalks(walks || o.alternate != Alternate::Walks);
     reusing.setBounceHitReuse(walks || o.alternate != Alternate::BounceHits);
     t0 = std::chrono::steady_clock::now();
-    reusing.moveNodes(scene, movedNodes, gpu::MovedBounds{before, nodeWorldBounds(scene, node)});
+    reusing.moveNodes(scene, movedNodes,
+                      gpu::MovedBounds{before, nodeWorldBounds(scene, node), beforeBall,
+                                       o.noBalls ? glm::vec4(0.0f, 0.0f, 0.0f, -1.0f) : nodeWorldBall(scene, node)});
     const double rebuild = msSince(t0);
     gpu::RenderResult moved = reusing.render(camera, on);
     const double move = msSince(t0);

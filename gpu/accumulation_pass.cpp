@@ -304,7 +304,7 @@ std::uint64_t Renderer::Impl::resetMovedTargets(Accumulator& accumulator, const 
   const Bounds3 padded = paddedMovedBounds(moved, reuse.grid());
   FrameBlock& f = frameBlock();
   FrameReuseState::writeMarkingInputs(list, f, cells, padded.lo, padded.hi,
-                                      static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets), 0u);
+                                      static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets), 0u, kNoBalls);
   f.segmentMasks = st.masks.address();
   f.grid = reuse.grid();
   f.primaryRays = 0;  // no cached primary rays or hits: mark_accumulated.comp generates the rays again

@@ -20,7 +20,8 @@ FrameReuseState::FrameReuseState(VulkanContext::Impl& vk, const Bounds3& sceneBo
 }
 
 void FrameReuseState::geometryMoved(const Bounds3& oldBounds, const Bounds3& newBounds,
-                                    std::optional<std::span<const std::uint32_t>> instances) {
+                                    std::optional<std::span<const std::uint32_t>> instances,
+                                    std::optional<std::array<glm::vec4, 2>> balls) {
   moved_ = true;
   if (instances) {
     movedInstances_.insert(movedInstances_.end(), instances->begin(), instances->end());
@@ -34,6 +35,8 @@ void FrameReuseState::geometryMoved(const Bounds3& oldBounds, const Bounds3& new
     movedBounds_.extend(b.lo);
     movedBounds_.extend(b.hi);
   }
+  const bool ballsGiven = balls && (*balls)[0].w >= 0.0f && (*balls)[1].w >= 0.0f;
+  movedBalls_ = ++movesSinceFrame_ == 1 && ballsGiven ? *balls : kNoBalls;
 }
 
 void FrameReuseState::invalidate() {
@@ -41,6 +44,8 @@ void FrameReuseState::invalidate() {
   lightsEdited_ = moved_ = false;
   lightRaysChanged_ = 0;
   movedBounds_ = Bounds3{};
+  movedBalls_ = kNoBalls;
+  movesSinceFrame_ = 0;
   movedInstances_.clear();
   movedInstancesKnown_ = true;
 }
@@ -80,6 +85,7 @@ ReusePlan FrameReuseState::plan(const ReuseKey& key, bool wanted, bool reusable,
     const Bounds3 padded = paddedMovedBounds(movedBounds_, grid_);
     p.movedLo = padded.lo;
     p.movedHi = padded.hi;
+    p.movedBalls = movedBalls_;
     if (movedInstancesKnown_ && movedInstances_.size() <= gpu_shared::HT_MAX_WALKED_INSTANCES)
       p.walkedInstances = movedInstances_;
   }
@@ -241,13 +247,18 @@ namespace {
 bool cachedSegmentsMeetMoved(const gpu_shared::HtRay& r, const gpu_shared::HtHit& h, const ReusePlan& plan,
                              std::span<const gpu_shared::GpuLight> lights) {
   const float tEnd = h.triId != gpu_shared::HT_MISS ? h.t : r.tmax;
-  if (gpu_shared::ht_segment_meets_box(r.origin, r.dir, r.tmin, tEnd, plan.movedLo, plan.movedHi)) return true;
+  const glm::vec4 ball0 = plan.movedBalls[0], ball1 = plan.movedBalls[1];
+  if (gpu_shared::ht_segment_meets_box(r.origin, r.dir, r.tmin, tEnd, plan.movedLo, plan.movedHi) &&
+      gpu_shared::ht_segment_meets_balls(r.origin, r.dir, r.tmin, tEnd, ball0, ball1)) {
+    return true;
+  }
   if (h.triId == gpu_shared::HT_MISS) return false;
   const glm::vec3 p = gpu_shared::ht_cached_hit_point(r.origin, r.dir, tEnd);
   const float pErr = gpu_shared::ht_cached_hit_error(r.origin, r.dir, tEnd);
   for (const gpu_shared::GpuLight& light : lights) {
-    if (gpu_shared::ht_shadow_meets_box(p, pErr, light.position, glm::vec3(light.direction), plan.movedLo,
-                                        plan.movedHi)) {
+    const glm::vec3 direction(light.direction);
+    if (gpu_shared::ht_shadow_meets_box(p, pErr, light.position, direction, plan.movedLo, plan.movedHi) &&
+        gpu_shared::ht_shadow_meets_balls(p, pErr, light.position, direction, ball0, ball1)) {
       return true;
     }
   }
@@ -285,10 +296,12 @@ std::vector<std::uint32_t> markDirtyTargets(std::span<const std::uint32_t> masks
 void FrameReuseState::writeMarkingInputs(std::uint32_t* list, gpu_shared::FrameBlock& frame,
                                          const std::uint32_t cells[2], const glm::vec3& paddedLo,
                                          const glm::vec3& paddedHi, std::uint32_t candidatesFirst,
-                                         std::uint32_t bounceEntries) {
+                                         std::uint32_t bounceEntries, const std::array<glm::vec4, 2>& balls) {
   std::memset(list, 0, kListFirst * sizeof(std::uint32_t));
   frame.movedLo = glm::vec4(paddedLo, 0.0f);
   frame.movedHi = glm::vec4(paddedHi, 0.0f);
+  frame.movedBalls[0] = balls[0];
+  frame.movedBalls[1] = balls[1];
   frame.moved = glm::uvec4(cells[0], cells[1], candidatesFirst, bounceEntries);
 }
 

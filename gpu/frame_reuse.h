@@ -3,6 +3,7 @@
 // primary trace) and, per target, the world-grid cells its path segments met (a node move re-traces only the
 // targets whose cells meet the moved node's old or new bounds). Internal to gpu/.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -38,6 +39,10 @@ struct ReuseKey {
   bool operator==(const ReuseKey&) const = default;
 };
 
+// No balls around moved geometry (ReusePlan::movedBalls): the marking pass tests the moved bounds alone.
+inline const std::array<glm::vec4, 2> kNoBalls = {glm::vec4(0.0f, 0.0f, 0.0f, -1.0f),
+                                                  glm::vec4(0.0f, 0.0f, 0.0f, -1.0f)};
+
 // How the next frame is rendered, decided from the key and the edits since the last recorded frame.
 struct ReusePlan {
   FrameReuse mode = FrameReuse::None;
@@ -59,6 +64,8 @@ struct ReusePlan {
   // PartialRetrace: the cells of the moved bounds (lo, hi words) and those bounds padded by HT_GRID_PAD cells.
   std::uint32_t gridCells[2] = {0, 0};
   glm::vec3 movedLo{0.0f}, movedHi{0.0f};
+  // ... and the balls around the moved geometry before and after its move (w < 0: none; FrameBlock::movedBalls).
+  std::array<glm::vec4, 2> movedBalls = kNoBalls;
   // PartialRetrace: the two-level BVH's instances moved since the last frame, when every move named them and they
   // are at most HT_MAX_WALKED_INSTANCES (else empty): traced rays walk from their cached hits
   // (FrameBlock::movedInstanceIds).
@@ -90,9 +97,11 @@ class FrameReuseState {
     lightsEdited_ = true;
     lightRaysChanged_ |= raysChanged;
   }
-  // `instances`: the two-level BVH's instances the move changed (Renderer::moveNodes), none when not known.
+  // `instances`: the two-level BVH's instances the move changed (Renderer::moveNodes), none when not known;
+  // `balls`: around the moved geometry before and after (MovedBounds), none when not known.
   void geometryMoved(const Bounds3& oldBounds, const Bounds3& newBounds,
-                     std::optional<std::span<const std::uint32_t>> instances = std::nullopt);
+                     std::optional<std::span<const std::uint32_t>> instances = std::nullopt,
+                     std::optional<std::array<glm::vec4, 2>> balls = std::nullopt);
   void invalidate();
 
   // The plan of a frame with `key` of `paths` paths and `targets` targets; `wanted` = RenderSettings::reuse,
@@ -152,7 +161,7 @@ class FrameReuseState {
   // tests) and the bounce cache's entries (0: none tested).
   static void writeMarkingInputs(std::uint32_t* list, gpu_shared::FrameBlock& frame, const std::uint32_t cells[2],
                                  const glm::vec3& paddedLo, const glm::vec3& paddedHi, std::uint32_t candidatesFirst,
-                                 std::uint32_t bounceEntries);
+                                 std::uint32_t bounceEntries, const std::array<glm::vec4, 2>& balls);
 
  private:
   void ensure(DeviceBuffer& buffer, std::uint64_t bytes, MemoryPlace place);
@@ -178,6 +187,10 @@ class FrameReuseState {
   bool lightsEdited_ = false, moved_ = false;
   std::uint32_t lightRaysChanged_ = 0;  // since the last frame
   Bounds3 movedBounds_;
+  // Balls around the moved geometry, before and after (MovedBounds): kept when the only move since the last frame
+  // gave both, else none (w < 0); movesSinceFrame_ counts the moves.
+  std::array<glm::vec4, 2> movedBalls_ = kNoBalls;
+  std::uint32_t movesSinceFrame_ = 0;
   std::vector<std::uint32_t> movedInstances_;  // since the last frame, ascending
   bool movedInstancesKnown_ = true;            // every move since the last frame named its instances
 };

@@ -45,7 +45,7 @@ std::uint64_t Renderer::Impl::markMovedTargets(std::uint64_t targets, StageTimes
   FrameReuseState::writeMarkingInputs(
       list, f, framePlan.gridCells, framePlan.movedLo, framePlan.movedHi,
       framePlan.primaryCached ? static_cast<std::uint32_t>(FrameReuseState::kListFirst + targets) : 0u,
-      framePlan.secondaryExact ? static_cast<std::uint32_t>(reuse.secondaryEntries()) : 0u);
+      framePlan.secondaryExact ? static_cast<std::uint32_t>(reuse.secondaryEntries()) : 0u, framePlan.movedBalls);
   writeWalkedInstances(f);
   f.refine = reuse.dirtyList.address();
   f.refineInfo = glm::uvec4(0u, FrameReuseState::kListFirst, 0u, 0u);
@@ -213,6 +213,8 @@ Renderer::ReuseSnapshot Renderer::reuseSnapshot() const {
   snap.movedCells[1] = plan.gridCells[1];
   snap.movedLo = plan.movedLo;
   snap.movedHi = plan.movedHi;
+  snap.movedBalls[0] = plan.movedBalls[0];
+  snap.movedBalls[1] = plan.movedBalls[1];
   if (plan.primaryCached) {
     snap.primaryHits.resize(reuse.primaryHits.size() / sizeof(gpu_shared::HtHit));
     reuse.primaryHits.download(snap.primaryHits.data(), reuse.primaryHits.size());

@@ -371,7 +371,8 @@ void Renderer::updateLights(const Scene& scene) { impl_->updateLights(scene); }
 void Renderer::moveNodes(const Scene& scene, std::span<const std::uint32_t> nodes, std::optional<MovedBounds> moved) {
   const std::vector<std::uint32_t> instances = impl_->moveNodes(scene, nodes, moved);
   if (moved) {
-    impl_->reuse.geometryMoved(moved->before, moved->after, instances);
+    impl_->reuse.geometryMoved(moved->before, moved->after, instances,
+                               std::array<glm::vec4, 2>{moved->beforeBall, moved->afterBall});
   } else {
     impl_->reuse.invalidate();
   }

@@ -112,9 +112,12 @@ struct BvhStats {
   double lastUploadMs = 0.0;          // and the upload of the changed ranges (all three included in lastUpdateMs)
 };
 
-// Where moved geometry was and is (Renderer::moveNodes).
+// Where moved geometry was and is (Renderer::moveNodes): its bounds, and, when one node moved, balls around it
+// (scene/scene_edits.h nodeWorldBall; w < 0: not given), by which the marking pass passes over the segments that
+// cross only the corners of the bounds (docs/REUSE.md §4 "Balls around the moved node").
 struct MovedBounds {
   Bounds3 before, after;
+  glm::vec4 beforeBall{0.0f, 0.0f, 0.0f, -1.0f}, afterBall{0.0f, 0.0f, 0.0f, -1.0f};
 };
 
 struct TraceStats {
@@ -208,9 +211,10 @@ class Renderer {
     std::vector<SecondarySegment> secondarySegments;
     bool secondaryExact = false;
     gpu_shared::SegmentGrid grid{};
-    // The last partial re-render's moved cells and padded moved bounds (what its marking pass tested).
+    // The last partial re-render's moved cells, padded moved bounds and balls (what its marking pass tested).
     std::uint32_t movedCells[2] = {0, 0};
     glm::vec3 movedLo{0.0f}, movedHi{0.0f};
+    glm::vec4 movedBalls[2] = {glm::vec4(0.0f, 0.0f, 0.0f, -1.0f), glm::vec4(0.0f, 0.0f, 0.0f, -1.0f)};
   };
   ReuseSnapshot reuseSnapshot() const;
   // Device memory the frame-reuse state may give its cache of mirror and glass bounces (default

@@ -121,6 +121,43 @@ HT_INLINE bool ht_segment_meets_box(vec3 o, vec3 d, float t0, float t1, vec3 lo,
   return a <= b;
 }
 
+// Do the points a + u w, u in [0, u1] (u1 may be HT_GRID_T_INFINITY), come within `pad` of the ball (centre ball.xyz,
+// radius ball.w)? The nearest point, a + u w with u = (c - a).w / w.w clamped to [0, u1], is computed to a few float
+// ULPs of the coordinates' magnitude, so the radius grows by 1e-5 of that magnitude (and 1e-5 of itself): a point
+// within the ball is always found, whatever the rounding (of a, a segment's start o + t0 d, too).
+HT_INLINE bool ht_points_meet_ball(vec3 a, vec3 w, float u1, float pad, vec4 ball) {
+  vec3 c = vec3(ball.x, ball.y, ball.z);
+  HT_PRECISE float ww = dot(w, w);
+  HT_PRECISE float k = dot(c - a, w);
+  float u = ww > 0.0f ? clamp(k / ww, 0.0f, u1) : 0.0f;
+  HT_PRECISE vec3 uw = u * w;
+  HT_PRECISE vec3 q = a + uw - c;
+  HT_PRECISE float mag = max(max(abs(a.x), abs(a.y)), abs(a.z)) + max(max(abs(uw.x), abs(uw.y)), abs(uw.z)) +
+                         max(max(abs(c.x), abs(c.y)), abs(c.z));
+  HT_PRECISE float r = (ball.w + pad) * 1.00001f + mag * 1e-5f;
+  return dot(q, q) <= r * r;
+}
+
+// Do the segment o + t d, t in [t0, t1], or the shadow ray from p (as ht_shadow_meets_box) come near one of the moved
+// balls (FrameBlock::movedBalls: the moved node's before and after its move; w < 0: none known, so always)? The
+// marking pass asks this of the segments that meet the padded moved bounds: a sphere fills half of its box.
+HT_INLINE bool ht_segment_meets_balls(vec3 o, vec3 d, float t0, float t1, vec4 ball0, vec4 ball1) {
+  if (ball0.w < 0.0f) return true;
+  HT_PRECISE vec3 a = o + t0 * d;
+  float u1 = t1 >= HT_GRID_T_INFINITY ? HT_GRID_T_INFINITY : t1 - t0;
+  return ht_points_meet_ball(a, d, u1, 0.0f, ball0) || ht_points_meet_ball(a, d, u1, 0.0f, ball1);
+}
+HT_INLINE bool ht_shadow_meets_balls(vec3 p, float pErr, vec4 lightPosition, vec3 direction, vec4 ball0, vec4 ball1) {
+  if (ball0.w < 0.0f) return true;
+  bool directional = uint(lightPosition.w) == 2u;  // HT_LIGHT_DIRECTIONAL (gpu/wavefront_types.h)
+  vec3 d = directional ? -direction : vec3(lightPosition.x, lightPosition.y, lightPosition.z) - p;
+  float reach = directional ? 0.0f : max(max(abs(d.x), abs(d.y)), abs(d.z));
+  HT_PRECISE float offset = (max(max(abs(p.x), abs(p.y)), abs(p.z)) + pErr) * 3.1e-5f + 1.6e-5f;
+  HT_PRECISE float pad = pErr + offset + reach * 1e-5f;
+  float u1 = directional ? HT_GRID_T_INFINITY : 1.0f;
+  return ht_points_meet_ball(p, d, u1, pad, ball0) || ht_points_meet_ball(p, d, u1, pad, ball1);
+}
+
 // Does a shadow ray from some point of the box [pLo, pHi] (points known to `pErr` per axis), emitted as
 // ht_shadow_meets_box describes, towards the punctual light meet the box [lo, hi]? The points of such rays are, for
 // some u, (1 - u) a + u L with a in the box, u in [0, 1] (point and spot lights at L), or a + u w, u >= 0 (a

@@ -138,6 +138,10 @@ struct FrameBlock {
   vec4 movedLo;
   vec4 movedHi;
   uvec4 moved;
+  // ... and balls around the moved geometry before and after its move (xyz centre, w radius; w < 0: none), which a
+  // segment that meets the padded moved bounds must also come near to count (gpu/segment_cells.h
+  // ht_segment_meets_balls; ReusePlan::movedBalls).
+  vec4 movedBalls[2];
   // ... and, on a two-level BVH whose moves since the last frame name their instances (Renderer::moveNodes), those
   // instances: their instance indices in movedInstanceIds, 0xFFFFFFFF past the last (all: none, or not known), and
   // the scene triangles of each in movedTriangles (first, count). A traced ray of a partial re-render walks from its

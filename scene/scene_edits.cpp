@@ -1,6 +1,7 @@
 // scene_edits.cpp - see scene_edits.h.
 #include "scene/scene_edits.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -73,6 +74,22 @@ Bounds3 nodeWorldBounds(const Scene& scene, std::size_t index) {
   const SceneNode& node = scene.nodes.at(index);
   for (std::uint32_t v = node.firstVertex; v < node.firstVertex + node.vertexCount; ++v) b.extend(scene.positions[v]);
   return b;
+}
+
+glm::vec4 nodeWorldBall(const Scene& scene, std::size_t index) {
+  const Bounds3 b = nodeWorldBounds(scene, index);
+  if (b.empty()) return glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+  const glm::dvec3 c = 0.5 * (glm::dvec3(b.lo) + glm::dvec3(b.hi));
+  const SceneNode& node = scene.nodes.at(index);
+  double r2 = 0.0;
+  for (std::uint32_t v = node.firstVertex; v < node.firstVertex + node.vertexCount; ++v) {
+    const glm::dvec3 d = glm::dvec3(scene.positions[v]) - c;
+    r2 = std::max(r2, glm::dot(d, d));
+  }
+  const glm::dvec3 extent = glm::dvec3(b.hi) - glm::dvec3(b.lo);
+  const double slack =
+      1e-6 * (std::max({extent.x, extent.y, extent.z}) + std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}));
+  return glm::vec4(glm::vec3(c), static_cast<float>(std::sqrt(r2) * (1.0 + 1e-6) + slack));
 }
 
 void editLight(Scene& scene, std::size_t index, const LightEdit& edit) {

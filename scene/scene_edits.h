@@ -29,6 +29,12 @@ void editLight(Scene& scene, std::size_t index, const LightEdit& edit);
 // moved node's bounds before and after setNodeWorldMatrix are what gpu::Renderer::replaceSceneAfterMove takes.
 Bounds3 nodeWorldBounds(const Scene& scene, std::size_t index);
 
+// A ball holding every vertex of scene.nodes[index] as it is now: xyz its centre (the bounds' centre), w its radius,
+// grown by 1e-6 of the node's extent and of the centre's magnitude over the rounding of its computation (w < 0: the
+// node has no vertices). A moved node's balls before and after (gpu::MovedBounds) let the marking pass of a partial
+// re-render pass over segments that cross the corners of the moved bounds (docs/REUSE.md §4).
+glm::vec4 nodeWorldBall(const Scene& scene, std::size_t index);
+
 // Index of node `name` in scene.nodes, or nullopt.
 std::optional<std::size_t> findNode(const Scene& scene, std::string_view name);
 

@@ -330,7 +330,7 @@ std::vector<std::uint32_t> movedNodes(const Scene& before, const Scene& after) {
 }
 
 // Where the moved nodes' geometry was and is: what a frame that reuses the previous one re-traces around
-// (gpu::Renderer::moveNodes, docs/REUSE.md §4).
+// (gpu::Renderer::moveNodes, docs/REUSE.md §4); with one moved node, the balls around it too.
 gpu::MovedBounds movedBounds(const Scene& before, const Scene& after, const std::vector<std::uint32_t>& moved) {
   gpu::MovedBounds bounds;
   for (const std::uint32_t n : moved) {
@@ -340,6 +340,10 @@ gpu::MovedBounds movedBounds(const Scene& before, const Scene& after, const std:
       into->extend(b.lo);
       into->extend(b.hi);
     }
+  }
+  if (moved.size() == 1) {
+    bounds.beforeBall = nodeWorldBall(before, moved[0]);
+    bounds.afterBall = nodeWorldBall(after, moved[0]);
   }
   return bounds;
 }

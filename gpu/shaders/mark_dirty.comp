@@ -44,15 +44,19 @@ layout(constant_id = 1) const uint MODE = MARK_TARGETS;
 // padded moved bounds?
 bool cached_segment_meets_moved(vec3 o, float tmin, vec3 d, float tmax, uvec4 hit) {
   vec3 lo = moved_lo(), hi = moved_hi();
+  vec4 ball0 = FRAME.movedBalls[0], ball1 = FRAME.movedBalls[1];  // (w < 0: none, the bounds alone)
   float tEnd = hit.y != HT_MISS ? uintBitsToFloat(hit.x) : tmax;
-  if (ht_segment_meets_box(o, d, tmin, tEnd, lo, hi)) return true;
+  if (ht_segment_meets_box(o, d, tmin, tEnd, lo, hi) && ht_segment_meets_balls(o, d, tmin, tEnd, ball0, ball1))
+    return true;
   if (hit.y == HT_MISS) return false;
   vec3 p = ht_cached_hit_point(o, d, tEnd);
   float pErr = ht_cached_hit_error(o, d, tEnd);
   uint lightCount = FRAME.scene.x;
   for (uint l = 0u; l < lightCount; ++l) {
     GpuLight light = scene_light(l);
-    if (ht_shadow_meets_box(p, pErr, light.position, light.direction.xyz, lo, hi)) return true;
+    if (ht_shadow_meets_box(p, pErr, light.position, light.direction.xyz, lo, hi) &&
+        ht_shadow_meets_balls(p, pErr, light.position, light.direction.xyz, ball0, ball1))
+      return true;
   }
   return false;
 }

@@ -80,14 +80,16 @@ void moveNode(Scene& scene, const std::string& node, glm::dvec3 by, gpu::Rendere
               MoveThrough through = MoveThrough::Rebuild) {
   const std::size_t index = *findNode(scene, node);
   const Bounds3 before = nodeWorldBounds(scene, index);
+  const glm::vec4 beforeBall = nodeWorldBall(scene, index);
   glm::dmat4 world = scene.nodes[index].world;
   world[3] += glm::dvec4(by, 0.0);
   setNodeWorldMatrix(scene, node, world);
   if (through == MoveThrough::Rebuild) {
     renderer.replaceSceneAfterMove(scene, before, nodeWorldBounds(scene, index));
-  } else {
+  } else {  // with the balls around the node (the marking pass's tighter test)
     const std::uint32_t nodes[] = {static_cast<std::uint32_t>(index)};
-    renderer.moveNodes(scene, nodes, gpu::MovedBounds{before, nodeWorldBounds(scene, index)});
+    renderer.moveNodes(
+        scene, nodes, gpu::MovedBounds{before, nodeWorldBounds(scene, index), beforeBall, nodeWorldBall(scene, index)});
   }
 }
 
@@ -288,12 +290,15 @@ TEST(FrameReuse, BounceRaysTakeTheirCachedHitsWhereTheMoveCannotHaveChangedThem)
     for (int move = 0; move < 4; ++move) {
       SCOPED_TRACE("move " + std::to_string(move));
       const Bounds3 before = nodeWorldBounds(edited, box);
+      const glm::vec4 beforeBall = nodeWorldBall(edited, box);
       glm::dmat4 world = edited.nodes[box].world;
       world[3] += glm::dvec4(move % 2 ? -0.12 : 0.15, 0.0, move < 2 ? 0.04 : -0.03, 0.0);
       setNodeWorldMatrix(edited, "red-box", world);
       const std::uint32_t nodes[] = {static_cast<std::uint32_t>(box)};
-      for (gpu::Renderer* r : {&reusing, &tracing})
-        r->moveNodes(edited, nodes, gpu::MovedBounds{before, nodeWorldBounds(edited, box)});
+      for (gpu::Renderer* r : {&reusing, &tracing}) {
+        r->moveNodes(edited, nodes,
+                     gpu::MovedBounds{before, nodeWorldBounds(edited, box), beforeBall, nodeWorldBall(edited, box)});
+      }
       const gpu::RenderResult reused = reusing.render(camera, reuseSettings());
       const gpu::RenderResult traced = tracing.render(camera, reuseSettings());
       ASSERT_EQ(reused.reuse, FrameReuse::PartialRetrace);
@@ -492,8 +497,9 @@ TEST(FrameReuse, TheBounceCacheHoldsTheQueuesPackedAndAnOverflowKeepsNoState) {
 }
 
 // The GPU marking pass lists exactly the targets the C++ reference picks from the masks the previous frame recorded.
-// Once in one batch and once in many (the secondary cache's queues are kept per batch).
-void checkMarkingPassAgainstItsCpuReference(std::uint32_t maxPathsPerBatch) {
+// Once in one batch and once in many (the secondary cache's queues are kept per batch), and with the balls around
+// the moved node (Renderer::moveNodes), which pass over fewer targets than the bounds alone.
+void checkMarkingPassAgainstItsCpuReference(std::uint32_t maxPathsPerBatch, bool withBalls = false) {
   gpu::RenderSettings settings = reuseSettings();
   settings.maxPathsPerBatch = maxPathsPerBatch;
   Scene scene = loadScene("builtin:showcase");
@@ -504,11 +510,17 @@ void checkMarkingPassAgainstItsCpuReference(std::uint32_t maxPathsPerBatch) {
   ASSERT_EQ(before.segmentMasks.size(), frameShape(camera).targets() * gpu::kMaskWords);
   const std::size_t index = *findNode(scene, "glow-sphere");
   const Bounds3 old = nodeWorldBounds(scene, index);
+  const glm::vec4 oldBall = nodeWorldBall(scene, index);
   glm::dmat4 world(1.0);
   world[3] = glm::dvec4(-0.2, 0.1, 0.0, 1.0);
   setNodeWorldMatrix(scene, "glow-sphere", world);
   const Bounds3 moved = nodeWorldBounds(scene, index);
-  renderer.replaceSceneAfterMove(scene, old, moved);
+  if (withBalls) {
+    const std::uint32_t nodes[] = {static_cast<std::uint32_t>(index)};
+    renderer.moveNodes(scene, nodes, gpu::MovedBounds{old, moved, oldBall, nodeWorldBall(scene, index)});
+  } else {
+    renderer.replaceSceneAfterMove(scene, old, moved);
+  }
   const gpu::RenderResult partial = renderer.render(camera, settings);
   ASSERT_EQ(partial.reuse, FrameReuse::PartialRetrace);
   const gpu::Renderer::ReuseSnapshot after = renderer.reuseSnapshot();
@@ -518,6 +530,8 @@ void checkMarkingPassAgainstItsCpuReference(std::uint32_t maxPathsPerBatch) {
   plan.gridCells[1] = after.movedCells[1];
   plan.movedLo = after.movedLo;
   plan.movedHi = after.movedHi;
+  plan.movedBalls = {after.movedBalls[0], after.movedBalls[1]};
+  EXPECT_EQ(plan.movedBalls[0].w >= 0.0f, withBalls);
   plan.secondaryExact = after.secondaryExact;
   EXPECT_TRUE(after.secondaryExact) << "the mirror's and the glass's queues are cached: tested entry by entry";
   EXPECT_FALSE(before.secondarySegments.empty());
@@ -537,10 +551,21 @@ void checkMarkingPassAgainstItsCpuReference(std::uint32_t maxPathsPerBatch) {
   EXPECT_EQ(listed, expected);
   EXPECT_EQ(partial.tracedTargets, expected.size());
   EXPECT_GT(expected.size(), 0u);
+  if (withBalls) {
+    plan.movedBalls = gpu::kNoBalls;
+    const std::size_t boundsAlone =
+        gpu::markDirtyTargets(before.segmentMasks, plan, before.primaryRays, before.primaryHits, settings.spp,
+                              gpu::packLights(scene), before.secondarySegments)
+            .size();
+    EXPECT_LT(expected.size(), boundsAlone) << "a sphere fills half of its box";
+  }
 }
 
 TEST(FrameReuse, MarkingPassMatchesItsCpuReference) { checkMarkingPassAgainstItsCpuReference(0); }
 TEST(FrameReuse, MarkingPassMatchesItsCpuReferenceOverManyBatches) { checkMarkingPassAgainstItsCpuReference(1024); }
+TEST(FrameReuse, MarkingPassWithTheMovedNodesBallsMatchesItsCpuReference) {
+  checkMarkingPassAgainstItsCpuReference(0, true);
+}
 
 // Does the segment o + t d, t in [t0, t1], meet the box [lo, hi]? (Slab test in double precision.)
 bool segmentMeetsBox(glm::dvec3 o, glm::dvec3 d, double t0, double t1, glm::dvec3 lo, glm::dvec3 hi) {
@@ -603,6 +628,54 @@ TEST(SegmentCells, EverySegmentThatMeetsABoxSharesOneOfItsCells) {
   const gpu_shared::uvec2 nan =
       gpu_shared::ht_segment_cells(glm::vec3(std::nanf("")), glm::vec3(1.0f), 0.0f, 1.0f, grid);
   EXPECT_EQ(nan.x & nan.y, 0xffffffffu);
+}
+
+// The balls' test is conservative: a segment (misses to infinity included) whose points come within the radius of the
+// centre, in double precision, meets the ball; segments that pass more than 1 % of the radius and 1e-3 outside it do
+// not.
+// The shadow form meets the ball wherever a shadow ray from the point does.
+TEST(SegmentCells, EverySegmentThatMeetsABallIsFoundAndOnlyThoseNearIt) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> coord(-4.0f, 4.0f), radius(1e-3f, 2.0f), unit(-1.0f, 1.0f);
+  int meeting = 0, far = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const glm::vec4 ball(coord(rng), coord(rng), coord(rng), radius(rng));
+    const glm::vec3 c(ball);
+    // segments aimed near the ball, so that about half of them meet it
+    glm::vec3 o(coord(rng), coord(rng), coord(rng));
+    const glm::vec3 aim = c + glm::vec3(unit(rng), unit(rng), unit(rng)) * (2.0f * ball.w);
+    glm::vec3 d = aim - o;
+    if (i % 5 == 0) d = glm::normalize(d);
+    const float t0 = i % 4 == 0 ? 0.0f : 0.25f * std::abs(unit(rng));
+    const float t1 = i % 3 == 0 ? 3.0e38f : t0 + 2.0f * std::abs(unit(rng));
+    // the distance in double from the centre to the points o + t d, t in [t0, min(t1, 1e30)]
+    const glm::dvec3 od(o), dd(d), cd(c);
+    const double tEnd = std::min<double>(t1, 1e30);
+    const double tNear = std::clamp(glm::dot(cd - od, dd) / glm::dot(dd, dd), double(t0), tEnd);
+    const double dist = glm::length(od + tNear * dd - cd);
+    const bool found = gpu_shared::ht_segment_meets_balls(o, d, t0, t1, ball, ball);
+    if (dist <= ball.w) {
+      ++meeting;
+      ASSERT_TRUE(found) << "segment " << i << " passes " << dist << " from the centre of a ball of " << ball.w;
+    } else if (dist > 1.01 * ball.w + 1e-3) {
+      ++far;
+      ASSERT_FALSE(found) << "segment " << i << " passes " << dist << " from the centre of a ball of " << ball.w;
+    }
+    const glm::vec4 point(aim, 1.0f), sun(0.0f, 0.0f, 0.0f, 2.0f);  // HT_LIGHT_POINT, HT_LIGHT_DIRECTIONAL
+    if (dist <= ball.w && t0 == 0.0f) {  // the shadow ray from o towards a light at `aim`, or along d to infinity
+      if (i % 5 != 0 && tNear <= 1.0) {  // (d = aim - o: the shadow ray holds the segment's nearest point)
+        ASSERT_TRUE(gpu_shared::ht_shadow_meets_balls(o, 0.0f, point, glm::vec3(0.0f), ball, ball)) << "segment " << i;
+      }
+      if (t1 >= 3.0e38f) {
+        ASSERT_TRUE(gpu_shared::ht_shadow_meets_balls(o, 0.0f, sun, -d, ball, ball)) << "segment " << i;
+      }
+    }
+  }
+  EXPECT_GT(meeting, 20000);
+  EXPECT_GT(far, 20000);
+  const glm::vec4 none(0.0f, 0.0f, 0.0f, -1.0f);
+  EXPECT_TRUE(gpu_shared::ht_segment_meets_balls(glm::vec3(100.0f), glm::vec3(1.0f), 0.0f, 1.0f, none, none))
+      << "without balls, the bounds decide alone";
 }
 
 // The shadow test of the marking pass is conservative for the rays shade.comp traces: a shadow ray from the offset

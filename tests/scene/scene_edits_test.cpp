@@ -141,6 +141,31 @@ TEST(SceneEdits, NodeWorldBoundsFollowTheMovedVertices) {
   }
 }
 
+// nodeWorldBall holds every vertex of the node, moves with it, and is no larger than the ball around its bounds.
+TEST(SceneEdits, NodeWorldBallHoldsTheNodesVerticesAndMovesWithThem) {
+  Scene scene = loadScene("builtin:showcase");
+  for (const char* name : {"glow-sphere", "red-box", "room"}) {
+    SCOPED_TRACE(name);
+    const std::size_t index = *findNode(scene, name);
+    const SceneNode& node = scene.nodes[index];
+    for (int move = 0; move < 2; ++move) {
+      const glm::vec4 ball = nodeWorldBall(scene, index);
+      const Bounds3 b = nodeWorldBounds(scene, index);
+      ASSERT_GE(ball.w, 0.0f);
+      EXPECT_LE(ball.w, 0.5001f * glm::length(b.extent()));
+      for (std::uint32_t v = node.firstVertex; v < node.firstVertex + node.vertexCount; ++v)
+        ASSERT_LE(glm::length(glm::dvec3(scene.positions[v]) - glm::dvec3(glm::vec3(ball))), double(ball.w));
+      glm::dmat4 world = scene.nodes[index].world;
+      world[3] += glm::dvec4(0.3, -0.1, 0.2, 0.0);
+      setNodeWorldMatrix(scene, name, world);
+      EXPECT_NEAR(nodeWorldBall(scene, index).x - ball.x, 0.3f, 1e-5f);
+    }
+  }
+  Scene empty = scene;
+  empty.nodes[0].vertexCount = 0;
+  EXPECT_LT(nodeWorldBall(empty, 0).w, 0.0f);
+}
+
 // A mirroring matrix flips the winding back, as the loader does for a mirrored node; moving back restores it.
 TEST(SceneEdits, MirroringKeepsFrontFacesAndMovingBackRestores) {
   TempDir dir;
