@@ -121,6 +121,16 @@ HT_INLINE bool ht_segment_meets_box(vec3 o, vec3 d, float t0, float t1, vec3 lo,
   return a <= b;
 }
 
+// How far a shadow ray that shade.comp's emit_shadow_rays may trace from the surface point p (known to `pErr` per
+// axis) along d (towards a point light at p + d, or to infinity for a directional one) can stray from the points
+// p + u d: ht_shadow_meets_box explains the terms.
+HT_INLINE float ht_shadow_pad(vec3 p, float pErr, vec3 d, bool directional) {
+  float reach = directional ? 0.0f : max(max(abs(d.x), abs(d.y)), abs(d.z));
+  HT_PRECISE float offset = (max(max(abs(p.x), abs(p.y)), abs(p.z)) + pErr) * 3.1e-5f + 1.6e-5f;
+  HT_PRECISE float pad = pErr + offset + reach * 1e-5f;
+  return pad;
+}
+
 // Do the points a + u w, u in [0, u1] (u1 may be HT_GRID_T_INFINITY), come within `pad` of the ball (centre ball.xyz,
 // radius ball.w)? The nearest point, a + u w with u = (c - a).w / w.w clamped to [0, u1], is computed to a few float
 // ULPs of the coordinates' magnitude, so the radius grows by 1e-5 of that magnitude (and 1e-5 of itself): a point
@@ -151,9 +161,7 @@ HT_INLINE bool ht_shadow_meets_balls(vec3 p, float pErr, vec4 lightPosition, vec
   if (ball0.w < 0.0f) return true;
   bool directional = uint(lightPosition.w) == 2u;  // HT_LIGHT_DIRECTIONAL (gpu/wavefront_types.h)
   vec3 d = directional ? -direction : vec3(lightPosition.x, lightPosition.y, lightPosition.z) - p;
-  float reach = directional ? 0.0f : max(max(abs(d.x), abs(d.y)), abs(d.z));
-  HT_PRECISE float offset = (max(max(abs(p.x), abs(p.y)), abs(p.z)) + pErr) * 3.1e-5f + 1.6e-5f;
-  HT_PRECISE float pad = pErr + offset + reach * 1e-5f;
+  float pad = ht_shadow_pad(p, pErr, d, directional);
   float u1 = directional ? HT_GRID_T_INFINITY : 1.0f;
   return ht_points_meet_ball(p, d, u1, pad, ball0) || ht_points_meet_ball(p, d, u1, pad, ball1);
 }
@@ -220,9 +228,7 @@ HT_INLINE float ht_cached_hit_error(vec3 o, vec3 d, float t) {
 HT_INLINE bool ht_shadow_meets_box(vec3 p, float pErr, vec4 lightPosition, vec3 direction, vec3 lo, vec3 hi) {
   bool directional = uint(lightPosition.w) == 2u;  // HT_LIGHT_DIRECTIONAL (gpu/wavefront_types.h)
   vec3 d = directional ? -direction : vec3(lightPosition.x, lightPosition.y, lightPosition.z) - p;
-  float reach = directional ? 0.0f : max(max(abs(d.x), abs(d.y)), abs(d.z));
-  HT_PRECISE float offset = (max(max(abs(p.x), abs(p.y)), abs(p.z)) + pErr) * 3.1e-5f + 1.6e-5f;
-  HT_PRECISE float pad = pErr + offset + reach * 1e-5f;
+  float pad = ht_shadow_pad(p, pErr, d, directional);
   vec3 grow = vec3(pad, pad, pad);
   return ht_segment_meets_box(p, d, 0.0f, directional ? HT_GRID_T_INFINITY : 1.0f, lo - grow, hi + grow);
 }
