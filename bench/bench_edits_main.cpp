@@ -244,7 +244,8 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     if (lit.reuse != gpu::FrameReuse::CachedPrimaryHits) throw GpuError("the light edit did not reuse the cache");
 
     const Bounds3 before = nodeWorldBounds(scene, node);
-    const glm::vec4 beforeBall = o.noBalls ? glm::vec4(0.0f, 0.0f, 0.0f, -1.0f) : nodeWorldBall(scene, node);
+    const auto ball = [&] { return o.noBalls ? kNoBall : nodeWorldBall(scene, node); };  // --no-balls: none
+    const glm::vec4 beforeBall = ball();
     glm::dmat4 world = scene.nodes[node].world;
     world[3] += glm::dvec4(run % 2 ? -step : step, 0.0);
     setNodeWorldMatrix(scene, o.node, world);
@@ -253,9 +254,7 @@ DisplayEdits measure(gpu::VulkanContext& context, const std::string& spec, const
     reusing.setMovedInstanceWalks(walks || o.alternate != Alternate::Walks);
     reusing.setBounceHitReuse(walks || o.alternate != Alternate::BounceHits);
     t0 = std::chrono::steady_clock::now();
-    reusing.moveNodes(scene, movedNodes,
-                      gpu::MovedBounds{before, nodeWorldBounds(scene, node), beforeBall,
-                                       o.noBalls ? glm::vec4(0.0f, 0.0f, 0.0f, -1.0f) : nodeWorldBall(scene, node)});
+    reusing.moveNodes(scene, movedNodes, gpu::MovedBounds{before, nodeWorldBounds(scene, node), beforeBall, ball()});
     const double rebuild = msSince(t0);
     gpu::RenderResult moved = reusing.render(camera, on);
     const double move = msSince(t0);

@@ -22,6 +22,7 @@ FrameReuseState::FrameReuseState(VulkanContext::Impl& vk, const Bounds3& sceneBo
 void FrameReuseState::geometryMoved(const Bounds3& oldBounds, const Bounds3& newBounds,
                                     std::optional<std::span<const std::uint32_t>> instances,
                                     std::optional<std::array<glm::vec4, 2>> balls) {
+  const bool firstMove = !moved_;  // since the last frame (invalidate)
   moved_ = true;
   if (instances) {
     movedInstances_.insert(movedInstances_.end(), instances->begin(), instances->end());
@@ -36,7 +37,7 @@ void FrameReuseState::geometryMoved(const Bounds3& oldBounds, const Bounds3& new
     movedBounds_.extend(b.hi);
   }
   const bool ballsGiven = balls && (*balls)[0].w >= 0.0f && (*balls)[1].w >= 0.0f;
-  movedBalls_ = ++movesSinceFrame_ == 1 && ballsGiven ? *balls : kNoBalls;
+  movedBalls_ = firstMove && ballsGiven ? *balls : kNoBalls;
 }
 
 void FrameReuseState::invalidate() {
@@ -45,7 +46,6 @@ void FrameReuseState::invalidate() {
   lightRaysChanged_ = 0;
   movedBounds_ = Bounds3{};
   movedBalls_ = kNoBalls;
-  movesSinceFrame_ = 0;
   movedInstances_.clear();
   movedInstancesKnown_ = true;
 }

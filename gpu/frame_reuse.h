@@ -40,8 +40,7 @@ struct ReuseKey {
 };
 
 // No balls around moved geometry (ReusePlan::movedBalls): the marking pass tests the moved bounds alone.
-inline const std::array<glm::vec4, 2> kNoBalls = {glm::vec4(0.0f, 0.0f, 0.0f, -1.0f),
-                                                  glm::vec4(0.0f, 0.0f, 0.0f, -1.0f)};
+inline const std::array<glm::vec4, 2> kNoBalls = {kNoBall, kNoBall};
 
 // How the next frame is rendered, decided from the key and the edits since the last recorded frame.
 struct ReusePlan {
@@ -188,9 +187,8 @@ class FrameReuseState {
   std::uint32_t lightRaysChanged_ = 0;  // since the last frame
   Bounds3 movedBounds_;
   // Balls around the moved geometry, before and after (MovedBounds): kept when the only move since the last frame
-  // gave both, else none (w < 0); movesSinceFrame_ counts the moves.
+  // gave both, else none (w < 0).
   std::array<glm::vec4, 2> movedBalls_ = kNoBalls;
-  std::uint32_t movesSinceFrame_ = 0;
   std::vector<std::uint32_t> movedInstances_;  // since the last frame, ascending
   bool movedInstancesKnown_ = true;            // every move since the last frame named its instances
 };

@@ -18,6 +18,7 @@
 #include "gpu/scene_bvh.h"
 #include "gpu/segment_cells.h"
 #include "scene/scene.h"
+#include "scene/scene_edits.h"
 
 namespace ht::gpu {
 
@@ -117,7 +118,7 @@ struct BvhStats {
 // cross only the corners of the bounds (docs/REUSE.md §4 "Balls around the moved node").
 struct MovedBounds {
   Bounds3 before, after;
-  glm::vec4 beforeBall{0.0f, 0.0f, 0.0f, -1.0f}, afterBall{0.0f, 0.0f, 0.0f, -1.0f};
+  glm::vec4 beforeBall = kNoBall, afterBall = kNoBall;
 };
 
 struct TraceStats {
@@ -214,7 +215,7 @@ class Renderer {
     // The last partial re-render's moved cells, padded moved bounds and balls (what its marking pass tested).
     std::uint32_t movedCells[2] = {0, 0};
     glm::vec3 movedLo{0.0f}, movedHi{0.0f};
-    glm::vec4 movedBalls[2] = {glm::vec4(0.0f, 0.0f, 0.0f, -1.0f), glm::vec4(0.0f, 0.0f, 0.0f, -1.0f)};
+    glm::vec4 movedBalls[2] = {kNoBall, kNoBall};
   };
   ReuseSnapshot reuseSnapshot() const;
   // Device memory the frame-reuse state may give its cache of mirror and glass bounces (default

@@ -78,7 +78,7 @@ Bounds3 nodeWorldBounds(const Scene& scene, std::size_t index) {
 
 glm::vec4 nodeWorldBall(const Scene& scene, std::size_t index) {
   const Bounds3 b = nodeWorldBounds(scene, index);
-  if (b.empty()) return glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+  if (b.empty()) return kNoBall;
   const glm::dvec3 c = 0.5 * (glm::dvec3(b.lo) + glm::dvec3(b.hi));
   const SceneNode& node = scene.nodes.at(index);
   double r2 = 0.0;

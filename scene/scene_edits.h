@@ -34,6 +34,8 @@ Bounds3 nodeWorldBounds(const Scene& scene, std::size_t index);
 // node has no vertices). A moved node's balls before and after (gpu::MovedBounds) let the marking pass of a partial
 // re-render pass over segments that cross the corners of the moved bounds (docs/REUSE.md §4).
 glm::vec4 nodeWorldBall(const Scene& scene, std::size_t index);
+// No ball (radius < 0): what nodeWorldBall gives for a node without vertices, and gpu::MovedBounds's default.
+inline const glm::vec4 kNoBall(0.0f, 0.0f, 0.0f, -1.0f);
 
 // Index of node `name` in scene.nodes, or nullopt.
 std::optional<std::size_t> findNode(const Scene& scene, std::string_view name);
